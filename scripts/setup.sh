@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs every Debian package emoface needs to build, test and benchmark. Idempotent: packages
+# already installed are skipped, and apt-get runs only when something is missing.
+# Usage: scripts/setup.sh            (as root, or as a user with sudo)
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config git ca-certificates
+  clang libclang-rt-14-dev          # EMOFACE_FUZZ (libFuzzer)
+  libeigen3-dev libopenmesh-dev libceres-dev libflann-dev
+  nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "setup: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
