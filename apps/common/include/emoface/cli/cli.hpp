@@ -1,0 +1,58 @@
+#pragma once
+// Glue shared by every emoface command-line app (CONVENTIONS.md, "Errors"):
+// fixed exit codes, one-line error messages on stderr, --shard i/N, and outputs written atomically.
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <CLI/CLI.hpp>
+
+#include "emoface/core/io.hpp"
+
+namespace emoface::cli {
+
+/// Fixed exit codes of every app.
+enum ExitCode : int {
+  kExitOk = 0,         ///< success
+  kExitUsage = 1,      ///< bad command line
+  kExitInput = 2,      ///< bad input file or content (InvalidInput, FormatError, IoError)
+  kExitNumerical = 3,  ///< NumericalError
+  kExitInternal = 4,   ///< anything else
+};
+
+/// Parses the command line; on --help/--version prints and returns kExitOk, on a usage error prints
+/// one line and returns kExitUsage; returns std::nullopt when the app should go on.
+std::optional<int> parse(CLI::App& app, int argc, char** argv);
+
+/// Runs `body`, mapping exceptions to one line "<tool>: error: <message>" on stderr and the exit
+/// codes above. Returns body's result when it does not throw.
+int run(std::string_view tool, const std::function<int()>& body);
+
+/// --shard i/N: this process handles the items whose index % N == i (0 <= i < N).
+struct Shard {
+  std::size_t index = 0;
+  std::size_t count = 1;
+  bool owns(std::size_t item) const noexcept { return item % count == index; }
+};
+
+/// Parses "i/N". Throws InvalidInput with a clear message otherwise.
+Shard parse_shard(std::string_view text);
+
+/// An output stream that is either stdout ("-") or a file written atomically: nothing appears at
+/// `path` unless commit() is called.
+class Output {
+ public:
+  explicit Output(const std::string& path);
+  void write(std::string_view data);
+  void commit();
+  bool is_stdout() const noexcept { return !file_; }
+
+ private:
+  std::unique_ptr<core::AtomicFile> file_;
+  std::string buffer_;
+};
+
+}  // namespace emoface::cli

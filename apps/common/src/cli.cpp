@@ -1,0 +1,98 @@
+#include "emoface/cli/cli.hpp"
+
+#include <charconv>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "emoface/core/errors.hpp"
+
+namespace emoface::cli {
+
+std::optional<int> parse(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << app.get_name() << ": usage error: " << e.what() << " (see --help)\n";
+    return kExitUsage;
+  }
+  return std::nullopt;
+}
+
+int run(std::string_view tool, const std::function<int()>& body) {
+  auto report = [&](const char* kind, const char* what) {
+    std::cerr << tool << ": " << kind << ": " << what << '\n';
+  };
+  try {
+    return body();
+  } catch (const FormatError& e) {
+    report("error", e.what());
+    return kExitInput;
+  } catch (const IoError& e) {
+    report("error", e.what());
+    return kExitInput;
+  } catch (const InvalidInput& e) {
+    report("error", e.what());
+    return kExitInput;
+  } catch (const NumericalError& e) {
+    report("numerical error", e.what());
+    return kExitNumerical;
+  } catch (const std::exception& e) {
+    report("internal error", e.what());
+    return kExitInternal;
+  } catch (...) {
+    report("internal error", "unknown exception");
+    return kExitInternal;
+  }
+}
+
+Shard parse_shard(std::string_view text) {
+  auto bad = [&]() {
+    return InvalidInput("--shard: expected i/N with 0 <= i < N, got \"" + std::string(text) + "\"");
+  };
+  auto slash = text.find('/');
+  if (slash == std::string_view::npos) throw bad();
+  auto parse_size = [&](std::string_view part) {
+    std::size_t value = 0;
+    auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+    if (part.empty() || ec != std::errc() || ptr != part.data() + part.size()) throw bad();
+    return value;
+  };
+  Shard s{parse_size(text.substr(0, slash)), parse_size(text.substr(slash + 1))};
+  if (s.count == 0 || s.index >= s.count) throw bad();
+  return s;
+}
+
+Output::Output(const std::string& path) {
+  if (path != "-") file_ = std::make_unique<core::AtomicFile>(path);
+}
+
+void Output::write(std::string_view data) {
+  if (file_) {
+    buffer_.append(data);
+    if (buffer_.size() >= (1u << 20)) {
+      file_->write(buffer_);
+      buffer_.clear();
+    }
+  } else {
+    std::fwrite(data.data(), 1, data.size(), stdout);
+  }
+}
+
+void Output::commit() {
+  if (file_) {
+    file_->write(buffer_);
+    buffer_.clear();
+    file_->commit();
+  } else if (std::fflush(stdout) != 0) {
+    throw IoError("<stdout>: write failed");
+  }
+}
+
+}  // namespace emoface::cli
