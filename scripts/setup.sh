@@ -12,6 +12,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
 )
+PACKAGES+=(libespeak-ng-dev espeak-ng-data libpugixml-dev libpng-dev)  # channels / talkinghead
 
 missing=()
 for p in "${PACKAGES[@]}"; do

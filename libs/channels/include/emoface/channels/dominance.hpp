@@ -51,6 +51,11 @@ struct VisemeSet {
   std::vector<std::string> parameters() const;
 };
 
+/// The built-in viseme set (same content as data/channels/visemes.json): 15 visemes (silence plus
+/// 14 classes of English espeak-ng phonemes) with hand-set targets and dominance parameters; see
+/// docs/channels.md for where the numbers come from.
+VisemeSet default_viseme_set();
+
 /// A lip movement Γl = ((PV_i), Ts, Te, Da) (thesis §4.4): one viseme segment.
 struct LipSegment {
   std::string viseme;   ///< a name in the VisemeSet

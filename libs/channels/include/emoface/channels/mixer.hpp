@@ -37,8 +37,9 @@ struct MixOptions {
   /// Dmin− (§4.6): minimum offset duration for a parameter to release completely before an
   /// inhibition, seconds, > 0 (default 0.3; Fig. 4.8 releases ~4 frames before the conflict).
   double dmin_minus = 0.3;
-  /// A parameter counts as "activated" when |activity| exceeds this, in (0, 1) (default 0.01).
-  double active_threshold = 0.01;
+  /// A parameter counts as "activated" when |activity| exceeds this, in (0, 1) (default 0.05: the
+  /// dominance-weighted lip tracks never reach exactly 0, their tails stay below it).
+  double active_threshold = 0.05;
   /// Priority per channel (index = Channel), smaller = higher priority (default thesis order 1..6).
   std::array<int, kChannelCount> priority = {1, 2, 3, 4, 5, 6};
   void validate() const;
