@@ -133,49 +133,54 @@ int Coarticulation::parameter_index(std::string_view parameter) const {
 namespace {
 // log Δ(τ): τ = Tc + To − t (seconds) (§4.5.1); τ >= 0 uses θ←, τ < 0 uses θ→. The apex keeps Δ at α
 // for |τ| <= Da/2.
-struct LogDominance {
-  template <class Slot>
-  static double eval(const Slot& s, double t, double unit) {
-    const double tau = s.peak - t;
-    const double mag = std::max(0.0, std::abs(tau) - s.half_apex) / unit;
-    const double theta = tau >= 0 ? s.theta_ant : s.theta_carry;
-    return s.log_alpha - theta * std::pow(mag, s.c);
-  }
-};
+template <class Slot>
+double log_dominance(const Slot& s, double t, double unit) {
+  const double tau = s.peak - t;
+  const double mag = std::max(0.0, std::abs(tau) - s.half_apex) / unit;
+  const double theta = tau >= 0 ? s.theta_ant : s.theta_carry;
+  return s.log_alpha - theta * (s.c == 1.0 ? mag : std::pow(mag, s.c));
+}
 }  // namespace
 
 double Coarticulation::dominance(std::size_t m, std::size_t p, double t) const {
   if (m >= segments_.size() || p >= parameters_.size())
     throw InvalidInput("Coarticulation::dominance: index out of range");
-  return std::exp(LogDominance::eval(slots_[m * parameters_.size() + p], t, options_.time_unit));
+  return std::exp(log_dominance(slots_[m * parameters_.size() + p], t, options_.time_unit));
 }
 
-double Coarticulation::value(std::size_t p, double t) const {
-  if (p >= parameters_.size()) throw InvalidInput("Coarticulation::value: parameter index out of range");
+// F_p(t) over segments [lo, hi): the weighted average of §4.5.1, computed relative to the largest
+// log-dominance so nothing underflows. `ld` is scratch space.
+double Coarticulation::average(std::size_t p, double t, std::size_t lo, std::size_t hi, std::vector<double>& ld) const {
   const std::size_t np = parameters_.size();
-  const double r = max_reach_[p];
-  // segments with end >= t − r and start <= t + r
-  auto first = std::lower_bound(segments_.begin(), segments_.end(), t - r,
-                                [](const LipSegment& s, double x) { return s.end < x; });
+  ld.resize(hi - lo);
   double best = -HUGE_VAL;
-  std::size_t lo = static_cast<std::size_t>(first - segments_.begin()), hi = lo;
-  while (hi < segments_.size() && segments_[hi].start <= t + r) ++hi;
-  // weighted average computed relative to the largest log-dominance (no underflow)
   for (std::size_t m = lo; m < hi; ++m) {
     const Slot& s = slots_[m * np + p];
-    if (std::abs(s.peak - t) > s.reach) continue;
-    best = std::max(best, LogDominance::eval(s, t, options_.time_unit));
+    double& l = ld[m - lo];
+    l = std::abs(s.peak - t) > s.reach ? -HUGE_VAL : log_dominance(s, t, options_.time_unit);
+    best = std::max(best, l);
   }
   if (best == -HUGE_VAL) return 0.0;
   double num = 0.0, den = 0.0;
   for (std::size_t m = lo; m < hi; ++m) {
-    const Slot& s = slots_[m * np + p];
-    if (std::abs(s.peak - t) > s.reach) continue;
-    const double w = std::exp(LogDominance::eval(s, t, options_.time_unit) - best);
-    num += w * s.target;
+    if (ld[m - lo] == -HUGE_VAL) continue;
+    const double w = std::exp(ld[m - lo] - best);
+    num += w * slots_[m * np + p].target;
     den += w;
   }
   return num / den;
+}
+
+double Coarticulation::value(std::size_t p, double t) const {
+  if (p >= parameters_.size()) throw InvalidInput("Coarticulation::value: parameter index out of range");
+  const double r = max_reach_[p];
+  // segments with end >= t − r and start <= t + r
+  const auto first = std::lower_bound(segments_.begin(), segments_.end(), t - r,
+                                      [](const LipSegment& s, double x) { return s.end < x; });
+  std::size_t lo = static_cast<std::size_t>(first - segments_.begin()), hi = lo;
+  while (hi < segments_.size() && segments_[hi].start <= t + r) ++hi;
+  std::vector<double> ld;
+  return average(p, t, lo, hi, ld);
 }
 
 double Coarticulation::value(std::string_view parameter, double t) const {
@@ -184,7 +189,17 @@ double Coarticulation::value(std::string_view parameter, double t) const {
 }
 
 void Coarticulation::sample(std::size_t p, double t0, double fps, std::size_t n, double* out) const {
-  for (std::size_t i = 0; i < n; ++i) out[i] = value(p, t0 + static_cast<double>(i) / fps);
+  if (p >= parameters_.size()) throw InvalidInput("Coarticulation::sample: parameter index out of range");
+  const double r = max_reach_[p];
+  std::vector<double> ld;
+  std::size_t lo = 0, hi = 0;  // sliding window of segments in reach, times increase
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = t0 + static_cast<double>(i) / fps;
+    while (lo < segments_.size() && segments_[lo].end < t - r) ++lo;
+    hi = std::max(hi, lo);
+    while (hi < segments_.size() && segments_[hi].start <= t + r) ++hi;
+    out[i] = average(p, t, lo, hi, ld);
+  }
 }
 
 }  // namespace emoface::channels

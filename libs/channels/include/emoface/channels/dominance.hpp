@@ -102,6 +102,8 @@ class Coarticulation {
   struct Slot {  // per segment × parameter
     double target, log_alpha, theta_ant, theta_carry, c, peak, half_apex, reach;
   };
+  double average(std::size_t p, double t, std::size_t lo, std::size_t hi, std::vector<double>& ld) const;
+
   std::vector<LipSegment> segments_;
   std::vector<std::string> parameters_;
   std::unordered_map<std::string, std::size_t> index_;
