@@ -20,12 +20,15 @@ VisemeSet fig44_set() {
 TEST(Dominance, Figure44GradualTransition) {
   const VisemeSet set = fig44_set();
   const Coarticulation lip(set, {{"low", 0.0, 0.1, 0.0, "a"}, {"high", 0.1, 0.2, 0.0, "b"}});
-  // centres 0.05 and 0.15 s; τ in centiseconds: at t = 0.05, Δ1 = 1, Δ2 = e^{−0.35·10}
-  const double d2 = std::exp(-3.5);
+  // centres 0.05 and 0.15 s; τ in centiseconds: at t = 0.05, Δ1 = 1, Δ2 = e^{−0.35·10};
+  // the rest term adds 1e-4 (target 0) to the denominator
+  const double d2 = std::exp(-3.5), rest = 1e-4;
   EXPECT_NEAR(lip.dominance(1, 0, 0.05), d2, 1e-12);
-  EXPECT_NEAR(lip.value("masseter", 0.05), (0.1 + 0.9 * d2) / (1 + d2), 1e-12);
-  EXPECT_NEAR(lip.value("masseter", 0.10), 0.5, 1e-12);  // symmetric midpoint
-  EXPECT_NEAR(lip.value("masseter", 0.15), (0.1 * d2 + 0.9) / (1 + d2), 1e-12);
+  EXPECT_NEAR(lip.value("masseter", 0.05), (0.1 + 0.9 * d2) / (1 + d2 + rest), 1e-12);
+  const double dm = std::exp(-0.35 * 5);  // symmetric midpoint
+  EXPECT_NEAR(lip.value("masseter", 0.10), 0.5 * 2 * dm / (2 * dm + rest), 1e-12);
+  EXPECT_NEAR(lip.value("masseter", 0.10), 0.5, 1e-3);
+  EXPECT_NEAR(lip.value("masseter", 0.15), (0.1 * d2 + 0.9) / (1 + d2 + rest), 1e-12);
   // gradual, monotone transition between the centres
   double prev = lip.value("masseter", 0.05);
   for (double t = 0.051; t <= 0.15; t += 0.001) {
@@ -65,6 +68,22 @@ TEST(Dominance, WeightedAverageStaysInTargetRangeAndFadesToZero) {
   }
   EXPECT_LT(lip.value("masseter", 0.45), 1e-3);
   EXPECT_EQ(lip.value("masseter", 5.0), 0.0);
+}
+
+TEST(Dominance, FadesToRestContinuouslyWhateverTheDecayRates) {
+  // a slowly decaying viseme next to a fast silence must not take over far away (no jumps)
+  VisemeSet set = fig44_set();
+  set.visemes[0].dominance = Dominance{0.6, 0.5, 0.5, 1.0, 0.0};
+  set.visemes[2].dominance = Dominance{0.9, 0.1, 0.1, 1.0, 0.0};
+  const Coarticulation lip(set, {{"sil", 0.8, 1.0, 0, "s"}, {"high", 1.0, 1.3, 0, "h"}, {"sil", 1.3, 1.5, 0, "s"}});
+  double prev = lip.value("masseter", 0.0);
+  for (double t = 0.0005; t < 4.0; t += 0.0005) {
+    const double v = lip.value("masseter", t);
+    ASSERT_LT(std::abs(v - prev), 0.02) << t;
+    prev = v;
+  }
+  EXPECT_GT(lip.value("masseter", 0.0), 0.01);  // a slow viseme reaches far (θ = 0.1)
+  EXPECT_LT(lip.value("masseter", 3.5), 1e-3);
 }
 
 TEST(Dominance, PhonemeLookup) {

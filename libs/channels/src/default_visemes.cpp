@@ -26,7 +26,8 @@ VisemeSet default_viseme_set() {
   VisemeSet s;
   s.silence = "sil";
   auto add = [&](const char* name, std::vector<Target> t, Dominance d) { s.visemes.push_back({name, std::move(t), d, {}}); };
-  add("sil", {}, Dominance{0.6, 0.30, 0.30, 1.0, 0.0});
+  // silence dominates the edges of utterances (strong, slowest decay), so lips close between words
+  add("sil", {}, Dominance{1.0, 0.15, 0.15, 1.0, 0.0});
   add("PBM", {{"orbicularis_oris_pressor", 0.8}}, closure);  // lips pressed together
   {
     std::vector<Target> t{{"orbicularis_oris_funneler", 0.5}, {"masseter", 0.1}};  // thesis §4.6: "v" uses the funneler

@@ -83,7 +83,9 @@ std::vector<std::string> VisemeSet::parameters() const {
 
 void CoarticulationOptions::validate() const {
   if (!(std::isfinite(time_unit) && time_unit > 0)) throw InvalidInput("coarticulation: time_unit must be > 0");
-  if (!(cutoff > 0 && cutoff <= 0.01)) throw InvalidInput("coarticulation: cutoff must be in (0, 0.01]");
+  if (!(rest_dominance > 0 && rest_dominance <= 0.01))
+    throw InvalidInput("coarticulation: rest_dominance must be in (0, 0.01]");
+  if (!(cutoff > 0 && cutoff <= 0.1)) throw InvalidInput("coarticulation: cutoff must be in (0, 0.1]");
 }
 
 Coarticulation::Coarticulation(const VisemeSet& visemes, std::vector<LipSegment> segments,
@@ -94,7 +96,7 @@ Coarticulation::Coarticulation(const VisemeSet& visemes, std::vector<LipSegment>
   const std::size_t np = parameters_.size();
   slots_.resize(segments_.size() * np);
   max_reach_.assign(np, 0.0);
-  const double log_cut = -std::log(options_.cutoff);
+  const double log_floor = std::log(options_.cutoff * options_.rest_dominance);
   for (std::size_t m = 0; m < segments_.size(); ++m) {
     const LipSegment& s = segments_[m];
     if (!std::isfinite(s.start) || !std::isfinite(s.end) || s.start < 0 || !(s.end > s.start))
@@ -117,8 +119,9 @@ Coarticulation::Coarticulation(const VisemeSet& visemes, std::vector<LipSegment>
       sl.c = d.c;
       sl.peak = s.start + 0.5 * (s.end - s.start) + d.peak_offset;  // Tc + To (§4.5.1)
       sl.half_apex = 0.5 * s.apex;
-      // |τ| (in units) beyond which Δ < cutoff·α on the slower side.
-      const double tau = std::pow(log_cut / std::min(d.theta_anticipatory, d.theta_carryover), 1.0 / d.c);
+      // |τ| (in units) beyond which Δ < cutoff·rest_dominance on the slower side.
+      const double tau = std::pow(std::max(0.0, std::log(d.alpha) - log_floor) /
+                                      std::min(d.theta_anticipatory, d.theta_carryover), 1.0 / d.c);
       sl.reach = sl.half_apex + tau * options_.time_unit;
       max_reach_[p] = std::max(max_reach_[p], sl.reach + std::abs(d.peak_offset) + 0.5 * (s.end - s.start));
     }
@@ -153,15 +156,15 @@ double Coarticulation::dominance(std::size_t m, std::size_t p, double t) const {
 double Coarticulation::average(std::size_t p, double t, std::size_t lo, std::size_t hi, std::vector<double>& ld) const {
   const std::size_t np = parameters_.size();
   ld.resize(hi - lo);
-  double best = -HUGE_VAL;
+  const double log_rest = std::log(options_.rest_dominance);
+  double best = log_rest;
   for (std::size_t m = lo; m < hi; ++m) {
     const Slot& s = slots_[m * np + p];
     double& l = ld[m - lo];
     l = std::abs(s.peak - t) > s.reach ? -HUGE_VAL : log_dominance(s, t, options_.time_unit);
     best = std::max(best, l);
   }
-  if (best == -HUGE_VAL) return 0.0;
-  double num = 0.0, den = 0.0;
+  double num = 0.0, den = std::exp(log_rest - best);  // the rest position: target 0
   for (std::size_t m = lo; m < hi; ++m) {
     if (ld[m - lo] == -HUGE_VAL) continue;
     const double w = std::exp(ld[m - lo] - best);

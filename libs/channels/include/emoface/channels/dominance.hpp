@@ -70,14 +70,20 @@ struct CoarticulationOptions {
   /// the unit; with centiseconds its Fig. 4.4 values (θ = 0.35, c = 1, 100 ms segments) give the
   /// gradual transition it shows (see docs/channels.md).
   double time_unit = 0.01;
-  /// Segments whose dominance is below this fraction of their α are ignored (default 1e-7, in
-  /// (0, 0.01]); bounds the cost per sample.
-  double cutoff = 1e-7;
+  /// Dominance of the rest position (target 0 for every parameter, constant in time), in (0, 0.01]
+  /// (default 1e-4). Not in the thesis: with it the lips return smoothly to rest far from any
+  /// segment, where otherwise the slowest-decaying viseme would take over; inside speech it biases
+  /// the average by at most rest_dominance/α.
+  double rest_dominance = 1e-4;
+  /// A segment is ignored where its dominance is below cutoff·rest_dominance, in (0, 0.1]
+  /// (default 1e-3); bounds the cost per sample, the error it makes is below cutoff·|target|.
+  double cutoff = 1e-3;
   void validate() const;
 };
 
-/// The lip channel of an utterance: dominance-weighted average of viseme targets (thesis §4.5.1).
-/// Outside every segment's reach the activity is 0.
+/// The lip channel of an utterance: dominance-weighted average of viseme targets (thesis §4.5.1),
+/// plus the rest position (CoarticulationOptions::rest_dominance), so the activity fades to 0 away
+/// from the segments.
 class Coarticulation {
  public:
   Coarticulation() = default;
@@ -92,7 +98,8 @@ class Coarticulation {
 
   /// Dominance Δ^m_p(t) of segment m for parameters()[p] (thesis §4.5.1).
   double dominance(std::size_t m, std::size_t p, double t) const;
-  /// F_p(t) = Σ Δ^m_p(t)·PV^m_p / Σ Δ^m_p(t) over the segments in reach (thesis §4.5.1).
+  /// F_p(t) = Σ Δ^m_p(t)·PV^m_p / (Σ Δ^m_p(t) + rest_dominance) over the segments in reach
+  /// (thesis §4.5.1, plus the rest term).
   double value(std::size_t p, double t) const;
   double value(std::string_view parameter, double t) const;
   /// Samples parameters()[p] at t0 + i/fps, i < n.
