@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "emoface/channels/parameters.hpp"
 #include "emoface/core/errors.hpp"
 
@@ -135,8 +137,15 @@ TEST(Script, TimelineFromPhonemesIsDeterministic) {
   int explicit_head = 0;
   for (const auto& m : head) explicit_head += m.label.rfind("HEAD", 0) == 0;
   EXPECT_EQ(explicit_head, 1);
-  const Tracks t = render(a, default_viseme_set(), default_conflict_table(), RenderOptions{});
+  RenderOptions ro;
+  ro.fps = 1000;
+  const Tracks t = render(a, default_viseme_set(), default_conflict_table(), ro);
   EXPECT_NO_THROW(t.validate());
+  // continuity of every track (speech, emotion, blinks, gaze/head noise, conflict resolution):
+  // at 1 kHz no column may jump by more than the steepest onset/offset slope allows
+  for (std::size_t c = 0; c < t.names.size(); ++c)
+    for (std::size_t f = 1; f < t.frames(); ++f)
+      ASSERT_LT(std::abs(t.at(f, c) - t.at(f - 1, c)), 0.03) << t.names[c] << " at frame " << f;
 }
 
 }  // namespace
