@@ -13,11 +13,7 @@
 namespace fx = emoface::fuzzyexpr;
 namespace cli = emoface::cli;
 
-template <class Enum, class Parse>
-Enum parse_enum(const std::string& text, Parse parse, const char* flag) {
-  if (auto v = parse(text)) return *v;
-  throw emoface::InvalidInput(std::string(flag) + ": unknown value \"" + text + "\"");
-}
+using cli::parse_enum;
 
 int main(int argc, char** argv) {
   CLI::App app{"Convert emotion intensities (ESV: sadness, happiness, anger, fear, disgust, surprise in "
@@ -54,10 +50,10 @@ int main(int argc, char** argv) {
 
   return cli::run("emo2muscle", [&] {
     fx::ExpressionOptions options;
-    options.mode = parse_enum<fx::ExpressionMode>(mode, fx::expression_mode_from_string, "--mode");
-    options.tie_break = parse_enum<fx::TieBreak>(tie, fx::tie_break_from_string, "--tie-break");
-    options.transition = parse_enum<fx::Transition>(transition, fx::transition_from_string, "--transition");
-    options.missing_rule = parse_enum<fx::MissingRule>(missing, fx::missing_rule_from_string, "--missing-rule");
+    options.mode = parse_enum<fx::ExpressionMode>(mode, fx::expression_mode_from_string, "--mode", "auto|single|blend");
+    options.tie_break = parse_enum<fx::TieBreak>(tie, fx::tie_break_from_string, "--tie-break", "fixed|random");
+    options.transition = parse_enum<fx::Transition>(transition, fx::transition_from_string, "--transition", "crisp|smooth");
+    options.missing_rule = parse_enum<fx::MissingRule>(missing, fx::missing_rule_from_string, "--missing-rule", "no_rule|no_contraction");
     options.seed = seed;
     const fx::RuleBase rules = rules_path.empty() ? fx::default_rule_base() : fx::read_rule_base(rules_path);
     if (!fll_path.empty()) {
@@ -68,15 +64,15 @@ int main(int argc, char** argv) {
 
     fx::EsvReaderOptions in_opts;
     in_opts.format = from.empty() ? fx::stream_format_from_path(input).value_or(fx::StreamFormat::Csv)
-                                  : parse_enum<fx::StreamFormat>(from, fx::stream_format_from_string, "--from");
+                                  : parse_enum<fx::StreamFormat>(from, fx::stream_format_from_string, "--from", "csv|ndjson");
     in_opts.clamp = clamp;
     fx::FmcvWriterOptions out_opts;
     out_opts.format = to.empty() ? fx::stream_format_from_path(output).value_or(in_opts.format)
-                                 : parse_enum<fx::StreamFormat>(to, fx::stream_format_from_string, "--to");
+                                 : parse_enum<fx::StreamFormat>(to, fx::stream_format_from_string, "--to", "csv|ndjson|json");
     out_opts.sides = sides;
     out_opts.precision = precision;
     fx::BatchOptions batch;
-    batch.on_error = parse_enum<fx::OnError>(on_error, fx::on_error_from_string, "--on-error");
+    batch.on_error = parse_enum<fx::OnError>(on_error, fx::on_error_from_string, "--on-error", "stop|skip");
     const cli::Shard shard = cli::parse_shard(shard_text);
     batch.shard_index = shard.index;
     batch.shard_count = shard.count;
