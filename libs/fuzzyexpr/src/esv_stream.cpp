@@ -256,6 +256,10 @@ struct EsvReader::Impl {
       std::string msg = e.what();
       auto colon = msg.find(": ");
       fail(e.byte, "invalid JSON: " + (colon == std::string::npos ? msg : msg.substr(colon + 2)));
+    } catch (const Json::exception& e) {  // e.g. number overflow (1e999): no position reported
+      std::string msg = e.what();
+      auto bracket = msg.find("] ");
+      fail(0, "invalid JSON: " + (bracket == std::string::npos ? msg : msg.substr(bracket + 2)));
     }
     if (!doc.is_object()) fail(1, "expected a JSON object with the six emotion fields");
     if (!dup.empty()) fail(0, "duplicated field \"" + dup + "\"");
