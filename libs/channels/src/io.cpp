@@ -51,17 +51,6 @@ const Json& array(const Json& v, const std::string& file, const std::string& ptr
 
 std::string tok(const std::string& s) { return core::json_pointer_token(s); }
 
-// core::parse_json plus the nlohmann errors it lets through (e.g. number overflow on 1e999).
-Json parse(std::string_view text, const std::string& file) {
-  try {
-    return core::parse_json(text, file);
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    fail(file, "", e.what());
-  }
-}
-
 Dominance parse_dominance(const Json& j, const std::string& file, const std::string& ptr) {
   object(j, file, ptr);
   Dominance d;
@@ -90,7 +79,7 @@ Json dominance_json(const Dominance& d) {
 }  // namespace
 
 VisemeSet parse_visemes(std::string_view text, const std::string& file) {
-  const Json doc = parse(text, file);
+  const Json doc = core::parse_json(text, file);
   core::check_envelope(doc, "channels.visemes", {1, 0}, file);
   VisemeSet set;
   if (doc.contains("silence")) set.silence = string(doc["silence"], file, "/silence");
@@ -159,7 +148,7 @@ void write_visemes(const std::string& path, const VisemeSet& set) {
 }
 
 ConflictTable parse_conflicts(std::string_view text, const std::string& file) {
-  const Json doc = parse(text, file);
+  const Json doc = core::parse_json(text, file);
   core::check_envelope(doc, "channels.conflicts", {1, 0}, file);
   ConflictTable t;
   const Json& ps = array(field(doc, "pairs", file, ""), file, "/pairs");
@@ -195,7 +184,7 @@ void write_conflicts(const std::string& path, const ConflictTable& table) {
 }
 
 Tracks parse_tracks_json(std::string_view text, const std::string& file) {
-  const Json doc = parse(text, file);
+  const Json doc = core::parse_json(text, file);
   core::check_envelope(doc, "tracks", {1, 0}, file);
   Tracks t;
   t.fps = number(field(doc, "fps", file, ""), file, "/fps");
