@@ -86,9 +86,8 @@ int main(int argc, char** argv) {
         conflicts_path.empty() ? ch::default_conflict_table() : ch::read_conflicts(conflicts_path);
     const ch::TalkingHead th = ch::run_talking_head(script, visemes, conflicts, fuzzy_mapper(), o);
 
-    const bool csv = out_path.size() > 4 && out_path.compare(out_path.size() - 4, 4, ".csv") == 0;
     emoface::cli::Output out(out_path);
-    out.write(csv ? ch::format_tracks_csv(th.tracks) : ch::format_tracks_json(th.tracks));
+    out.write(ch::format_tracks(th.tracks, out_path));
     if (!wav_path.empty()) ch::write_wav(wav_path, th.audio, th.sample_rate);
     if (!plot_path.empty()) {
       std::vector<std::vector<double>> series;

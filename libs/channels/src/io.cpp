@@ -334,8 +334,12 @@ Tracks read_tracks(const std::string& path) {
   return is_csv(path) ? parse_tracks_csv(text, path) : parse_tracks_json(text, path);
 }
 
+std::string format_tracks(const Tracks& tracks, const std::string& path) {
+  return is_csv(path) ? format_tracks_csv(tracks) : format_tracks_json(tracks);
+}
+
 void write_tracks(const std::string& path, const Tracks& tracks) {
-  core::write_file_atomic(path, is_csv(path) ? format_tracks_csv(tracks) : format_tracks_json(tracks));
+  core::write_file_atomic(path, format_tracks(tracks, path));
 }
 
 }  // namespace emoface::channels

@@ -6,7 +6,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <map>
 #include <set>
 
 #include "emoface/channels/parameters.hpp"

@@ -31,6 +31,8 @@ std::string format_tracks_json(const Tracks& tracks);
 /// f/fps within 1e-6 s).
 Tracks parse_tracks_csv(std::string_view csv_text, const std::string& file = "<tracks>");
 std::string format_tracks_csv(const Tracks& tracks);
+/// By the extension of `path`: ".csv" → CSV, anything else (including "-") → JSON.
+std::string format_tracks(const Tracks& tracks, const std::string& path);
 /// By extension: ".csv" → CSV, anything else → JSON.
 Tracks read_tracks(const std::string& path);
 void write_tracks(const std::string& path, const Tracks& tracks);

@@ -1,6 +1,7 @@
-// libFuzzer target for every reader of the channels library: the first byte picks the reader
+// libFuzzer target (build-fuzz/tests/fuzz/fuzz_channels_readers tests/fuzz/corpus/channels_readers)
+// for every reader of the channels library: the first byte picks the reader
 // (markup script, tracks JSON, tracks CSV, visemes, conflicts); the rest is the input. Any
-// exception other than emoface's FormatError / InvalidInput / IoError is a bug (and crashes here).
+// exception other than emoface's FormatError / InvalidInput is a bug (and crashes here).
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
