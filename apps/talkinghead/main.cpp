@@ -1,5 +1,6 @@
 // talkinghead: marked-up text → parameter tracks (JSON/CSV) + speech WAV (thesis chapter 4).
 #include <algorithm>
+#include <iostream>
 #include <sstream>
 
 #include "emoface/channels/io.hpp"
@@ -76,7 +77,10 @@ int main(int argc, char** argv) {
       if (!dump_conflicts.empty()) ch::write_conflicts(dump_conflicts, ch::default_conflict_table());
       return 0;
     }
-    if (script_path.empty() || out_path.empty()) throw emoface::InvalidInput("--script and --out are required");
+    if (script_path.empty() || out_path.empty()) {
+      std::cerr << "talkinghead: error: --script and --out are required (see --help)\n";
+      return emoface::cli::kExitUsage;
+    }
     o.timeline.blinks = !no_blinks;
     o.timeline.gaze_noise = !no_gaze;
     o.timeline.head_noise = !no_head;
