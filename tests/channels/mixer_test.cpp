@@ -34,8 +34,12 @@ TEST_F(Fig47, SmileReleasesEarlyAndReturnsGradually) {
   o.dmin_plus = 0.5;
   o.dmin_minus = 0.3;
   o.active_threshold = 0.01;
-  const Tracks t = mix(channels, params, kFps, kFrames, default_conflict_table(), o);
+  std::vector<ChannelSamples> modified;
+  const Tracks t = mix(channels, params, kFps, kFrames, default_conflict_table(), o, &modified);
   const auto zyg = t.series("zygomatic_major_l");
+  ASSERT_EQ(modified.size(), 2u);
+  EXPECT_EQ(modified[0].values, channels[0].values);  // the lip channel is not touched
+  EXPECT_EQ(modified[1].values[3500], 0.0);           // aF of the smile during the funneler
   const auto oo = t.series("orbicularis_oris_funneler");
   // activation crossings of the funneler: 0.8·φ+(x, 0.1) > 0.01
   std::size_t first = 0, last = 0;
