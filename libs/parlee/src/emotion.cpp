@@ -92,10 +92,10 @@ EmotionParams EmotionParams::defaults() {
   p.alpha.fill(0.1);
   p.omega.fill(1.0);
   p.decay.fill(0.9);
-  p.decay[index(Emotion::Hope)] = 0.95;
-  p.decay[index(Emotion::Fear)] = 0.95;
+  p.decay[index(Emotion::Hope)] = 0.85;
+  p.decay[index(Emotion::Fear)] = 0.85;
   p.decay[index(Emotion::Distress)] = 0.97;  // §7.4: sadness decays very slowly
-  p.decay[index(Emotion::Surprise)] = 0.6;   // §7.4: surprise decays very fast
+  p.decay[index(Emotion::Surprise)] = 0.3;   // §7.4: surprise decays very fast
   auto m = [&](Emotion from, Emotion to, double v) { p.effect[index(from)][index(to)] = v; };
   // Cathexis-style interactions (thesis §5.3.1, §5.6.4 example "happiness reduces the effect of an
   // undesirable event"): values are ours.
@@ -222,15 +222,16 @@ std::array<double, 6> basic_emotions(const EmotionVector& e, const EmotionParams
       {0, Emotion::FearsConfirmed, 0.8}, {0, Emotion::Remorse, 0.7},       {0, Emotion::Shame, 0.6},
       {1, Emotion::Joy, 1.0},           {1, Emotion::Satisfaction, 1.0},   {1, Emotion::Gratification, 1.0},
       {1, Emotion::Relief, 0.8},        {1, Emotion::HappyFor, 0.8},       {1, Emotion::Gratitude, 0.8},
-      {1, Emotion::Pride, 0.7},         {1, Emotion::Gloating, 0.6},       {1, Emotion::Hope, 0.5},
-      {1, Emotion::Appreciation, 0.5},  {2, Emotion::Anger, 1.0},          {2, Emotion::Resentment, 0.8},
+      {1, Emotion::Pride, 0.7},         {1, Emotion::Gloating, 0.6},       {1, Emotion::Appreciation, 0.5},  {2, Emotion::Anger, 1.0},          {2, Emotion::Resentment, 0.8},
       {2, Emotion::Reproach, 0.7},      {3, Emotion::Fear, 1.0},           {3, Emotion::FearsConfirmed, 0.5},
       {4, Emotion::Reproach, 0.5},      {4, Emotion::Resentment, 0.5},     {5, Emotion::Surprise, 1.0},
   };
   std::array<double, 6> out{};
   for (const auto& c : kMap) {
     const std::size_t i = index(c.emotion);
-    const double x = params.omega[i] > 0.0 ? e[i] / params.omega[i] : 0.0;
+    // only the part above the activation threshold shows (moods do not, §5.5.2)
+    const double span = params.omega[i] - params.alpha[i];
+    const double x = span > 0.0 ? (e[i] - params.alpha[i]) / span : (e[i] >= params.omega[i] ? 1.0 : 0.0);
     out[c.basic] = std::max(out[c.basic], std::clamp(c.weight * x, 0.0, 1.0));
   }
   return out;

@@ -79,7 +79,7 @@ struct EmotionParams {
   std::array<EmotionVector, kEmotionCount> effect{};
   DecayModel decay_model = DecayModel::Power;
 
-  /// α = 0.1, ω = 1, decay 0.9 (prospect emotions 0.95, surprise 0.6, distress/sadness 0.97), and a
+  /// α = 0.1, ω = 1, decay 0.9 (hope/fear 0.85, surprise 0.3, distress 0.97), and a
   /// small Cathexis-style M: joy ⟷ distress 0.3, fear → joy/hope 0.2, hope → fear 0.2.
   static EmotionParams defaults();
   void validate() const;  ///< throws InvalidInput naming the emotion or the offending M column
@@ -127,8 +127,9 @@ void update_motivation(MotivationalState& m, BodyEvent event, const MotivationOp
 /// Order of fuzzyexpr's ESV.
 inline constexpr std::array<std::string_view, 6> kBasicEmotionNames{"sadness", "happiness", "anger",
                                                                      "fear",    "disgust",   "surprise"};
-/// Each basic intensity = min(1, max_k w_k · E_k/ω_k) over its contributing emotions
-/// (docs/parlee.md, "Mapping to the six basic emotions"). Result in [0,1]^6, order above.
+/// Each basic intensity = max_k w_k · clamp((E_k − α_k)/(ω_k − α_k), 0, 1) over its contributing
+/// emotions: only the active part of an emotion shows, moods below α do not (§5.5.2). Weights in
+/// docs/parlee.md, "Mapping to the six basic emotions". Result in [0,1]^6, order above.
 std::array<double, 6> basic_emotions(const EmotionVector& e, const EmotionParams& params);
 
 }  // namespace emoface::parlee
