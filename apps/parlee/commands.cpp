@@ -57,7 +57,8 @@ int plan_command(const PlanArgs& a, std::ostream& out) {
   }
   out << "goal " << g.name << " (agent " << agent << "), horizon " << o.horizon << ", model depth "
       << (o.model_depth < 0 ? o.horizon - 1 : o.model_depth) << "\n";
-  out << "P(goal within " << o.horizon << " steps) = " << std::setprecision(10) << r.probability << "\n";
+  out << (o.semantics == GoalSemantics::Within ? "P(goal within " : "P(goal holds after ") << o.horizon
+      << " steps) = " << std::setprecision(10) << r.probability << "\n";
   out << "plan (own turns optimal, other agents most likely; expected outcome followed):\n";
   for (std::size_t k = 0; k < r.steps.size(); ++k) {
     const auto& s = r.steps[k];
