@@ -131,6 +131,11 @@ TEST(Domain, ErrorsHaveLineAndColumn) {
   EXPECT_EQ(error_at("stray", &msg).first, 1u);
   EXPECT_EQ(error_at("(goal g (facts))\n(goal h (importance -1) (facts))", &msg).first, 2u);
   EXPECT_EQ(error_at("(predicates (p x))", &msg).first, 1u);
+  EXPECT_EQ(error_at("(predicates (p 0))\n(goal g (facts (p)))\n(goal g (facts (p)))", &msg).first, 3u);
+  EXPECT_NE(msg.find("declared twice"), std::string::npos);
+  EXPECT_EQ(error_at("(predicates (p 0))\n(operator o)\n(operator o)", &msg).first, 3u);
+  EXPECT_THROW(Domain(parse("(predicates (p 0) (p 1))")), FormatError);
+  EXPECT_THROW(Domain(parse("(objects a a)")), FormatError);
   EXPECT_EQ(error_at("(\"quoted\")", &msg).first, 1u);
   // deep nesting is refused, not a stack overflow
   EXPECT_NE(error_at(std::string(100000, '(') + std::string(100000, ')')).first, 0u);

@@ -94,7 +94,7 @@ double Agent::event_probability(const State& s, std::size_t action, const State&
 }
 
 void Agent::act(const std::optional<std::size_t>& forced, const std::string& outcome_spec, StepRecord& rec,
-                EmotionVector& impulse, bool /*prospects*/) {
+                EmotionVector& impulse) {
   const State s = state_;
   const int who = domain_->turn(s);
   const std::string& who_name = domain_->spec().agents[static_cast<std::size_t>(who)];
@@ -230,7 +230,7 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
   p_goal_ = config_.learn_outcomes ? own_goal_probabilities(after) : p_after;
 }
 
-void Agent::self_act(StepRecord& rec, EmotionVector& impulse) { act(std::nullopt, "", rec, impulse, false); }
+void Agent::self_act(StepRecord& rec, EmotionVector& impulse) { act(std::nullopt, "", rec, impulse); }
 
 StepRecord Agent::step(const Event& event) {
   if (!std::isfinite(event.time) || event.time < time_)
@@ -262,7 +262,7 @@ StepRecord Agent::step(const Event& event) {
       throw InvalidInput("event at time " + std::to_string(event.time) + ": '" + event.action + "' is " +
                          (a == -2 ? "ambiguous" : "not applicable") + "; applicable:" + (list.empty() ? " none" : list));
     }
-    act(static_cast<std::size_t>(a), event.outcome, rec, impulse, false);
+    act(static_cast<std::size_t>(a), event.outcome, rec, impulse);
   }
   if (actor != self_ && domain_->turn(state_) == self_ && domain_->agent_count() > 1) self_act(rec, impulse);
 

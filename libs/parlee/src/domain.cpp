@@ -486,12 +486,20 @@ Domain::Domain(DomainSpec spec, CompileOptions options) : spec_(std::move(spec))
   // types
   std::set<std::string> types(spec_.types.begin(), spec_.types.end());
   std::map<std::string, std::size_t> arity;
-  for (const auto& p : spec_.predicates) arity[p.name] = p.arity;
+  for (const auto& p : spec_.predicates)
+    if (!arity.emplace(p.name, p.arity).second) throw FormatError({}, "predicate '" + p.name + "' declared twice");
   std::map<std::string, std::string> object_type;
   for (const auto& ob : spec_.objects) {
     if (!ob.type.empty() && !types.empty() && !types.count(ob.type))
       throw FormatError({}, "object '" + ob.name + "' has unknown type '" + ob.type + "'");
-    object_type[ob.name] = ob.type;
+    if (!object_type.emplace(ob.name, ob.type).second) throw FormatError({}, "object '" + ob.name + "' declared twice");
+  }
+  {
+    std::set<std::string> ops, goals;
+    for (const auto& op : spec_.operators)
+      if (!ops.insert(op.name).second) fail_at(op.where, "operator '" + op.name + "' declared twice");
+    for (const auto& g : spec_.goals)
+      if (!goals.insert(g.name).second) fail_at(g.where, "goal '" + g.name + "' declared twice");
   }
   {
     std::set<std::string> seen;

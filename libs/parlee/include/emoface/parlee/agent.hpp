@@ -93,7 +93,7 @@ class Agent {
 
  private:
   void act(const std::optional<std::size_t>& forced, const std::string& outcome, StepRecord& rec,
-           EmotionVector& impulse, bool prospects);
+           EmotionVector& impulse);
   void self_act(StepRecord& rec, EmotionVector& impulse);
   std::vector<double> own_goal_probabilities(const State& s);
   void fill(StepRecord& rec);
