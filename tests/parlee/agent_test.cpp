@@ -159,6 +159,27 @@ TEST(Agent, LearnsOutcomeProbabilities) {
   EXPECT_EQ(d.actions()[0].outcomes[0].probability, 0.9);
 }
 
+TEST(Agent, MotivationalStatesFollowActions) {
+  const Domain d(read_domain_files({kData + "bread.domain"}));
+  AgentConfig c = read_agent_file(kData + "agents/bread_neutral.json");
+  c.motivation.hunger = 0.5;
+  c.body_events["eat"] = BodyEvent::Eat;
+  c.body_events["go-working"] = BodyEvent::Hit;  // pretend the user's leaving hurts
+  Agent a(d, c);
+  Event e;
+  e.time = 1;
+  e.action = "(go-working car1)";  // the user drives off (a "hit"), then the agent acts once
+  const StepRecord r = a.step(e);
+  ASSERT_EQ(r.actions.size(), 2u);
+  EXPECT_EQ(r.actions[1].actor, "agent");
+  EXPECT_NEAR(a.motivation().pain, 0.2, 1e-12);
+  EXPECT_NEAR(a.motivation().hunger, 0.51, 1e-12);  // +0.01 per own action
+  EXPECT_NEAR(a.motivation().fatigue, 0.01, 1e-12);
+  EXPECT_EQ(to_string(BodyEvent::Rest), "rest");
+  EXPECT_EQ(body_event_from_string("hit"), BodyEvent::Hit);
+  EXPECT_THROW(body_event_from_string("nap"), emoface::InvalidInput);
+}
+
 TEST(Agent, FeedbackBecomesPraiseworthiness) {
   const Domain d(read_domain_files({kData + "rocket.domain"}));
   AgentConfig c;

@@ -41,6 +41,7 @@ TEST(AgentFile, RoundTrip) {
   c.learning_prior = 3.5;
   c.liking["user"] = -0.25;
   c.praiseworthiness["eat"] = 0.5;
+  c.body_events["eat"] = BodyEvent::Eat;
   const std::string text = write_agent(c);
   const AgentConfig d = parse_agent(text, "x.json");
   EXPECT_EQ(write_agent(d), text);
@@ -74,6 +75,7 @@ TEST(AgentFile, BadInputNamesThePointer) {
   EXPECT_EQ(pointer_of(head + R"("liking":{"user":-3}})"), "/liking/user");
   EXPECT_EQ(pointer_of(head + R"("seed":-1})"), "/seed");
   EXPECT_EQ(pointer_of(head + R"("bogus":1})"), "/bogus");
+  EXPECT_EQ(pointer_of(head + R"("body_events":{"eat":"nap"}})"), "/body_events/eat");
   EXPECT_NE(pointer_of(R"({"format":"emoface.parlee_agent","version":"2.0"})"), "");
   EXPECT_NE(pointer_of(R"({"format":"emoface.rig","version":"1.0"})"), "");
   EXPECT_NE(pointer_of(head + R"("name":"x")"), "");  // truncated

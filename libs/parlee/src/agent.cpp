@@ -212,6 +212,11 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
     update_motivation(config_.motivation, BodyEvent::Action, config_.motivation_options);
     last_own_op_ = ga.op;
   }
+  if (auto it = config_.body_events.find(op_name); it != config_.body_events.end()) {  // §5.5.4
+    const bool own = who == self_;
+    if ((own && it->second != BodyEvent::Hit && it->second != BodyEvent::Action) || it->second == BodyEvent::Hit)
+      update_motivation(config_.motivation, it->second, config_.motivation_options);
+  }
   if (config_.learn_outcomes) {  // thesis §5.8
     auto it = learners_.find(ga.op);
     if (it == learners_.end()) {

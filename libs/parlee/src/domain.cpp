@@ -401,29 +401,27 @@ DomainSpec read_domain_files(const std::vector<std::string>& files) {
 }
 
 std::string write_domain_text(const DomainSpec& spec) {
-  std::ostringstream o;
-  if (!spec.name.empty()) o << "(domain " << spec.name << ")\n";
-  if (!spec.types.empty()) {
-    o << "(types";
-    for (const auto& t : spec.types) o << ' ' << t;
-    o << ")\n";
-  }
-  o << "(predicates";
-  for (const auto& p : spec.predicates) o << " (" << p.name << ' ' << p.arity << ')';
-  o << ")\n(objects";
-  for (const auto& ob : spec.objects) {
-    if (ob.type.empty()) o << ' ' << ob.name;
-    else o << " (" << ob.name << ' ' << ob.type << ')';
-  }
-  o << ")\n";
-  if (!spec.agents.empty()) {
-    o << "(agents";
-    for (const auto& a : spec.agents) o << ' ' << a;
-    o << ")\n";
-  }
-  if (!spec.turn_predicate.empty()) o << "(turn " << spec.turn_predicate << ")\n";
   std::ostringstream out;
-  out << o.str();
+  if (!spec.name.empty()) out << "(domain " << spec.name << ")\n";
+  if (!spec.types.empty()) {
+    out << "(types";
+    for (const auto& t : spec.types) out << ' ' << t;
+    out << ")\n";
+  }
+  out << "(predicates";
+  for (const auto& p : spec.predicates) out << " (" << p.name << ' ' << p.arity << ')';
+  out << ")\n(objects";
+  for (const auto& ob : spec.objects) {
+    if (ob.type.empty()) out << ' ' << ob.name;
+    else out << " (" << ob.name << ' ' << ob.type << ')';
+  }
+  out << ")\n";
+  if (!spec.agents.empty()) {
+    out << "(agents";
+    for (const auto& a : spec.agents) out << ' ' << a;
+    out << ")\n";
+  }
+  if (!spec.turn_predicate.empty()) out << "(turn " << spec.turn_predicate << ")\n";
   for (const auto& op : spec.operators) {
     out << "(operator " << op.name << "\n  (params";
     for (std::size_t i = 0; i < op.param_vars.size(); ++i) {

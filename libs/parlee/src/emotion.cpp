@@ -195,6 +195,17 @@ EmotionVector motivated_alpha(const EmotionParams& params, const MotivationalSta
   return out;
 }
 
+std::string_view to_string(BodyEvent e) {
+  static constexpr std::array<std::string_view, 5> kNames{"action", "eat", "drink", "rest", "hit"};
+  return kNames.at(static_cast<std::size_t>(e));
+}
+
+BodyEvent body_event_from_string(std::string_view s) {
+  for (auto e : {BodyEvent::Action, BodyEvent::Eat, BodyEvent::Drink, BodyEvent::Rest, BodyEvent::Hit})
+    if (to_string(e) == s) return e;
+  throw InvalidInput("unknown body event '" + std::string(s) + "' (action, eat, drink, rest, hit)");
+}
+
 void update_motivation(MotivationalState& m, BodyEvent event, const MotivationOptions& o) {
   auto up = [](double& v, double d) { v = std::clamp(v + d, 0.0, 1.0); };
   switch (event) {

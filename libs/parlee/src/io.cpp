@@ -162,6 +162,14 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
       }
     } else if (key == "liking") {
       for (const auto& [k, x] : r.object(v, ptr).items()) c.liking[k] = r.number(x, ptr + "/" + tok(k), -1.0, 1.0);
+    } else if (key == "body_events") {
+      for (const auto& [k, x] : r.object(v, ptr).items()) {
+        try {
+          c.body_events[k] = body_event_from_string(r.string(x, ptr + "/" + tok(k)));
+        } catch (const InvalidInput& e) {
+          r.fail(ptr + "/" + tok(k), e.what());
+        }
+      }
     } else if (key == "praiseworthiness") {
       for (const auto& [k, x] : r.object(v, ptr).items())
         c.praiseworthiness[k] = r.number(x, ptr + "/" + tok(k), -1.0, 1.0);
@@ -209,6 +217,9 @@ std::string write_agent(const AgentConfig& c) {
   Json pw = Json::object();
   for (const auto& [k, v] : c.praiseworthiness) pw[k] = v;
   j["praiseworthiness"] = pw;
+  Json be = Json::object();
+  for (const auto& [k, v] : c.body_events) be[k] = std::string(to_string(v));
+  j["body_events"] = be;
   return j.dump(2) + "\n";
 }
 

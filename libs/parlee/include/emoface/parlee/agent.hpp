@@ -31,6 +31,9 @@ struct AgentConfig {
   double liking_rate = 0.1;          ///< §5.6.1 liking update rate, [0,1]
   std::map<std::string, double> liking;             ///< initial LikingLevel per other agent, [−1,1]
   std::map<std::string, double> praiseworthiness;   ///< standards: value per operator name, [−1,1]
+  /// §5.5.4: operator name → what it does to the body: eat/drink/rest when the agent performs it,
+  /// hit when anyone performs it (the agent is hit). Every own action also counts as `action`.
+  std::map<std::string, BodyEvent> body_events;
   std::uint64_t seed = 1;            ///< own action choices and unspecified outcomes
   void validate() const;
 };
@@ -85,6 +88,7 @@ class Agent {
   const Domain& domain() const noexcept { return *domain_; }
   const State& state() const noexcept { return state_; }
   const AgentConfig& config() const noexcept { return config_; }
+  const MotivationalState& motivation() const noexcept { return config_.motivation; }
   const EmotionVector& emotions() const noexcept { return emotions_; }
   int self() const noexcept { return self_; }
   /// Actions the agent on turn may take now ("(unload-food bread car1)").

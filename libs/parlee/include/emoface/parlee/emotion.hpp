@@ -119,6 +119,8 @@ EmotionVector motivated_alpha(const EmotionParams& params, const MotivationalSta
                               const MotivationOptions& options = {});
 
 enum class BodyEvent : std::uint8_t { Action, Eat, Drink, Rest, Hit };
+std::string_view to_string(BodyEvent e);                ///< "action", "eat", "drink", "rest", "hit"
+BodyEvent body_event_from_string(std::string_view s);  ///< throws InvalidInput
 /// §5.5.4: hunger, fatigue, thirst grow with every action; pain when hit; eating, drinking and
 /// resting reset hunger, thirst, and fatigue + pain. Values stay in [0,1].
 void update_motivation(MotivationalState& m, BodyEvent event, const MotivationOptions& options = {});
