@@ -59,6 +59,17 @@ Agent::Agent(const Domain& domain, AgentConfig config)
   prev_fear_.assign(own_goals_.size(), 0.0);
 }
 
+// A goal is confirmed once: success as soon as it holds (no deadline) or at its deadline; failure
+// when the deadline passes without it.
+GoalStatus Agent::confirm(std::size_t k, const State& s) const {
+  if (status_[k] != GoalStatus::Unconfirmed) return status_[k];
+  const auto& g = domain_->goals()[own_goals_[k]];
+  const bool holds = domain_->goal_holds(own_goals_[k], s);
+  if (g.deadline > 0 && time_ >= g.deadline) return holds ? GoalStatus::Success : GoalStatus::Fail;
+  if (g.deadline == 0 && holds) return GoalStatus::Success;
+  return GoalStatus::Unconfirmed;
+}
+
 std::vector<double> Agent::own_goal_probabilities(const State& s) {
   std::vector<double> p;
   for (auto g : own_goals_) p.push_back(planner_->goal_probability(g, s));
@@ -164,12 +175,7 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
     ga_k.importance = g.importance;
     ga_k.p_before = p_goal_[k];
     ga_k.p_after = p_after[k];
-    GoalStatus st = status_[k];
-    if (st == GoalStatus::Unconfirmed) {
-      const bool holds = domain_->goal_holds(own_goals_[k], after);
-      if (g.deadline > 0 && time_ >= g.deadline) st = holds ? GoalStatus::Success : GoalStatus::Fail;
-      else if (g.deadline == 0 && holds) st = GoalStatus::Success;
-    }
+    const GoalStatus st = confirm(k, after);
     ga_k.status = st;
     ga_k.status_changed = st != status_[k];
     ga_k.previous_hope = prev_hope_[k];
@@ -278,9 +284,7 @@ StepRecord Agent::step(const Event& event) {
     GoalAppraisal ga;
     ga.importance = g.importance;
     ga.p_before = ga.p_after = p_goal_[k];
-    GoalStatus st = status_[k];
-    if (st == GoalStatus::Unconfirmed && g.deadline > 0 && time_ >= g.deadline)
-      st = domain_->goal_holds(own_goals_[k], state_) ? GoalStatus::Success : GoalStatus::Fail;
+    const GoalStatus st = confirm(k, state_);
     ga.status = st;
     ga.status_changed = st != status_[k];
     ga.previous_hope = prev_hope_[k];

@@ -100,6 +100,7 @@ class Agent {
            EmotionVector& impulse);
   void self_act(StepRecord& rec, EmotionVector& impulse);
   std::vector<double> own_goal_probabilities(const State& s);
+  GoalStatus confirm(std::size_t k, const State& s) const;
   void fill(StepRecord& rec);
   double event_probability(const State& s, std::size_t action, const State& after);
 
