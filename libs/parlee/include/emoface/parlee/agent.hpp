@@ -80,7 +80,8 @@ class Agent {
 
   /// Applies one event (the agent acts first if it is its turn, then the event, then the agent
   /// responds if the turn came back), appraises each action, decays and updates the emotions.
-  /// Throws InvalidInput if the event's action is not applicable (message lists what is).
+  /// Throws InvalidInput if the event's action is not applicable (message lists what is); the agent
+  /// may by then have taken its own turn, so treat the agent as spent after an exception.
   StepRecord step(const Event& event);
   /// The record of the initial state (step 0): goal probabilities and the resting emotions.
   StepRecord initial_record();
