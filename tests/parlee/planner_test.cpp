@@ -221,3 +221,43 @@ TEST(Planner, OptionsValidate) {
   EXPECT_EQ(goal_semantics_from_string(to_string(GoalSemantics::AtHorizon)), GoalSemantics::AtHorizon);
   EXPECT_THROW(goal_semantics_from_string("soon"), emoface::InvalidInput);
 }
+
+TEST(Planner, Fig54AsPrintedHasNoPlan) {
+  // Thesis Fig. 5.4 verbatim (plus declarations): LOAD needs the agent at the place, MOVE and
+  // UNLOAD need it in the rocket, nothing boards it — so the goal is unreachable at any horizon.
+  const char* text = R"(
+(types CARGO ROCKET PLACE AGENT)
+(predicates (at 2) (in 2) (has-fuel 1) (is-acting 1))
+(objects (c1 CARGO) (r1 ROCKET) (rocket ROCKET) (london PLACE) (paris PLACE) (pilot AGENT))
+(agents pilot)
+(operator LOAD
+(params (<object> CARGO) (<rocket> ROCKET) (<place> PLACE) (<agent> AGENT))
+(preconds (at <rocket> <place>) (at <object> <place>)
+(at <agent> <place>) (is-acting <agent>))
+(effects (0.9 (in <object> <rocket>) (del at <object> <place>))
+(0.1) ))
+(operator UNLOAD
+(params (<object> CARGO) (<rocket> ROCKET) (<place> PLACE) (<agent> AGENT))
+(preconds (at <rocket> <place>) (in <object> <rocket>)
+(in <agent> <rocket>) (is-acting <agent>))
+(effects (0.9 (at <object> <place>) (del in <object> <rocket>))
+(0.1) ))
+(operator MOVE
+(params (<rocket> ROCKET) (<from> PLACE) (<to> PLACE) (<agent> AGENT))
+(preconds (has-fuel <rocket>) (at <rocket> <from>)
+(in <agent> rocket) (is-acting <agent>))
+(effects (0.8 (at <rocket> <to>) (del has-fuel <rocket>) (del at <rocket> <from>))
+(0.2) ))
+(initial (at r1 london) (has-fuel r1) (at c1 london) (at pilot london) (is-acting pilot))
+(goal deliver (agent pilot) (facts (at c1 paris)))
+)";
+  DomainSpec spec;
+  parse_domain_text(text, "fig54", spec);
+  const Domain d(spec);
+  Planner planner(d);
+  for (int h = 0; h <= 8; ++h) EXPECT_EQ(planner.goal_probability(0, d.initial_state(), h), 0.0) << h;
+  // LOAD is possible, MOVE never is
+  bool can_load = false;
+  for (auto a : d.applicable_actions(d.initial_state())) can_load |= d.action_text(a).rfind("(LOAD", 0) == 0;
+  EXPECT_TRUE(can_load);
+}
