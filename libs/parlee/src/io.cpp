@@ -65,12 +65,7 @@ Json emotion_json(const EmotionVector& v) {
 }  // namespace
 
 AgentConfig parse_agent(const std::string& text, const std::string& file) {
-  Json doc;
-  try {
-    doc = core::parse_json(text, file);
-  } catch (const nlohmann::json::exception& e) {  // e.g. number overflow (1e400): not a parse_error
-    throw FormatError(SourceLocation{file, "", 0, 0}, std::string("invalid JSON: ") + e.what());
-  }
+  const Json doc = core::parse_json(text, file);
   core::check_envelope(doc, "parlee_agent", kAgentVersion, file);
   const Reader r{file};
   AgentConfig c;
