@@ -11,6 +11,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
+  libpng-dev                        # parlee charts (apps/parlee)
 )
 PACKAGES+=(libespeak-ng-dev espeak-ng-data libpugixml-dev libpng-dev)  # channels / talkinghead
 
