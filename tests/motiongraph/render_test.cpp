@@ -1,0 +1,58 @@
+#include "emoface/motiongraph/render.hpp"
+
+#include <gtest/gtest.h>
+
+#include <zlib.h>
+
+#include "emoface/core/errors.hpp"
+
+namespace emoface::motiongraph {
+namespace {
+
+std::uint32_t be32(const std::string& s, std::size_t o) {
+  return (std::uint32_t(std::uint8_t(s[o])) << 24) | (std::uint32_t(std::uint8_t(s[o + 1])) << 16) |
+         (std::uint32_t(std::uint8_t(s[o + 2])) << 8) | std::uint32_t(std::uint8_t(s[o + 3]));
+}
+
+TEST(Render, PngDecodesBackToThePixels) {
+  Image img(5, 3);
+  img.set(1, 2, 0x102030);
+  img.set(-1, 0, 0xff0000);  // ignored
+  const std::string png = encode_png(img);
+  ASSERT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(png.substr(12, 4), "IHDR");
+  EXPECT_EQ(be32(png, 16), 5u);
+  EXPECT_EQ(be32(png, 20), 3u);
+  const std::size_t idat = png.find("IDAT");
+  const std::uint32_t len = be32(png, idat - 4);
+  std::string raw(3 * (1 + 5 * 3), '\0');
+  uLongf size = raw.size();
+  ASSERT_EQ(uncompress(reinterpret_cast<Bytef*>(raw.data()), &size,
+                       reinterpret_cast<const Bytef*>(png.data() + idat + 4), len), Z_OK);
+  ASSERT_EQ(size, raw.size());
+  EXPECT_EQ(std::uint8_t(raw[2 * 16 + 1 + 3]), 0x10);
+  EXPECT_EQ(std::uint8_t(raw[2 * 16 + 1 + 5]), 0x30);
+  EXPECT_EQ(std::uint8_t(raw[1]), 255);
+  // CRC of IEND is the well-known ae426082.
+  EXPECT_EQ(be32(png, png.size() - 4), 0xae426082u);
+}
+
+TEST(Render, ContactSheetAndPlot) {
+  Pose p(2, 2);
+  p << 10, 10, 100, 50;
+  const Image sheet = contact_sheet({p, p, p}, {0, 1}, 2, 0.5);
+  EXPECT_EQ(sheet.width, 640);
+  EXPECT_EQ(sheet.height, 490);
+  const std::size_t o = (static_cast<std::size_t>(25) * 640 + 50) * 3;  // landmark 1 of cell 0
+  EXPECT_NE(sheet.rgb[o], 255);
+  const Image plot = plot_series({{0, 1, 2}, {2, 1, 0}}, 100, 50);
+  EXPECT_EQ(plot.rgb.size(), 100u * 50u * 3u);
+  EXPECT_THROW(contact_sheet({}, {}, 2, 0.5), InvalidInput);
+  RenderOptions bad;
+  bad.width = 1;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  EXPECT_THROW(Image(0, 5), InvalidInput);
+}
+
+}  // namespace
+}  // namespace emoface::motiongraph
