@@ -10,7 +10,11 @@ namespace {
 
 TEST(Evaluate, NoCompressionReproducesLengths) {
   const EvaluationRow row = evaluate(test::small_prepared(), 0.0);
-  EXPECT_LT(row.compression, 0.06);  // only the first frames share the source node
+  // Only identical poses merge: the first frames (one source node) and the reversed copies.
+  std::size_t frames = 0;
+  for (const auto& s : test::small_prepared().samples) frames += s.peak_frame + 1;
+  const double samples = static_cast<double>(test::small_prepared().samples.size());
+  EXPECT_NEAR(row.compression, (samples - 1.0) / static_cast<double>(frames), 1e-12);
   EXPECT_DOUBLE_EQ(row.length_mean, 0.0);  // each peak node holds one sample: its own length
   EXPECT_DOUBLE_EQ(row.length_std, 0.0);
   EXPECT_LT(row.pose_mean, 1.0);  // only smoothing changes the poses

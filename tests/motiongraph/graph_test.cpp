@@ -38,13 +38,13 @@ GraphOptions thresholds(double t, double lambda = 0.0) {
   return o;
 }
 
-TEST(Graph, ZeroThresholdKeepsEveryFrameButTheNeutrals) {
+TEST(Graph, ZeroThresholdKeepsEveryDistinctPose) {
   const PreparedDatabase& p = test::small_prepared();
   const MotionGraph g = build_graph(p, thresholds(0.0));
   std::size_t frames = 0;
-  for (const auto& s : p.samples) frames += s.frame_count();
+  for (const auto& s : p.samples) frames += s.peak_frame + 1;
   EXPECT_EQ(g.source_frames, frames);
-  // Only the first frames share a node (the graph source, §4.1).
+  // Only identical poses merge: the reversed copies and the first frames (the graph source, §4.1).
   const std::size_t nodes = frames - (p.samples.size() - 1);
   for (const auto& r : g.regions) EXPECT_EQ(r.nodes.size(), nodes);
   EXPECT_NEAR(g.compression_ratio(), 1.0 - static_cast<double>(nodes) / static_cast<double>(frames), 1e-12);
@@ -96,13 +96,14 @@ TEST(Graph, Invariants) {
   EXPECT_GT(g.compression_ratio(), 0.3);
   for (std::size_t r = 0; r < g.regions.size(); ++r) {
     const RegionGraph& rg = g.regions[r];
-    // Frame counts add up; every node is used.
-    std::size_t frames = 0;
+    // Frame counts add up (reversed copies included); every node is used.
+    std::size_t frames = 0, expected_frames = 0;
     for (const Node& n : rg.nodes) {
       EXPECT_GT(n.frame_count, 0u);
       frames += n.frame_count;
     }
-    EXPECT_EQ(frames, g.source_frames);
+    for (const auto& s : p.samples) expected_frames += s.frame_count();
+    EXPECT_EQ(frames, expected_frames);
     // Label propagation: node labels = labels of the samples with a frame there.
     std::vector<std::set<Label>> expected(rg.nodes.size()), peaks(rg.nodes.size());
     for (std::size_t s = 0; s < p.samples.size(); ++s) {

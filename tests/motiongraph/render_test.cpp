@@ -37,20 +37,27 @@ TEST(Render, PngDecodesBackToThePixels) {
   EXPECT_EQ(be32(png, png.size() - 4), 0xae426082u);
 }
 
-TEST(Render, ContactSheetAndPlot) {
+TEST(Render, FitViewContactSheetAndPlot) {
   Pose p(2, 2);
-  p << 10, 10, 100, 50;
-  const Image sheet = contact_sheet({p, p, p}, {0, 1}, 2, 0.5);
-  EXPECT_EQ(sheet.width, 640);
-  EXPECT_EQ(sheet.height, 490);
-  const std::size_t o = (static_cast<std::size_t>(25) * 640 + 50) * 3;  // landmark 1 of cell 0
-  EXPECT_NE(sheet.rgb[o], 255);
+  p << 10, 10, 110, 60;  // 100 × 50 box
+  const View v = fit_view({p}, 200, 100, 0.0);
+  EXPECT_DOUBLE_EQ(v.scale, 2.0);
+  EXPECT_DOUBLE_EQ(v.offset_x + v.scale * 10, 0.0);
+  EXPECT_DOUBLE_EQ(v.offset_y + v.scale * 60, 100.0);
+  const Image sheet = contact_sheet({p, p, p}, {0, 1}, 2, 100, 50);
+  EXPECT_EQ(sheet.width, 200);
+  EXPECT_EQ(sheet.height, 100);
+  // Landmark 0 of cell 1 (top right) sits at the fitted position, coloured.
+  const View c = fit_view({p}, 100, 50);
+  const int x = 100 + static_cast<int>(c.offset_x + c.scale * 10), y = static_cast<int>(c.offset_y + c.scale * 10);
+  EXPECT_NE(sheet.rgb[(static_cast<std::size_t>(y) * 200 + static_cast<std::size_t>(x)) * 3], 255);
   const Image plot = plot_series({{0, 1, 2}, {2, 1, 0}}, 100, 50);
   EXPECT_EQ(plot.rgb.size(), 100u * 50u * 3u);
-  EXPECT_THROW(contact_sheet({}, {}, 2, 0.5), InvalidInput);
-  RenderOptions bad;
-  bad.width = 1;
-  EXPECT_THROW(bad.validate(), InvalidInput);
+  const Image traj = plot_trajectories({p, p}, {0, 1});
+  EXPECT_EQ(traj.width, 640);
+  EXPECT_THROW(contact_sheet({}, {}, 2), InvalidInput);
+  EXPECT_THROW(contact_sheet({p}, {}, 0), InvalidInput);
+  EXPECT_THROW(fit_view({p}, 100, 100, 0.6), InvalidInput);
   EXPECT_THROW(Image(0, 5), InvalidInput);
 }
 

@@ -43,6 +43,12 @@ std::vector<int> MotionGraph::landmark_ids() const {
   return ids;
 }
 
+std::vector<int> MotionGraph::landmark_regions() const {
+  std::vector<int> out;
+  for (std::size_t r = 0; r < regions.size(); ++r) out.insert(out.end(), regions[r].landmarks.size(), static_cast<int>(r));
+  return out;
+}
+
 void GraphOptions::validate() const {
   if (!(sample_threshold >= 0.0) || !std::isfinite(sample_threshold))
     throw InvalidInput("graph: sample_threshold must be a finite number >= 0");
@@ -84,7 +90,9 @@ std::size_t merge_or_append(std::vector<Accumulator>& nodes, const Eigen::RowVec
       best_i = i;
     }
   }
-  if (best_i < nodes.size() && best < threshold) {
+  // §4.1 merges when the value is "lower than the threshold"; `<=` also merges identical poses at
+  // threshold 0 (the reversed copies, the common first frames).
+  if (best_i < nodes.size() && best <= threshold) {
     nodes[best_i].add(d, v, w);
     return best_i;
   }
@@ -112,7 +120,8 @@ MotionGraph build_graph(const PreparedDatabase& data, const GraphOptions& option
   g.dimensions = dims;
   g.frame_rate = data.frame_rate;
   g.lambda = options.similarity.lambda;
-  for (const PreparedSample& s : data.samples) g.source_frames += s.frame_count();
+  // Database poses: the original frames (reversed copies repeat them and do not count).
+  for (const PreparedSample& s : data.samples) g.source_frames += s.peak_frame + 1;
 
   // The final graph is seeded with a random sample graph (§4.1); the rest follow in order.
   core::Rng rng(options.seed, 0);

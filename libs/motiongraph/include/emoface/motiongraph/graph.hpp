@@ -55,21 +55,24 @@ struct MotionGraph {
   int dimensions = 2;
   double frame_rate = 30.0;
   double lambda = 0.5;              ///< λ used for the edge weights
-  std::size_t source_frames = 0;    ///< database frames per region the graph was built from
+  std::size_t source_frames = 0;    ///< database poses (original frames, without reversed copies)
   std::vector<RegionGraph> regions;
   /// 1 − nodes / (regions · source_frames): memory saved against one node per pose (§7).
   double compression_ratio() const;
   std::size_t node_count() const;
   /// Source landmark ids of the synthesized poses (regions concatenated).
   std::vector<int> landmark_ids() const;
+  /// Region index of each synthesized landmark (same order as landmark_ids()).
+  std::vector<int> landmark_regions() const;
 };
 
 struct GraphOptions {
-  /// Merge thresholds of eq. (1) for sample graphs and for merging into the final graph (§4.1), >= 0,
+  /// Merge thresholds of eq. (1) for sample graphs and for merging into the final graph (§4.1), >= 0
+  /// (a pose merges into the most similar node when its value is <= the threshold),
   /// in landmark units per landmark when threshold_per_landmark (multiplied by the region's landmark
   /// count, so one value suits regions of different size), else absolute eq. (1) units.
-  double sample_threshold = 1.0;
-  double merge_threshold = 1.0;
+  double sample_threshold = 0.4;  ///< ≈ 78 % compression on the default synthetic database
+  double merge_threshold = 0.4;
   bool threshold_per_landmark = true;
   SimilarityOptions similarity;
   std::uint64_t seed = 1;  ///< picks the random sample graph that seeds the final graph
