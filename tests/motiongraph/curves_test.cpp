@@ -66,6 +66,34 @@ TEST(Sigmoid, RecoversKnownParameters) {
   EXPECT_LE(rep.final_cost, rep.initial_cost);
 }
 
+TEST(Sigmoid, VariableProjectionRecoversParametersAndAgreesWithCeres) {
+  SigmoidCurve truth;
+  truth.slope = 0.6;
+  truth.midpoint = 11.0;
+  truth.offset = Eigen::Vector3d(0.0, 5.0, -1.0);
+  truth.amplitude = Eigen::Vector3d(3.0, -7.0, 0.5);
+  Eigen::VectorXd t(25);
+  for (int i = 0; i < 25; ++i) t[i] = i;
+  Eigen::MatrixXd y = truth.evaluate(t);
+  SigmoidFitOptions vp;
+  vp.solver = SigmoidSolver::VariableProjection;
+  SigmoidFitReport rep;
+  const SigmoidCurve fit = fit_sigmoid(y, vp, &rep);
+  EXPECT_TRUE(rep.converged);
+  EXPECT_NEAR(fit.slope, 0.6, 1e-4);
+  EXPECT_NEAR(fit.midpoint, 11.0, 1e-4);
+  EXPECT_NEAR((fit.amplitude - truth.amplitude).norm(), 0.0, 1e-4);
+  // Noisy data: both solvers reach the same least-squares cost.
+  for (int i = 0; i < 25; ++i) y(i, 1) += (i % 3 - 1) * 0.4;
+  SigmoidFitReport a, b;
+  fit_sigmoid(y, {}, &a);
+  fit_sigmoid(y, vp, &b);
+  EXPECT_NEAR(a.final_cost, b.final_cost, 1e-6 * (1.0 + a.final_cost));
+  for (SigmoidSolver s : {SigmoidSolver::Ceres, SigmoidSolver::VariableProjection})
+    EXPECT_EQ(sigmoid_solver_from_string(to_string(s)), s);
+  EXPECT_THROW(sigmoid_solver_from_string("lm"), InvalidInput);
+}
+
 TEST(Sigmoid, NoisyDataReducesError) {
   Eigen::MatrixXd y(15, 1);
   for (int i = 0; i < 15; ++i) y(i, 0) = 5.0 / (1.0 + std::exp(-(i - 6.0))) + ((i % 2) ? 0.3 : -0.3);

@@ -63,6 +63,17 @@ TEST(Similarity, Properties) {
   EXPECT_DOUBLE_EQ(similarity(pa, va, pb, -vb, 2, o), s);
 }
 
+TEST(Similarity, EarlyStopReturnsAValueAboveTheBound) {
+  Eigen::RowVectorXd pa = Eigen::RowVectorXd::Random(20), pb = Eigen::RowVectorXd::Random(20);
+  Eigen::RowVectorXd va = Eigen::RowVectorXd::Random(20), vb = Eigen::RowVectorXd::Random(20);
+  SimilarityOptions o;
+  const double full = similarity(pa.data(), va.data(), pb.data(), vb.data(), 10, 2, o);
+  EXPECT_DOUBLE_EQ(similarity(pa.data(), va.data(), pb.data(), vb.data(), 10, 2, o, full), full);
+  const double partial = similarity(pa.data(), va.data(), pb.data(), vb.data(), 10, 2, o, 0.25 * full);
+  EXPECT_GT(partial, 0.25 * full);
+  EXPECT_LE(partial, full);
+}
+
 TEST(Similarity, BadInput) {
   Eigen::RowVectorXd a(4), b(3);
   a.setZero();

@@ -84,7 +84,8 @@ std::size_t merge_or_append(std::vector<Accumulator>& nodes, const Eigen::RowVec
   double best = std::numeric_limits<double>::infinity();
   std::size_t best_i = nodes.size();
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const double s = similarity(d.data(), v.data(), nodes[i].disp.data(), nodes[i].vel.data(), k, dims, sim);
+    const double s = similarity(d.data(), v.data(), nodes[i].disp.data(), nodes[i].vel.data(), k, dims, sim,
+                                std::min(best, threshold));
     if (s < best) {
       best = s;
       best_i = i;

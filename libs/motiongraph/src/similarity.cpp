@@ -31,7 +31,8 @@ double velocity_influence(const double* va, const double* vb, int dimensions, do
 
 // paper §4.2, eq. (1).
 double similarity(const double* pa, const double* va, const double* pb, const double* vb,
-                  Eigen::Index landmark_count, int dimensions, const SimilarityOptions& options) {
+                  Eigen::Index landmark_count, int dimensions, const SimilarityOptions& options,
+                  double stop_above) {
   double sum = 0.0;
   for (Eigen::Index i = 0; i < landmark_count; ++i) {
     const Eigen::Index o = i * dimensions;
@@ -46,6 +47,7 @@ double similarity(const double* pa, const double* va, const double* pb, const do
         options.lambda == 0.0 ? 0.0
                               : velocity_influence(va + o, vb + o, dimensions, options.still_speed);
     sum += dist + options.lambda * infl * dist;
+    if (sum > stop_above) break;
   }
   return sum;
 }

@@ -161,10 +161,16 @@ std::vector<Pose> assemble(const MotionGraph& graph, std::vector<Eigen::MatrixXd
       m.row(0) = first;  // keep continuity with the previous animation
     }
     if (smoothing.sigmoid && longest >= 4) {
+      SigmoidFitOptions fit;
+      fit.solver = SigmoidSolver::VariableProjection;
+      fit.max_iterations = 12;
+      fit.function_tolerance = 1e-7;
       for (Eigen::Index l = 0; l < m.cols() / d; ++l) {
         SigmoidFitReport rep;
         const Eigen::MatrixXd y = m.middleCols(l * d, d);
-        const SigmoidCurve c = fit_sigmoid(y, {}, &rep);
+        // A landmark that (almost) does not move has nothing to smooth.
+        if ((y.colwise().maxCoeff() - y.colwise().minCoeff()).maxCoeff() < 1e-2) continue;
+        const SigmoidCurve c = fit_sigmoid(y, fit, &rep);
         if (rep.rms < smoothing.sigmoid_max_rms) {
           Eigen::MatrixXd fitted = c.evaluate(times);
           // Pin the end points so consecutive animations stay continuous.

@@ -19,9 +19,21 @@ struct SigmoidCurve {
   Eigen::MatrixXd evaluate(const Eigen::VectorXd& times) const;
 };
 
+/// How fit_sigmoid solves the least-squares problem.
+enum class SigmoidSolver {
+  Ceres,               ///< Ceres Levenberg–Marquardt on all parameters (the paper's cleaning, §4)
+  VariableProjection,  ///< offsets/amplitudes in closed form, LM on (slope, midpoint) only: same
+                       ///< minimum, ~100× faster; used for smoothing synthesized motion (§5 step 4)
+};
+std::string to_string(SigmoidSolver solver);
+/// "ceres" | "variable_projection"; throws InvalidInput otherwise.
+SigmoidSolver sigmoid_solver_from_string(const std::string& name);
+
 struct SigmoidFitOptions {
+  SigmoidSolver solver = SigmoidSolver::Ceres;
   int max_iterations = 50;    ///< Levenberg–Marquardt iterations, >= 1
-  double max_slope = 10.0;    ///< upper bound of |slope| (1/frame), > 0; lower bound is 1e-3
+  double max_slope = 10.0;    ///< upper bound of slope (1/frame), > 1e-3; lower bound is 1e-3
+  double function_tolerance = 1e-10;  ///< stop when the relative cost decrease is below, (0, 1)
   void validate() const;
 };
 
@@ -34,7 +46,7 @@ struct SigmoidFitReport {
   std::string message;
 };
 
-/// Least-squares sigmoid fit (Ceres) of the T by m samples `values` at frames 0..T−1. T >= 2.
+/// Least-squares sigmoid fit of the T by m samples `values` at frames 0..T−1. T >= 2.
 /// Non-convergence is reported, not thrown; NaN input throws InvalidInput.
 SigmoidCurve fit_sigmoid(const Eigen::MatrixXd& values, const SigmoidFitOptions& options = {},
                          SigmoidFitReport* report = nullptr);

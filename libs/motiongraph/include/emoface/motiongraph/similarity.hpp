@@ -3,6 +3,8 @@
 //   sim(Pa, Pb) = Σ_i [ dist(PaLi, PbLi) + λ · vinfl(PaLi, PbLi) · dist(PaLi, PbLi) ]
 //   vinfl = 1 − |V̂(PaLi) · V̂(PbLi)|   (V = instantaneous velocity, V̂ = V/|V|)
 // Lower is more similar; units are those of the landmarks (pixels).
+#include <limits>
+
 #include <Eigen/Core>
 
 namespace emoface::motiongraph {
@@ -20,8 +22,11 @@ double velocity_influence(const double* va, const double* vb, int dimensions, do
 
 /// eq. (1) for poses flattened landmark-major (x0,y0[,z0],x1,...): pa, pb positions (or
 /// displacements: only differences matter), va, vb velocities; all of length n·dimensions.
+/// As every term is >= 0, the sum stops as soon as it exceeds `stop_above` and returns that partial
+/// sum (> stop_above): enough for "is it below the threshold / the best so far" questions.
 double similarity(const double* pa, const double* va, const double* pb, const double* vb,
-                  Eigen::Index landmark_count, int dimensions, const SimilarityOptions& options);
+                  Eigen::Index landmark_count, int dimensions, const SimilarityOptions& options,
+                  double stop_above = std::numeric_limits<double>::infinity());
 
 /// Convenience overload on flattened row vectors of equal length.
 double similarity(const Eigen::Ref<const Eigen::RowVectorXd>& pa,
