@@ -278,3 +278,20 @@ TEST_F(CkPlus, BadInput) {
 
 }  // namespace
 }  // namespace emoface::motiongraph
+
+namespace emoface::motiongraph {
+namespace {
+
+// Golden files (also the fuzz seeds): reading and writing reproduces them byte for byte.
+TEST(GoldenFiles, RoundTripByteForByte) {
+  const std::string dir = EMOFACE_TEST_DATA_DIR "/motiongraph/";
+  const std::string db_json = core::read_file(dir + "tiny_database.json");
+  EXPECT_EQ(database_to_json(parse_database_json(db_json)), db_json);
+  const std::string db_csv = core::read_file(dir + "tiny_database.csv");
+  EXPECT_EQ(database_to_csv(parse_database_csv(db_csv, "csv", 25.0)), db_csv);
+  const std::string graph = core::read_file(dir + "tiny_graph.json");
+  EXPECT_EQ(graph_to_json(parse_graph_json(graph)), graph);
+}
+
+}  // namespace
+}  // namespace emoface::motiongraph

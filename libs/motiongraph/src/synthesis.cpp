@@ -164,7 +164,6 @@ std::vector<Pose> assemble(const MotionGraph& graph, std::vector<Eigen::MatrixXd
       SigmoidFitOptions fit;
       fit.solver = SigmoidSolver::VariableProjection;
       fit.max_iterations = 12;
-      fit.function_tolerance = 1e-7;
       for (Eigen::Index l = 0; l < m.cols() / d; ++l) {
         SigmoidFitReport rep;
         const Eigen::MatrixXd y = m.middleCols(l * d, d);

@@ -33,7 +33,8 @@ struct SigmoidFitOptions {
   SigmoidSolver solver = SigmoidSolver::Ceres;
   int max_iterations = 50;    ///< Levenberg–Marquardt iterations, >= 1
   double max_slope = 10.0;    ///< upper bound of slope (1/frame), > 1e-3; lower bound is 1e-3
-  double function_tolerance = 1e-10;  ///< stop when the relative cost decrease is below, (0, 1)
+  double function_tolerance = 1e-6;  ///< stop when the relative cost decrease is below, (0, 1)
+                                     ///< (Ceres' default)
   void validate() const;
 };
 
