@@ -149,6 +149,33 @@ TEST(Synthesize, BadInput) {
   EXPECT_THROW(synthesize(graph(), s, Label::Fear, o), InvalidInput);
 }
 
+TEST(Synthesize, ThreeDimensionalDatabaseWithOneRegion) {
+  Database db;
+  db.dimensions = 3;
+  db.landmark_count = 4;
+  for (int s = 0; s < 6; ++s) {
+    Sequence seq;
+    seq.id = "q" + std::to_string(s);
+    seq.label = s % 2 ? Label::Fear : Label::Sadness;
+    for (int f = 0; f < 8 + s; ++f) {
+      Pose p(4, 3);
+      for (int i = 0; i < 4; ++i) p.row(i) << 10.0 * i, 5.0 * i * i, 3.0 * i;
+      const double x = f / (7.0 + s);
+      p(0, 2) += (s % 2 ? 6.0 : -6.0) * x;  // landmark 0 moves in depth
+      p(3, 1) += 4.0 * x;
+      seq.frames.push_back(p);
+    }
+    db.sequences.push_back(seq);
+  }
+  const PreparedDatabase data = preprocess(db, single_region_layout(4));
+  const MotionGraph g = build_graph(data, {});
+  SynthesisState state = initial_state(g);
+  const auto frames = synthesize(g, state, Label::Fear);
+  ASSERT_GE(frames.size(), 2u);
+  EXPECT_EQ(frames.back().cols(), 3);
+  EXPECT_GT(frames.back()(0, 2) - frames.front()(0, 2), 3.0);  // towards +z for fear
+}
+
 TEST(RecoverPath, RunsAndStretching) {
   RegionGraph r;
   r.neutral = Eigen::RowVector2d(0, 0);

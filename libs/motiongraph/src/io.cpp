@@ -425,13 +425,13 @@ MotionGraph parse_graph_json(std::string_view text, const std::string& file) {
         n.peak_labels.push_back(rd.label(ps[k], np + "/peak_labels/" + std::to_string(k)));
       n.frame_count = rd.count(jn, np, "frame_count", std::size_t{1} << 40);
       n.mean_run = rd.number(jn, np, "mean_run");
-      if (n.mean_run < 1.0 || n.mean_run > 1e6) fail(file, np + "/mean_run", "mean_run must be in [1, 1e6]");
+      if (n.mean_run < 1.0 || n.mean_run > 1e3) fail(file, np + "/mean_run", "mean_run must be in [1, 1000]");
       n.frames_from_neutral = rd.number(jn, np, "frames_from_neutral");
       n.peak_length_mean = rd.number(jn, np, "peak_length_mean");
       n.peak_length_std = rd.number(jn, np, "peak_length_std");
-      if (n.frames_from_neutral < 0.0 || n.frames_from_neutral > 1e6 || n.peak_length_mean < 0.0 ||
-          n.peak_length_mean > 1e6 || n.peak_length_std < 0.0 || n.peak_length_std > 1e6)
-        fail(file, np, "frame statistics must be in [0, 1e6]");
+      if (n.frames_from_neutral < 0.0 || n.frames_from_neutral > 1e5 || n.peak_length_mean < 0.0 ||
+          n.peak_length_mean > 1e5 || n.peak_length_std < 0.0 || n.peak_length_std > 1e5)
+        fail(file, np, "frame statistics must be in [0, 1e5]");
       r.nodes.push_back(std::move(n));
     }
     r.neutral_node = rd.count(jr, ptr, "neutral_node", r.nodes.size() - 1);

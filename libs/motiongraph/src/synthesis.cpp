@@ -12,6 +12,10 @@
 
 namespace emoface::motiongraph {
 
+namespace {
+constexpr double kMaxFrames = 1e5;  // longest synthesized transition (frames): a guard against bad graphs
+}  // namespace
+
 void SmoothingOptions::validate() const {
   if (savgol_window != 0 && (savgol_window < 3 || savgol_window % 2 == 0))
     throw InvalidInput("smoothing: savgol_window must be 0 or odd and >= 3");
@@ -30,7 +34,7 @@ void SynthesisOptions::validate() const {
 }
 
 void IdleOptions::validate() const {
-  if (!(duration > 0.0) || !std::isfinite(duration)) throw InvalidInput("idle: duration must be > 0");
+  if (!(duration > 0.0 && duration <= 3600.0)) throw InvalidInput("idle: duration must be in (0, 3600] s");
   if (!(hop_interval > 0.0) || !std::isfinite(hop_interval))
     throw InvalidInput("idle: hop_interval must be > 0");
   if (!(dwell >= 0.0 && dwell < hop_interval))
@@ -274,7 +278,7 @@ std::vector<Pose> synthesize(const MotionGraph& graph, SynthesisState& state, La
     double target_length = node_length(tgt);
     // §5.1: duration sampled from the peak node's normal distribution.
     if (options.vary_duration && tgt.is_peak())
-      target_length = std::max(2.0, rng.normal(tgt.peak_length_mean, tgt.peak_length_std));
+      target_length = std::clamp(rng.normal(tgt.peak_length_mean, tgt.peak_length_std), 2.0, kMaxFrames);
     double length = path_length_impl(rg, path, target_length);
     // §6.1: mood-decay hints use only the initial path nodes.
     if (options.path_fraction < 1.0 && path.size() > 1) {
@@ -285,7 +289,7 @@ std::vector<Pose> synthesize(const MotionGraph& graph, SynthesisState& state, La
         path.resize(keep);
       }
     }
-    region_frames.push_back(recover_path(rg, path, static_cast<std::size_t>(std::lround(length))));
+    region_frames.push_back(recover_path(rg, path, static_cast<std::size_t>(std::lround(std::min(length, kMaxFrames)))));
     rep.region_lengths.push_back(static_cast<std::size_t>(region_frames.back().rows()));
     rep.paths.push_back(path);
     rep.path_costs.push_back(cost);

@@ -82,7 +82,7 @@ std::vector<Pose> assemble(const MotionGraph& graph, std::vector<Eigen::MatrixXd
                            const SmoothingOptions& smoothing);
 
 struct IdleOptions {
-  double duration = 4.0;      ///< seconds of idle motion, > 0
+  double duration = 4.0;      ///< seconds of idle motion, (0, 3600]
   double hop_interval = 1.0;  ///< seconds between the starts of two hops, > 0
   double dwell = 0.4;         ///< seconds spent at each hop target, [0, hop_interval)
   SmoothingOptions smoothing{5, 2, false, 1.5};
