@@ -4,6 +4,7 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/motiongraph/curves.hpp"
+#include "flat.hpp"
 
 namespace emoface::motiongraph {
 
@@ -56,11 +57,8 @@ EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const Eva
     const std::size_t original = ps.peak_frame + 1;
     length.add(std::abs(static_cast<double>(synth.size()) - static_cast<double>(original)));
     // Compare at corresponding times: the synthesized sequence resampled to the original length.
-    Eigen::Index k_total = synth[0].rows();
-    Eigen::MatrixXd flat(static_cast<Eigen::Index>(synth.size()), k_total * d);
-    for (std::size_t t = 0; t < synth.size(); ++t)
-      for (Eigen::Index l = 0; l < k_total; ++l)
-        for (int j = 0; j < d; ++j) flat(static_cast<Eigen::Index>(t), l * d + j) = synth[t](l, j);
+    Eigen::MatrixXd flat(static_cast<Eigen::Index>(synth.size()), synth[0].size());
+    for (std::size_t t = 0; t < synth.size(); ++t) flat.row(static_cast<Eigen::Index>(t)) = detail::flatten(synth[t]);
     const Eigen::MatrixXd resampled = resample_linear(flat, static_cast<Eigen::Index>(original));
     for (std::size_t t = 0; t < original; ++t) {
       Eigen::Index col = 0;

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include "emoface/core/errors.hpp"
+#include "flat.hpp"
 
 namespace emoface::motiongraph {
 
@@ -54,16 +55,11 @@ Eigen::MatrixXd apply_transform(const Eigen::MatrixXd& transform, const Eigen::M
 
 namespace {
 
+using detail::flatten;
+
 Eigen::MatrixXd rows_of(const Eigen::MatrixXd& pose, const std::vector<int>& idx) {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(idx.size()), pose.cols());
   for (std::size_t i = 0; i < idx.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = pose.row(idx[i]);
-  return out;
-}
-
-Eigen::RowVectorXd flatten(const Eigen::MatrixXd& pose) {
-  Eigen::RowVectorXd out(pose.size());
-  for (Eigen::Index i = 0; i < pose.rows(); ++i)
-    for (Eigen::Index j = 0; j < pose.cols(); ++j) out[i * pose.cols() + j] = pose(i, j);
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
 #include "emoface/motiongraph/curves.hpp"
+#include "flat.hpp"
 
 namespace emoface::motiongraph {
 
@@ -220,14 +221,12 @@ void continue_from(const SynthesisState& state, std::vector<Eigen::MatrixXd>& re
 
 void remember_last(const MotionGraph& graph, const Pose& last, SynthesisState& state) {
   state.last.assign(graph.regions.size(), {});
-  const int d = graph.dimensions;
-  Eigen::Index row = 0;
+  const Eigen::RowVectorXd flat = detail::flatten(last);
+  Eigen::Index col = 0;
   for (std::size_t r = 0; r < graph.regions.size(); ++r) {
-    const RegionGraph& rg = graph.regions[r];
-    Eigen::RowVectorXd disp(rg.neutral.size());
-    for (Eigen::Index l = 0; l < disp.size() / d; ++l, ++row)
-      for (int j = 0; j < d; ++j) disp[l * d + j] = last(row, j) - rg.neutral[l * d + j];
-    state.last[r] = std::move(disp);
+    const Eigen::Index w = graph.regions[r].neutral.size();
+    state.last[r] = flat.segment(col, w) - graph.regions[r].neutral;
+    col += w;
   }
 }
 
