@@ -24,6 +24,8 @@ void SmoothingOptions::validate() const {
     throw InvalidInput("smoothing: need 0 <= savgol_order < savgol_window");
   if (!(sigmoid_max_rms >= 0.0) || !std::isfinite(sigmoid_max_rms))
     throw InvalidInput("smoothing: sigmoid_max_rms must be >= 0");
+  if (!(sigmoid_min_range >= 0.0) || !std::isfinite(sigmoid_min_range))
+    throw InvalidInput("smoothing: sigmoid_min_range must be >= 0");
 }
 
 void SynthesisOptions::validate() const {
@@ -172,8 +174,8 @@ std::vector<Pose> assemble(const MotionGraph& graph, std::vector<Eigen::MatrixXd
       for (Eigen::Index l = 0; l < m.cols() / d; ++l) {
         SigmoidFitReport rep;
         const Eigen::MatrixXd y = m.middleCols(l * d, d);
-        // A landmark that (almost) does not move has nothing to smooth.
-        if ((y.colwise().maxCoeff() - y.colwise().minCoeff()).maxCoeff() < 1e-2) continue;
+        // A landmark that (almost) does not move has nothing visible to smooth.
+        if ((y.colwise().maxCoeff() - y.colwise().minCoeff()).maxCoeff() < smoothing.sigmoid_min_range) continue;
         const SigmoidCurve c = fit_sigmoid(y, fit, &rep);
         if (rep.rms < smoothing.sigmoid_max_rms) {
           Eigen::MatrixXd fitted = c.evaluate(times);

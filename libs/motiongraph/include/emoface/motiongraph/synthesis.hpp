@@ -25,6 +25,7 @@ struct SmoothingOptions {
   bool sigmoid = true;         ///< then replace each landmark by its sigmoid fit (§5 step 4)...
   double sigmoid_max_rms = 1.5;  ///< ...when the fit's RMS residual is below this (units), so
                                  ///< non-monotone motion (peak → neutral → peak) is kept
+  double sigmoid_min_range = 0.5;  ///< landmarks moving less than this (units, >= 0) are not fitted
   void validate() const;
 };
 
@@ -85,7 +86,7 @@ struct IdleOptions {
   double duration = 4.0;      ///< seconds of idle motion, (0, 3600]
   double hop_interval = 1.0;  ///< seconds between the starts of two hops, > 0
   double dwell = 0.4;         ///< seconds spent at each hop target, [0, hop_interval)
-  SmoothingOptions smoothing{5, 2, false, 1.5};
+  SmoothingOptions smoothing{5, 2, false, 1.5, 0.5};
   std::uint64_t seed = 1;
   void validate() const;
 };
