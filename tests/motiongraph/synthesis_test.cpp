@@ -147,6 +147,9 @@ TEST(Synthesize, BadInput) {
   o = {};
   o.smoothing.savgol_window = 4;
   EXPECT_THROW(synthesize(graph(), s, Label::Fear, o), InvalidInput);
+  std::vector<Eigen::MatrixXd> frames(graph().regions.size(), Eigen::MatrixXd::Zero(3, 2));
+  EXPECT_THROW(assemble(graph(), frames, {}), InvalidInput);  // wrong widths
+  EXPECT_THROW(assemble(graph(), {}, {}), InvalidInput);
 }
 
 TEST(Synthesize, ThreeDimensionalDatabaseWithOneRegion) {

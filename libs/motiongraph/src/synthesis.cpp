@@ -154,6 +154,11 @@ std::vector<Pose> assemble(const MotionGraph& graph, std::vector<Eigen::MatrixXd
   smoothing.validate();
   if (region_frames.size() != graph.regions.size())
     throw InvalidInput("assemble: one frame matrix per region expected");
+  for (std::size_t r = 0; r < region_frames.size(); ++r)
+    if (region_frames[r].rows() < 1 || region_frames[r].cols() != graph.regions[r].neutral.size() ||
+        !region_frames[r].allFinite())
+      throw InvalidInput("assemble: region \"" + graph.regions[r].name +
+                         "\" needs >= 1 finite frame of the region's width");
   Eigen::Index longest = 1;
   for (const auto& m : region_frames) longest = std::max(longest, m.rows());
   const int d = graph.dimensions;
