@@ -36,7 +36,8 @@ void line(Image& img, double x0, double y0, double x1, double y1, std::uint32_t 
 }  // namespace
 
 Image::Image(int w, int h, std::uint8_t grey) : width(w), height(h) {
-  if (w < 1 || h < 1 || static_cast<long long>(w) * h > (1LL << 28)) throw InvalidInput("image: bad size");
+  if (w < 1 || h < 1 || static_cast<long long>(w) * h > (1LL << 26))
+    throw InvalidInput("image: size must be >= 1 x 1 and at most 2^26 pixels");
   rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, grey);
 }
 

@@ -13,7 +13,7 @@ struct Image {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgb;  ///< row-major, 3 bytes per pixel
   Image() = default;
-  Image(int w, int h, std::uint8_t grey = 255);
+  Image(int w, int h, std::uint8_t grey = 255);  ///< at most 2^26 pixels, else InvalidInput
   void set(int x, int y, std::uint32_t colour);  ///< 0xRRGGBB; outside pixels are ignored
 };
 
