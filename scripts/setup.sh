@@ -12,6 +12,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
   libpng-dev                        # parlee charts (apps/parlee)
+  zlib1g-dev                        # motiongraph: PNG encoding of landmark renders
 )
 PACKAGES+=(libespeak-ng-dev espeak-ng-data libpugixml-dev libpng-dev)  # channels / talkinghead
 

@@ -1,0 +1,87 @@
+// Throughput of the motiongraph numeric work on the default synthetic database (70 sequences,
+// 7 labels, 20 subjects, 10–30 frames, 68 landmarks). Run:
+//   cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DEMOFACE_BUILD_BENCH=ON
+//   cmake --build build-bench --target motiongraph_bench -j2
+//   build-bench/tests/bench/motiongraph_bench
+#include <benchmark/benchmark.h>
+
+#include "emoface/motiongraph/graph.hpp"
+#include "emoface/motiongraph/preprocess.hpp"
+#include "emoface/motiongraph/synthesis.hpp"
+#include "emoface/motiongraph/synthetic.hpp"
+
+namespace mg = emoface::motiongraph;
+
+namespace {
+const mg::Database& database() {
+  static const mg::Database db = mg::generate_synthetic_database(mg::ParametricLandmarkModel());
+  return db;
+}
+const mg::PreparedDatabase& prepared() {
+  static const mg::PreparedDatabase p = mg::preprocess(database(), mg::default_layout());
+  return p;
+}
+const mg::MotionGraph& graph() {
+  static const mg::MotionGraph g = mg::build_graph(prepared());
+  return g;
+}
+}  // namespace
+
+static void BM_GenerateSyntheticDatabase(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(mg::generate_synthetic_database(mg::ParametricLandmarkModel()));
+}
+BENCHMARK(BM_GenerateSyntheticDatabase)->Unit(benchmark::kMillisecond);
+
+static void BM_Preprocess(benchmark::State& state) {
+  mg::PreprocessOptions o;
+  o.clean = state.range(0) != 0;
+  for (auto _ : state) benchmark::DoNotOptimize(mg::preprocess(database(), mg::default_layout(), o));
+}
+BENCHMARK(BM_Preprocess)->Arg(0)->Arg(1)->ArgName("clean")->Unit(benchmark::kMillisecond);
+
+// Graph creation (§4.1) from the prepared database; argument = threshold in 1/100 px per landmark.
+static void BM_BuildGraph(benchmark::State& state) {
+  mg::GraphOptions o;
+  o.sample_threshold = o.merge_threshold = static_cast<double>(state.range(0)) / 100.0;
+  const mg::PreparedDatabase& data = prepared();  // prepared once, outside the timing
+  double compression = 0.0;
+  for (auto _ : state) compression = mg::build_graph(data, o).compression_ratio();
+  state.counters["compression_%"] = 100.0 * compression;
+  state.counters["samples"] = static_cast<double>(prepared().samples.size());
+}
+BENCHMARK(BM_BuildGraph)->Arg(16)->Arg(40)->Arg(63)->Unit(benchmark::kMillisecond);
+
+// One synthesized transition for all regions (Dijkstra + §5 steps 1–4); argument 1 = with the
+// sigmoid smoothing of step 4, 0 = Savitzky–Golay only.
+static void BM_SynthesizeTransition(benchmark::State& state) {
+  mg::SynthesisOptions o;
+  o.smoothing.sigmoid = state.range(0) != 0;
+  const mg::Label labels[] = {mg::Label::Happiness, mg::Label::Fear, mg::Label::Surprise, mg::Label::Anger};
+  mg::SynthesisState s = mg::initial_state(graph());
+  std::size_t i = 0, frames = 0;
+  for (auto _ : state) {
+    frames += mg::synthesize(graph(), s, labels[i++ % 4], o).size();
+  }
+  state.counters["frames/transition"] = static_cast<double>(frames) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_SynthesizeTransition)->Arg(0)->Arg(1)->ArgName("sigmoid")->Unit(benchmark::kMicrosecond);
+
+static void BM_Idle4s(benchmark::State& state) {
+  mg::SynthesisState s = mg::initial_state(graph());
+  mg::synthesize(graph(), s, mg::Label::Happiness);
+  for (auto _ : state) {
+    mg::SynthesisState t = s;
+    benchmark::DoNotOptimize(mg::idle(graph(), t, mg::Label::Happiness));
+  }
+}
+BENCHMARK(BM_Idle4s)->Unit(benchmark::kMicrosecond);
+
+static void BM_SimilarityEq1(benchmark::State& state) {
+  const Eigen::RowVectorXd a = Eigen::RowVectorXd::Random(20), b = Eigen::RowVectorXd::Random(20);
+  const Eigen::RowVectorXd va = Eigen::RowVectorXd::Random(20), vb = Eigen::RowVectorXd::Random(20);
+  mg::SimilarityOptions o;
+  for (auto _ : state) benchmark::DoNotOptimize(mg::similarity(a.data(), va.data(), b.data(), vb.data(), 10, 2, o));
+}
+BENCHMARK(BM_SimilarityEq1);
+
+BENCHMARK_MAIN();
