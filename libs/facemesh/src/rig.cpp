@@ -85,8 +85,9 @@ void validate_rig(const Rig& rig, const std::string& source) {
   if (rig.materials.size() != n) c.fail("/materials", "needs one material per vertex");
   // Lips.
   const auto& lips = rig.lips;
-  if (lips.control_points.size() != static_cast<std::size_t>(LipGrid::kAround * LipGrid::kAcross)) {
-    c.fail("/lips/control_points", "needs 24x6 = 144 control points");
+  if (!lips.control_points.empty() &&
+      lips.control_points.size() != static_cast<std::size_t>(LipGrid::kAround * LipGrid::kAcross)) {
+    c.fail("/lips/control_points", "needs 24x6 = 144 control points (or none: a face without the lip model)");
   }
   for (std::size_t i = 0; i < lips.control_points.size(); ++i) {
     c.finite(lips.control_points[i], "/lips/control_points/" + std::to_string(i));
@@ -95,7 +96,9 @@ void validate_rig(const Rig& rig, const std::string& source) {
   if (lips.samples_across < LipGrid::kAcross || lips.samples_across > 4096) c.fail("/lips/samples_across", "must be in [6, 4096]");
   const long long lip_end = static_cast<long long>(lips.first_vertex) +
                             static_cast<long long>(lips.samples_around) * lips.samples_across;
-  if (lips.first_vertex < 0 || lip_end > static_cast<long long>(n)) c.fail("/lips/first_vertex", "lip samples exceed the mesh");
+  if (!lips.control_points.empty() && (lips.first_vertex < 0 || lip_end > static_cast<long long>(n))) {
+    c.fail("/lips/first_vertex", "lip samples exceed the mesh");
+  }
   c.finite(lips.centre, "/lips/centre");
   // Jaw.
   c.finite(rig.jaw.pivot, "/jaw/pivot");
@@ -118,13 +121,13 @@ void validate_rig(const Rig& rig, const std::string& source) {
     c.number(eye.yaw_limit, 1e-6, 1.5707963267948966, p + "/yaw_limit");
     c.number(eye.pitch_limit, 1e-6, 1.5707963267948966, p + "/pitch_limit");
   }
-  if (!rig.ibug68.empty() && rig.ibug68.size() != 68) c.fail("/ibug68", "needs exactly 68 landmarks");
-  c.ids(rig.ibug68, n, "/ibug68");
+  if (!rig.ibug68.empty() && rig.ibug68.size() != 68) c.fail("/landmarks/ibug68", "needs exactly 68 landmarks");
+  c.ids(rig.ibug68, n, "/landmarks/ibug68");
   for (std::size_t i = 0; i < rig.retarget_landmarks.size(); ++i) {
     const auto& l = rig.retarget_landmarks[i];
-    const std::string p = "/retarget_landmarks/" + std::to_string(i);
-    if (l.name.empty()) c.fail(p + "/name", "empty landmark name");
-    c.ids({l.vertex}, n, p + "/vertex");
+    const std::string p = "/landmarks/retarget/" + l.name;
+    if (l.name.empty()) c.fail(p, "empty landmark name");
+    if (l.vertex < 0 || static_cast<std::size_t>(l.vertex) >= n) c.fail(p, "vertex id " + std::to_string(l.vertex) + " out of range");
   }
   std::set<std::string> names;
   for (std::size_t i = 0; i < rig.muscles.size(); ++i) {

@@ -104,6 +104,7 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
   lip_jaw_weight_.assign(cps.size(), 0.0);
   const Eigen::Vector3d& centre = rig_.lips.centre;
   // contact line height: mean y of the middle row's corners
+  if (cps.empty()) return;  // a face without the lip model
   const double contact_y = 0.5 * (cps[static_cast<std::size_t>((nr - 2) * na)].y() + cps[static_cast<std::size_t>((nr - 2) * na + na / 2)].y());
   // jaw weight of the skin next to each border control point (nearest jaw vertex, else 0)
   std::vector<double> border_jaw(na, 0.0);
@@ -263,7 +264,7 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
   }
 
   // Lips: re-polygonise the B-spline on its fixed sampling grid (thesis §2.3.2).
-  lip_sampler_.evaluate(C, X, rig_.lips.first_vertex);
+  if (!C.empty()) lip_sampler_.evaluate(C, X, rig_.lips.first_vertex);
 
   // Bulges and wrinkles (thesis §2.4.1): amplitude from the vertex's original position in the band,
   // largest amplitude where muscles overlap, applied along the normal after displacement; wrinkle feet

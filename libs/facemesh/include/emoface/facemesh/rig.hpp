@@ -65,7 +65,7 @@ struct MuscleSpec {
 struct LipGrid {
   static constexpr int kAround = 24;
   static constexpr int kAcross = 6;
-  std::vector<Eigen::Vector3d> control_points;  ///< kAcross*kAround, index row*kAround + column, m
+  std::vector<Eigen::Vector3d> control_points;  ///< kAcross*kAround, index row*kAround + column, m; empty = no lips
   int samples_around = 48;                      ///< >= kAround
   int samples_across = 8;                       ///< >= kAcross
   int first_vertex = 0;
