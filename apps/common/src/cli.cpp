@@ -31,6 +31,9 @@ int run(std::string_view tool, const std::function<int()>& body) {
   };
   try {
     return body();
+  } catch (const UsageError& e) {
+    std::cerr << tool << ": usage error: " << e.what() << " (see --help)\n";
+    return kExitUsage;
   } catch (const FormatError& e) {
     report("error", e.what());
     return kExitInput;
@@ -54,7 +57,7 @@ int run(std::string_view tool, const std::function<int()>& body) {
 
 Shard parse_shard(std::string_view text) {
   auto bad = [&]() {
-    return InvalidInput("--shard: expected i/N with 0 <= i < N, got \"" + std::string(text) + "\"");
+    return UsageError("--shard: expected i/N with 0 <= i < N, got \"" + std::string(text) + "\"");
   };
   auto slash = text.find('/');
   if (slash == std::string_view::npos) throw bad();

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 
 namespace emoface::cli {
@@ -23,6 +24,12 @@ enum ExitCode : int {
   kExitInternal = 4,   ///< anything else
 };
 
+/// A bad option value found after parsing (unknown enum name, malformed --shard): exit code 1.
+class UsageError : public InvalidInput {
+ public:
+  using InvalidInput::InvalidInput;
+};
+
 /// Parses the command line; on --help/--version prints and returns kExitOk, on a usage error prints
 /// one line and returns kExitUsage; returns std::nullopt when the app should go on.
 std::optional<int> parse(CLI::App& app, int argc, char** argv);
@@ -31,6 +38,14 @@ std::optional<int> parse(CLI::App& app, int argc, char** argv);
 /// codes above. Returns body's result when it does not throw.
 int run(std::string_view tool, const std::function<int()>& body);
 
+/// Looks up an enum value by name with `parse` (returning std::optional); UsageError naming `flag`
+/// and the accepted values otherwise.
+template <class Enum, class Parse>
+Enum parse_enum(const std::string& text, Parse parse, const char* flag, const char* accepted) {
+  if (auto v = parse(text)) return *v;
+  throw UsageError(std::string(flag) + ": unknown value \"" + text + "\" (expected " + accepted + ")");
+}
+
 /// --shard i/N: this process handles the items whose index % N == i (0 <= i < N).
 struct Shard {
   std::size_t index = 0;
@@ -38,7 +53,7 @@ struct Shard {
   bool owns(std::size_t item) const noexcept { return item % count == index; }
 };
 
-/// Parses "i/N". Throws InvalidInput with a clear message otherwise.
+/// Parses "i/N". Throws UsageError with a clear message otherwise.
 Shard parse_shard(std::string_view text);
 
 /// An output stream that is either stdout ("-") or a file written atomically: nothing appears at

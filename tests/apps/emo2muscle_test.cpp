@@ -1,0 +1,179 @@
+// emo2muscle end to end: every documented flag and every bad-input case of issue 2 §3.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "emoface/core/io.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+class Emo2Muscle : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("emo2muscle_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& content) const {
+    std::ofstream(path(name), std::ios::binary) << content;
+    return path(name);
+  }
+  static std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  // Runs emo2muscle with `args` (a shell fragment), optional stdin file.
+  Result run(const std::string& args, const std::string& stdin_file = "") const {
+    const std::string out = path("stdout.txt"), err = path("stderr.txt");
+    std::string cmd = std::string(EMO2MUSCLE_EXE) + " " + args + " >" + out + " 2>" + err;
+    if (!stdin_file.empty()) cmd += " <" + stdin_file;
+    int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+  static std::size_t lines(const std::string& s) {
+    return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+  }
+  fs::path dir_;
+};
+
+const std::string kExample = std::string(EMOFACE_SOURCE_DIR) + "/data/fuzzyexpr/example_emotions.csv";
+const std::string kHeader = "id,sadness,happiness,anger,fear,disgust,surprise\n";
+
+TEST_F(Emo2Muscle, ConvertsTheExampleFile) {
+  auto r = run(kExample + " -o " + path("m.csv") + " --summary");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string csv = slurp(path("m.csv"));
+  EXPECT_EQ(lines(csv), 14u);  // header + 13 records
+  EXPECT_EQ(csv.substr(0, csv.find('\n')).find("id,zygomatic_major,"), 0u);
+  EXPECT_NE(r.out.find("line 4: single happiness 0.90"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("13 record(s) converted"), std::string::npos);
+}
+
+TEST_F(Emo2Muscle, SidesNdjsonJsonAndStdinStdout) {
+  auto r = run("--sides --to ndjson", kExample);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(lines(r.out), 13u);
+  auto first = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
+  EXPECT_EQ(first.size(), 36u);  // id + 35 parameters
+  EXPECT_EQ(first["id"], "neutral");
+  r = run(kExample + " --to json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["format"], "emoface.fmcv");
+  EXPECT_EQ(doc["rows"].size(), 13u);
+  // NDJSON in, CSV out by extension.
+  const std::string nd = write("in.ndjson",
+      "{\"id\":1,\"sadness\":0,\"happiness\":0.9,\"anger\":0,\"fear\":0,\"disgust\":0,\"surprise\":0}\n");
+  r = run(nd + " -o " + path("o.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  // NDJSON members pass through to NDJSON/JSON only: a CSV header cannot hold per-line fields.
+  EXPECT_NE(slurp(path("o.csv")).find("\n0.895161,0.895161,"), std::string::npos);
+}
+
+TEST_F(Emo2Muscle, ModesSeedsAndShards) {
+  const std::string in = write("t.csv", kHeader + "a,0.4,0.4,0.4,0,0,0\nb,0,0.9,0,0,0,0.45\n");
+  auto single = run(in + " --mode single");
+  auto blend = run(in + " --mode blend");
+  ASSERT_EQ(single.code, 0);
+  EXPECT_NE(single.out, blend.out);
+  auto r1 = run(in + " --tie-break random --seed 5"), r2 = run(in + " --tie-break random --seed 5");
+  EXPECT_EQ(r1.out, r2.out);
+  auto s0 = run(in + " --shard 0/2"), s1 = run(in + " --shard 1/2");
+  EXPECT_EQ(lines(s0.out), 2u);
+  EXPECT_EQ(lines(s1.out), 2u);
+  EXPECT_EQ(s0.out.substr(s0.out.find('\n') + 1, 2), "a,");
+  EXPECT_EQ(s1.out.substr(s1.out.find('\n') + 1, 2), "b,");
+  EXPECT_EQ(run(in + " --transition smooth --missing-rule no_contraction").code, 0);
+}
+
+TEST_F(Emo2Muscle, BadInputNamesLineAndColumnAndWritesNothing) {
+  struct Case {
+    std::string content, fragment;
+  };
+  const std::string big(2 << 20, '1');
+  const Case cases[] = {
+      {kHeader + "a,0,zero,0,0,0,0\n", "bad.csv:2:3: happiness: not a number"},
+      {kHeader + "a,0,nan,0,0,0,0\n", "bad.csv:2:3: happiness: not a finite number"},
+      {kHeader + "a,0,0,inf,0,0,0\n", "bad.csv:2:4"},
+      {kHeader + "a,0,0,0,1.2,0,0\n", "bad.csv:2:5: fear: intensity 1.200000 is outside [0, 1]"},
+      {"id,sadness,happiness\n", "bad.csv:1: header lacks emotion column(s)"},
+      {"id,sadness,happiness,anger,fear,disgust,surprise,anger\n", "bad.csv:1:8: duplicated column"},
+      {kHeader + "a,0,0,0,0,0,0\n\n", "bad.csv:3: empty line"},
+      {kHeader + "a," + big + "\n", "bad.csv:2: line is longer than"},
+      {kHeader + "\xC3\x28,0,0,0,0,0,0\n", "bad.csv:2:1: invalid UTF-8"},
+      {kHeader + "a,0,0,0,0,0\n", "bad.csv:2:7: expected 7 fields, got 6"},
+      {"", "bad.csv:1: empty input"},
+  };
+  for (const auto& c : cases) {
+    const std::string in = write("bad.csv", c.content);
+    fs::remove(path("out.csv"));
+    auto r = run(in + " -o " + path("out.csv"));
+    EXPECT_EQ(r.code, 2) << c.fragment;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;  // one clear line
+    EXPECT_NE(r.err.find(c.fragment), std::string::npos) << "expected '" << c.fragment << "' in " << r.err;
+    EXPECT_FALSE(fs::exists(path("out.csv"))) << c.fragment;
+  }
+  // An existing output stays untouched when a run fails.
+  write("out.csv", "previous");
+  write("bad.csv", kHeader + "a,0,0,0,0,0,x\n");
+  EXPECT_EQ(run(path("bad.csv") + " -o " + path("out.csv")).code, 2);
+  EXPECT_EQ(slurp(path("out.csv")), "previous");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 4);  // no temporary left behind
+}
+
+TEST_F(Emo2Muscle, SkipWritesGoodRowsAndCountsBadOnes) {
+  const std::string in = write("t.csv", kHeader + "a,0,0,0,0,0,0\nb,0,2,0,0,0,0\nc,0,0.5,0,0,0,0\nd,x,0,0,0,0,0\n");
+  auto r = run(in + " --on-error skip -o " + path("o.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(lines(slurp(path("o.csv"))), 3u);
+  EXPECT_NE(r.err.find("skipped 2 bad record(s), wrote 2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("t.csv:3:3"), std::string::npos) << r.err;
+  r = run(in + " --clamp --on-error skip");
+  EXPECT_NE(r.err.find("skipped 1 bad record(s), wrote 3"), std::string::npos) << r.err;
+}
+
+TEST_F(Emo2Muscle, UsageErrorsHelpVersionAndFll) {
+  EXPECT_EQ(run("--mode sometimes").code, 1);
+  EXPECT_EQ(run("--shard 3/2").code, 1);
+  EXPECT_EQ(run("--shard x").code, 1);
+  EXPECT_EQ(run("--no-such-flag").code, 1);
+  auto r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("Example:"), std::string::npos);
+  r = run("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("emoface "), std::string::npos);
+  EXPECT_EQ(run(path("missing.csv")).code, 2);
+  r = run("--export-fll " + path("e.fll"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(path("e.fll")).find("RuleBlock: single_fear"), std::string::npos);
+  write("rules.json", "{\"format\":\"emoface.fuzzyrules\",\"version\":\"1.0\"}");
+  r = run("--rules " + path("rules.json"), kExample);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("rules.json: missing field \"input_sets\""), std::string::npos) << r.err;
+}
+
+}  // namespace
