@@ -328,3 +328,23 @@ TEST(FaceSolver, SyntheticPermutationWithThreeMuscles) {
 
 }  // namespace
 }  // namespace emoface::muscles
+
+namespace emoface::muscles {
+namespace {
+
+TEST(FaceSolver, EyelidCouplingModes) {
+  const auto& f = face();
+  const auto& eye = f.rig.eyes[0];
+  const int v = eye.upper_lid[static_cast<std::size_t>(std::max_element(eye.upper_lid_weights.begin(), eye.upper_lid_weights.end()) - eye.upper_lid_weights.begin())];
+  const auto p = values({{"orbicularis_oculi_orbitalis_r", 0.6}});
+  SolverOptions thesis;
+  thesis.eyelid_coupling = EyelidCoupling::Thesis;
+  const auto closed = FaceSolver(f.mesh, f.rig, thesis).deform(p);
+  const auto open = solver().deform(p);  // default OneEye: squeezing alone does not close the lid
+  EXPECT_LT(closed.vertices(v, 1), open.vertices(v, 1) - 0.003);
+  EXPECT_EQ(eyelid_coupling_from_string(to_string(EyelidCoupling::Off)), EyelidCoupling::Off);
+  EXPECT_THROW(eyelid_coupling_from_string("wink"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace emoface::muscles

@@ -42,8 +42,8 @@ constexpr double kEyeHoleB = 0.0058;
 constexpr double kEyeballR = 0.0122;
 constexpr double kLidR = 0.0140;       // radius of the lid sphere around the eyeball centre
 constexpr double kMouthY = -0.066;
-constexpr double kMouthA = 0.0245;     // mouth (lip) hole semi-axes
-constexpr double kMouthB = 0.0108;
+constexpr double kMouthA = 0.0235;     // mouth (lip) hole semi-axes
+constexpr double kMouthB = 0.0098;
 constexpr double kMouthCy = kMouthY - 0.001;
 
 // Frontal relief added along +z, as a function of frontal coordinates (x, y).
@@ -393,8 +393,8 @@ Face make_default_face() {
   {
     // Per row: x scale, upper y scale, lower y scale, z offset (m) relative to the face surface.
     struct Row { double sx, up, down, dz; };
-    const Row rows[LipGrid::kAcross] = {{1.00, 1.00, 1.00, 0.0000}, {0.97, 0.78, 0.80, 0.0022},
-                                        {0.945, 0.50, 0.52, 0.0032}, {0.925, 0.22, 0.24, 0.0024},
+    const Row rows[LipGrid::kAcross] = {{1.00, 1.00, 1.00, 0.0000}, {0.97, 0.78, 0.80, 0.0016},
+                                        {0.945, 0.50, 0.52, 0.0025}, {0.925, 0.22, 0.24, 0.0019},
                                         {0.91, 0.02, 0.02, 0.0004}, {0.86, 0.10, 0.12, -0.0060}};
     const double contact_y = kMouthCy + 0.0012;  // upper lip a little thinner than the lower
     lips.control_points.resize(LipGrid::kAround * LipGrid::kAcross);

@@ -46,7 +46,7 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
   for (std::size_t v = 0; v < out.size(); ++v) {
     switch (rig.materials[v]) {
       case Material::Skin: out[v] = {0.87f, 0.69f, 0.58f}; break;
-      case Material::Lip: out[v] = {0.74f, 0.40f, 0.38f}; break;
+      case Material::Lip: out[v] = {0.72f, 0.45f, 0.42f}; break;
       case Material::EyeWhite: out[v] = {0.94f, 0.93f, 0.90f}; break;
       case Material::Iris: out[v] = {0.30f, 0.42f, 0.55f}; break;
       case Material::Pupil: out[v] = {0.05f, 0.05f, 0.06f}; break;

@@ -24,6 +24,22 @@ inline Eigen::Vector3d rotate_x(const Eigen::Vector3d& p, const Eigen::Vector3d&
 
 }  // namespace
 
+std::string to_string(EyelidCoupling coupling) {
+  switch (coupling) {
+    case EyelidCoupling::OneEye: return "one_eye";
+    case EyelidCoupling::Thesis: return "thesis";
+    case EyelidCoupling::Off: return "off";
+  }
+  return "one_eye";
+}
+
+EyelidCoupling eyelid_coupling_from_string(std::string_view name) {
+  if (name == "one_eye") return EyelidCoupling::OneEye;
+  if (name == "thesis") return EyelidCoupling::Thesis;
+  if (name == "off") return EyelidCoupling::Off;
+  throw InvalidInput("unknown eyelid coupling '" + std::string(name) + "' (one_eye, thesis or off)");
+}
+
 void SolverOptions::validate() const {
   auto check = [](bool ok, const char* what) {
     if (!ok) throw InvalidInput(std::string("SolverOptions: ") + what);
@@ -32,6 +48,7 @@ void SolverOptions::validate() const {
   check(zone_margin >= 0.0 && zone_margin <= 4.0, "zone_margin must be in [0, 4]");
   check(funnel_rotation >= 0.0 && funnel_rotation <= kHalfPi, "funnel_rotation must be in [0, pi/2]");
   check(press_rotation >= 0.0 && press_rotation <= kHalfPi, "press_rotation must be in [0, pi/2]");
+  check(lid_closing_exponent >= 1.0 && lid_closing_exponent <= 5.0, "lid_closing_exponent must be in [1, 5]");
   check(funnel_extrusion >= 0.0 && funnel_extrusion <= 0.05, "funnel_extrusion must be in [0, 0.05]");
 }
 
@@ -157,7 +174,15 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
   // Orbicularis Oculi coupling per eye (thesis §2.4.3).
   std::array<EyelidLevels, 2> lids;
   for (std::size_t e = 0; e < 2; ++e) {
-    lids[e] = couple_eyelids(values[closing_param_[e]], values[squeezing_param_[e]], values[closing_param_[1 - e]]);
+    const double closing = values[closing_param_[e]], squeezing = values[squeezing_param_[e]];
+    const double other = values[closing_param_[1 - e]];
+    switch (options_.eyelid_coupling) {
+      case EyelidCoupling::Thesis: lids[e] = couple_eyelids(closing, squeezing, other); break;
+      case EyelidCoupling::OneEye:
+        lids[e] = {closing, closing > 0.0 && other <= 0.0 ? std::max(squeezing, 0.5 * closing) : squeezing};
+        break;
+      case EyelidCoupling::Off: lids[e] = {closing, squeezing}; break;
+    }
   }
   std::vector<double> level(muscles_.size());
   double max_level = 0.0;
@@ -237,7 +262,8 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
   // weighted from the lid margin outwards; closing lowers the upper lid, the levator raises it.
   for (std::size_t e = 0; e < 2; ++e) {
     const auto& eye = rig_.eyes[e];
-    const double upper = lids[e].closing * eye.close_angle - values[opening_param_[e]] * eye.open_angle;
+    const double upper = std::pow(lids[e].closing, options_.lid_closing_exponent) * eye.close_angle -
+                         values[opening_param_[e]] * eye.open_angle;
     const double lower = -0.2 * lids[e].closing * eye.close_angle;
     if (upper != 0.0) {
       for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {

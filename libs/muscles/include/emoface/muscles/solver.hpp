@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "emoface/facemesh/bspline.hpp"
@@ -22,6 +23,16 @@
 
 namespace emoface::muscles {
 
+/// How the Orbicularis Oculi closing (pars palpebralis) and squeezing (pars orbitalis) levels of one
+/// eye are coupled (thesis §2.4.3; see couple_eyelids()).
+enum class EyelidCoupling {
+  OneEye,  ///< only the second branch: closing one eye alone squeezes it (c_sq = ½·c_cl)
+  Thesis,  ///< the full printed rule: squeezing also closes the lid (c_cl = min(1, 2·c_sq))
+  Off      ///< levels used as given
+};
+std::string to_string(EyelidCoupling coupling);
+EyelidCoupling eyelid_coupling_from_string(std::string_view name);
+
 struct SolverOptions {
   double delta_c = 0.2;        ///< contraction step δc (thesis §2.4.1: 0.2), (0, 1]
   bool parallel = true;        ///< false: Waters' plain sum of full displacements (thesis Fig. 2.12 g–j)
@@ -30,6 +41,14 @@ struct SolverOptions {
   double funnel_rotation = 0.349065850398866;  ///< lip funneler rotation θ, radians (thesis §2.4.2: 20°), [0, π/2]
   double funnel_extrusion = 0.006;  ///< lip funneler extrusion x at the lip edge, m, [0, 0.05]
   double press_rotation = 0.349065850398866;   ///< lip pressor rotation (opposite sense), radians, [0, π/2]
+  /// Default OneEye: the first branch of the thesis rule closes the eyes of every expression whose
+  /// fuzzy rules squeeze at ≥ 0.5 (sadness, happiness, anger, ...), which contradicts the thesis'
+  /// own pictures; it stays available as Thesis (docs/muscles.md, deviations).
+  EyelidCoupling eyelid_coupling = EyelidCoupling::OneEye;
+  /// Upper-lid rotation = close_angle·c_closing^exponent, [1, 5]. 1 = linear (thesis, Parke 1974);
+  /// the default 3 keeps c = 1 fully closed (blinks) while the 0.8-ish closing levels that the fuzzy
+  /// rules give anger and fear narrow the eye instead of shutting it (docs/muscles.md, deviations).
+  double lid_closing_exponent = 3.0;
   void validate() const;
 };
 
