@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "emoface/core/errors.hpp"
+#include "fast_math.hpp"
 
 namespace emoface::muscles {
 namespace {
@@ -69,6 +70,19 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
     throw InvalidInput("FaceSolver: the rig expects " + std::to_string(rig_.vertex_count) + " vertices, the mesh has " +
                        std::to_string(mesh_.vertex_count()));
   }
+  // vertex -> incident faces (CSR), for the normals under the wrinkles
+  vertex_face_start_.assign(mesh_.vertex_count() + 1, 0);
+  for (long f = 0; f < mesh_.faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) ++vertex_face_start_[static_cast<std::size_t>(mesh_.faces(f, k)) + 1];
+  }
+  for (std::size_t v = 0; v < mesh_.vertex_count(); ++v) vertex_face_start_[v + 1] += vertex_face_start_[v];
+  vertex_faces_.resize(static_cast<std::size_t>(vertex_face_start_.back()));
+  {
+    std::vector<int> fill(vertex_face_start_.begin(), vertex_face_start_.end() - 1);
+    for (long f = 0; f < mesh_.faces.rows(); ++f) {
+      for (int k = 0; k < 3; ++k) vertex_faces_[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh_.faces(f, k))]++)] = static_cast<int>(f);
+    }
+  }
   const auto regions = facemesh::region_vertices(rig_);
   const auto& cps = rig_.lips.control_points;
   // Region cut-off (thesis §2.4.1): a muscle visits only vertices of its regions; we further keep those
@@ -83,7 +97,14 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
     m.wrinkle_count = spec.wrinkle_count;
     m.wrinkle_height = spec.wrinkle_height;
     auto near = [&](const Eigen::Vector3d& p) {
-      if (spec.kind == facemesh::MuscleKind::Vector) return (p - spec.head).norm() <= spec.rf * (1.0 + options_.zone_margin);
+      if (spec.kind == facemesh::MuscleKind::Vector) {
+        const Eigen::Vector3d b = p - spec.head;
+        const double d = b.norm();
+        if (d > spec.rf * (1.0 + options_.zone_margin)) return false;
+        if (d <= 1e-12) return true;
+        const double alpha = std::acos(std::min(1.0, std::max(-1.0, b.dot(m.axis) / d)));
+        return alpha <= std::min(kPi, spec.omega * (1.0 + options_.zone_margin));
+      }
       const double dx = (p.x() - spec.head.x()) / spec.semi_axes.x(), dy = (p.y() - spec.head.y()) / spec.semi_axes.y();
       return std::sqrt(dx * dx + dy * dy) <= 1.0 + options_.zone_margin;
     };
@@ -214,34 +235,57 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
       if (m.kind == facemesh::MuscleKind::Vector) {
         const VectorMuscle& g = m.geometry;
         const double rf2 = g.rf * g.rf, cos_omega = std::cos(g.omega);
-        auto displace = [&](const Eigen::Vector3d& p, Eigen::Vector3d& acc) {
-          const Eigen::Vector3d to_head = g.head - p;
-          const double d2 = to_head.squaredNorm();
+        const double angle_scale = kHalfPi / g.omega, inv_rs = 1.0 / g.rs, inv_span = 1.0 / (g.rf - g.rs);
+        const double hx = g.head.x(), hy = g.head.y(), hz = g.head.z();
+        const double ax = m.axis.x(), ay = m.axis.y(), az = m.axis.z();
+        const double ck = c * g.k;
+        auto displace = [&](const double* p, Eigen::Vector3d& acc) {
+          const double tx = hx - p[0], ty = hy - p[1], tz = hz - p[2];  // v1 − p
+          const double d2 = tx * tx + ty * ty + tz * tz;
           if (d2 > rf2 || d2 <= 0.0) return false;
-          const double d = std::sqrt(d2);
-          const double cos_alpha = -to_head.dot(m.axis) / d;
+          const double inv_d = 1.0 / std::sqrt(d2);
+          const double cos_alpha = -(tx * ax + ty * ay + tz * az) * inv_d;
           if (cos_alpha <= cos_omega) return false;
-          const double a = std::cos(std::acos(std::min(1.0, cos_alpha)) / g.omega * kHalfPi);
-          const double r = d <= g.rs ? std::cos((1.0 - d / g.rs) * kHalfPi) : std::cos((d - g.rs) / (g.rf - g.rs) * kHalfPi);
-          acc += (c * g.k * a * r / d) * to_head;  // c·k·A·R·(v1 − p)/|v1 − p|
+          const double d = d2 * inv_d;
+          // A = cos((α/Ω)·π/2), R = Waters radial fall-off; arguments stay in [0, π/2] so the
+          // polynomial cos/acos of fast_math.hpp apply (error < 2e-8)
+          const double a = detail::cos_quadrant(detail::acos_fast(std::min(1.0, cos_alpha)) * angle_scale);
+          const double r = d <= g.rs ? detail::cos_quadrant((1.0 - d * inv_rs) * kHalfPi)
+                                     : detail::cos_quadrant((d - g.rs) * inv_span * kHalfPi);
+          const double f = ck * a * r * inv_d;  // c·k·A·R·(v1 − p)/|v1 − p|
+          acc.x() += f * tx;
+          acc.y() += f * ty;
+          acc.z() += f * tz;
           return true;
         };
         for (int v : m.vertices) {
-          if (displace(X.row(v).transpose(), disp[static_cast<std::size_t>(v)]) && !mark[static_cast<std::size_t>(v)]) {
+          if (displace(X.data() + 3 * static_cast<long>(v), disp[static_cast<std::size_t>(v)]) && !mark[static_cast<std::size_t>(v)]) {
             mark[static_cast<std::size_t>(v)] = 1;
             touched.push_back(v);
           }
         }
-        for (int cp : m.control_points) displace(C[static_cast<std::size_t>(cp)], disp_c[static_cast<std::size_t>(cp)]);
+        for (int cp : m.control_points) displace(C[static_cast<std::size_t>(cp)].data(), disp_c[static_cast<std::size_t>(cp)]);
       } else {
+        // Waters sphincter (waters.hpp), sin(π·e) = cos(|π·e − π/2|) through the polynomial cos
+        const Eigen::Vector3d& centre = m.geometry.head;
+        const double ia = 1.0 / m.semi_axes.x(), ib = 1.0 / m.semi_axes.y(), ck = c * m.geometry.k;
+        auto squeeze = [&](const Eigen::Vector3d& p, Eigen::Vector3d& acc) {
+          const double dx = p.x() - centre.x(), dy = p.y() - centre.y();
+          const double e2 = dx * dx * ia * ia + dy * dy * ib * ib;
+          const double r2 = dx * dx + dy * dy;
+          if (e2 >= 1.0 || r2 <= 0.0) return false;
+          const double s = ck * detail::cos_quadrant(std::abs(kPi * std::sqrt(e2) - kHalfPi)) / std::sqrt(r2);
+          acc.x() -= s * dx;
+          acc.y() -= s * dy;
+          return true;
+        };
         for (int v : m.vertices) {
-          const Eigen::Vector3d d = sphincter_displacement(m.geometry.head, m.semi_axes, m.geometry.k, X.row(v).transpose(), c);
-          if (d.x() != 0.0 || d.y() != 0.0) {
-            disp[static_cast<std::size_t>(v)] += d;
-            if (!mark[static_cast<std::size_t>(v)]) mark[static_cast<std::size_t>(v)] = 1, touched.push_back(v);
+          if (squeeze(X.row(v).transpose(), disp[static_cast<std::size_t>(v)]) && !mark[static_cast<std::size_t>(v)]) {
+            mark[static_cast<std::size_t>(v)] = 1;
+            touched.push_back(v);
           }
         }
-        for (int cp : m.control_points) disp_c[static_cast<std::size_t>(cp)] += sphincter_displacement(m.geometry.head, m.semi_axes, m.geometry.k, C[static_cast<std::size_t>(cp)], c);
+        for (int cp : m.control_points) squeeze(C[static_cast<std::size_t>(cp)], disp_c[static_cast<std::size_t>(cp)]);
       }
     }
     const double f = amount(funnel), p = amount(press);
@@ -311,8 +355,9 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
         const Eigen::Vector3d to_p = p0 - m.geometry.head;
         const double d = to_p.norm();
         if (d <= 0.0 || d > m.geometry.rf) continue;
-        const double a = angular_factor(std::acos(std::min(1.0, std::max(-1.0, to_p.dot(m.axis) / d))), m.geometry.omega);
-        if (a <= 0.0) continue;
+        const double cos_alpha = std::min(1.0, std::max(-1.0, to_p.dot(m.axis) / d));
+        if (cos_alpha <= std::cos(m.geometry.omega)) continue;
+        const double a = detail::cos_quadrant(detail::acos_fast(cos_alpha) / m.geometry.omega * kHalfPi);
         const double h = level[i] * a * wrinkle_function(l, length, m.wrinkle_count, m.wrinkle_height);
         auto& slot = amp[static_cast<std::size_t>(v)];
         if (h > slot) slot = h;
@@ -321,9 +366,25 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
       }
     }
     if (!amp.empty()) {
-      const facemesh::Vertices normals = facemesh::vertex_normals(X, mesh_.faces);
+      // area-weighted vertex normals of the displaced mesh, only where there is a wrinkle
+      std::vector<Eigen::Vector3d> normal;
+      std::vector<int> lifted;
       for (long v = 0; v < nv; ++v) {
-        if (amp[static_cast<std::size_t>(v)] > 0.0) X.row(v) += amp[static_cast<std::size_t>(v)] * normals.row(v);
+        if (amp[static_cast<std::size_t>(v)] <= 0.0) continue;
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        for (int k = vertex_face_start_[static_cast<std::size_t>(v)]; k < vertex_face_start_[static_cast<std::size_t>(v) + 1]; ++k) {
+          const int f = vertex_faces_[static_cast<std::size_t>(k)];
+          const Eigen::Vector3d a = X.row(mesh_.faces(f, 0)).transpose();
+          n += (Eigen::Vector3d(X.row(mesh_.faces(f, 1)).transpose()) - a).cross(Eigen::Vector3d(X.row(mesh_.faces(f, 2)).transpose()) - a);
+        }
+        const double len = n.norm();
+        if (len > 0.0) {
+          normal.push_back(n / len);
+          lifted.push_back(static_cast<int>(v));
+        }
+      }
+      for (std::size_t i = 0; i < lifted.size(); ++i) {
+        X.row(lifted[i]) += amp[static_cast<std::size_t>(lifted[i])] * normal[i].transpose();
       }
     }
   }

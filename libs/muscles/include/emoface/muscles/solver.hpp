@@ -37,7 +37,11 @@ struct SolverOptions {
   double delta_c = 0.2;        ///< contraction step δc (thesis §2.4.1: 0.2), (0, 1]
   bool parallel = true;        ///< false: Waters' plain sum of full displacements (thesis Fig. 2.12 g–j)
   bool wrinkles = true;        ///< bulges and wrinkles along the normals (thesis §2.4.1)
-  double zone_margin = 0.3;    ///< candidate vertices: neutral distance to v1 <= Rf·(1 + margin), [0, 4]
+  /// Candidate vertices of a vector muscle: neutral distance to v1 <= Rf·(1 + margin) and neutral
+  /// angle <= Ω·(1 + margin) (sphincter: elliptic radius <= 1 + margin), [0, 4]. Zone membership is
+  /// re-evaluated at the current positions every step; the margin only bounds how far a vertex may
+  /// travel into a zone it started outside of.
+  double zone_margin = 0.3;
   double funnel_rotation = 0.349065850398866;  ///< lip funneler rotation θ, radians (thesis §2.4.2: 20°), [0, π/2]
   double funnel_extrusion = 0.006;  ///< lip funneler extrusion x at the lip edge, m, [0, 0.05]
   double press_rotation = 0.349065850398866;   ///< lip pressor rotation (opposite sense), radians, [0, π/2]
@@ -96,6 +100,7 @@ class FaceSolver {
   facemesh::LipSampler lip_sampler_;
   std::vector<Eigen::Vector3d> funnel_delta_, press_delta_;  // per control point, per unit contraction
   std::vector<double> lip_jaw_weight_;  // per control point
+  std::vector<int> vertex_face_start_, vertex_faces_;  // vertex -> incident faces (CSR)
   std::array<std::size_t, 2> closing_param_{}, squeezing_param_{}, opening_param_{};
   std::size_t funneler_param_ = 0, pressor_param_ = 0, masseter_param_ = 0;
 };
