@@ -430,7 +430,8 @@ Face make_default_face() {
     sampler.evaluate(lips.control_points, samples, 0);
     for (long s = 0; s < samples.rows(); ++s) {
       pts.push_back(samples.row(s));
-      materials.push_back(Material::Lip);
+      // the border row is skin: the zipper triangles to the rim then carry no colour edge
+      materials.push_back(s < lips.samples_around ? Material::Skin : Material::Lip);
     }
     const int na = lips.samples_around, nac = lips.samples_across;
     auto L = [&](int i, int j) { return lips.first_vertex + j * na + ((i % na) + na) % na; };
@@ -651,7 +652,7 @@ Face make_default_face() {
   const std::vector<Def> defs = {
       {"zygomatic_major", "", P(-0.060, -0.016, 0.010), P(-0.026, -0.066, 0.002), 0.42, 0.75, 1.35, 0.0125, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
       {"zygomatic_minor", "", P(-0.046, -0.016, 0.008), P(-0.017, -0.058, 0.002), 0.35, 0.75, 1.3, 0.008, {R::RightMiddleFace}, true, 0, 0.0},
-      {"triangularis", "", P(-0.044, -0.112, 0.008), P(-0.026, -0.068, 0.002), 0.40, 0.75, 1.3, 0.010, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
+      {"triangularis", "", P(-0.046, -0.116, 0.018), P(-0.026, -0.068, 0.002), 0.40, 0.75, 1.3, 0.010, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
       {"risorius", "", P(-0.070, -0.072, 0.015), P(-0.026, -0.067, 0.002), 0.30, 0.8, 1.3, 0.008, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
       {"depressor_labii", "", P(-0.016, -0.106, 0.008), P(-0.010, -0.076, 0.002), 0.45, 0.75, 1.35, 0.0065, {R::RightLowerFace}, true, 0, 0.0},
       {"mentalis", "", P(-0.006, -0.082, 0.012), P(-0.006, -0.106, 0.002), 0.55, 0.75, 1.4, 0.006, {R::RightLowerFace}, true, 2, 0.0006},
