@@ -79,6 +79,14 @@ TEST(ParseJson, ReportsLineAndColumn) {
   }
   EXPECT_THROW(parse_json("{\"a\": 1", "t.json"), FormatError);  // truncated
   EXPECT_THROW(parse_json("", "t.json"), FormatError);
+  // Found by fuzzing: a number overflow is nlohmann's out_of_range, not a parse_error.
+  try {
+    parse_json("{\"a\": 5555.5E555}", "big.json");
+    FAIL();
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("big.json: invalid JSON: number overflow"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(TempDir, AtomicWriteReplacesWholeFile) {

@@ -348,3 +348,60 @@ TEST(RowLevel, MatchesEngineSingle) {
 
 }  // namespace
 }  // namespace emoface::fuzzyexpr
+
+namespace emoface::fuzzyexpr {
+namespace {
+
+// Measurements quoted in docs/fuzzyexpr.md (reproduce: fuzzyexpr_test --gtest_filter='Measure*').
+
+// The crisp single/blend switch: largest change of any muscle when e1 − e2 crosses 0.5, over every
+// ordered pair of emotions and e1 on a fine grid.
+TEST(Measure, JumpAtTheModeSwitch) {
+  Engine engine;
+  double worst = 0.0;
+  std::string where;
+  for (std::size_t a = 0; a < kEmotionCount; ++a)
+    for (std::size_t b = 0; b < kEmotionCount; ++b) {
+      if (a == b) continue;
+      for (int i = 0; i <= 500; ++i) {
+        const double e1 = 0.5 + 0.5 * i / 500.0;
+        Esv below{}, above{};
+        below[a] = above[a] = e1;
+        below[b] = e1 - 0.5;                     // difference exactly 0.5 or just under: blend
+        above[b] = std::max(0.0, e1 - 0.5 - 1e-9);  // just over: single
+        if (engine.select(above).mode != ExpressionMode::Single) continue;
+        const Fmcv x = engine.convert(below), y = engine.convert(above);
+        for (std::size_t m = 0; m < kMuscleCount; ++m)
+          if (std::abs(x[m] - y[m]) > worst) {
+            worst = std::abs(x[m] - y[m]);
+            where = std::string(to_string(emotion_at(a))) + " " + std::to_string(e1) + " vs " +
+                    std::string(to_string(emotion_at(b))) + ", muscle " + std::string(to_string(muscle_at(m)));
+          }
+      }
+    }
+  std::printf("measured: largest jump at the crisp single/blend switch = %.4f (%s)\n", worst, where.c_str());
+  EXPECT_GT(worst, 0.0);
+  EXPECT_LE(worst, 1.0);
+}
+
+// Non-monotone steps ("bumps") and discontinuities of each single-mode row as the intensity rises.
+TEST(Measure, SingleModeRowBumpsAndJumps) {
+  Engine engine;
+  for (std::size_t e = 0; e < kEmotionCount; ++e)
+    for (const auto& row : engine.rules().single[e]) {
+      double worst_drop = 0.0, worst_jump = 0.0, prev = engine.row_level(row, 0.0);
+      for (int i = 1; i <= 100000; ++i) {
+        const double v = engine.row_level(row, i / 100000.0);
+        worst_drop = std::max(worst_drop, prev - v);
+        worst_jump = std::max(worst_jump, std::abs(v - prev));
+        prev = v;
+      }
+      std::printf("measured: %-9s %-28s largest drop %.2e, largest step (1e-5 grid) %.3f\n",
+                  std::string(to_string(emotion_at(e))).c_str(),
+                  std::string(to_string(row.muscles.front())).c_str(), worst_drop, worst_jump);
+      EXPECT_LE(worst_drop, 1e-12);  // with the default symmetric sets no row ever decreases
+    }
+}
+
+}  // namespace
+}  // namespace emoface::fuzzyexpr

@@ -120,6 +120,8 @@ TEST(EsvReader, Ndjson) {
   expect_error("{\"sadness\":2,\"happiness\":0,\"anger\":0,\"fear\":0,\"disgust\":0,\"surprise\":0}\n", 1,
                0, "outside [0, 1]", nd);
   expect_error(good + "\n" + good, 2, 0, "empty line", nd);
+  expect_error("{\"sadness\":1e999,\"happiness\":0,\"anger\":0,\"fear\":0,\"disgust\":0,\"surprise\":0}\n",
+               1, 0, "number overflow", nd);
 }
 
 TEST(FmcvWriter, CsvNdjsonJsonAndSides) {

@@ -80,6 +80,12 @@ nlohmann::ordered_json parse_json(std::string_view text, const std::string& file
     auto colon = message.find(": ");
     if (colon != std::string::npos) message = message.substr(colon + 2);
     throw FormatError(where, "invalid JSON: " + message);
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. out_of_range 406 "number overflow" for 1e999: nlohmann reports no position for these.
+    std::string message = e.what();
+    auto bracket = message.find("] ");
+    if (bracket != std::string::npos) message = message.substr(bracket + 2);
+    throw FormatError(SourceLocation{file, "", 0, 0}, "invalid JSON: " + message);
   }
 }
 

@@ -96,11 +96,23 @@ struct Engine::Impl {
   void compile();
   CompiledRow compile_row(Emotion e, const RuleRow& row, std::uint32_t mask) const;
 
-  // μ_i(x) for every input set.
-  void memberships(double x, double* mu) const noexcept {
-    for (std::size_t i = 0; i < n_in; ++i) mu[i] = rules.input_sets[i].membership(x);
+  // The input sets with positive membership at x (usually one or two) and their memberships.
+  struct Active {
+    std::size_t n = 0;
+    std::uint8_t set[kMaxSets];
+    double mu[kMaxSets];
+  };
+  void memberships(double x, Active& act) const noexcept {
+    act.n = 0;
+    for (std::size_t i = 0; i < n_in; ++i) {
+      const double m = rules.input_sets[i].membership(x);
+      if (m > 0.0) {
+        act.set[act.n] = static_cast<std::uint8_t>(i);
+        act.mu[act.n++] = m;
+      }
+    }
   }
-  double level(const std::int8_t* levels, const double* mu) const noexcept;
+  double level(const std::int8_t* levels, const Active& act) const noexcept;
   void run(const Plan& plan, const Esv& esv, Fmcv& out, double weight) const noexcept;
   Selection select(const Esv& esv, std::uint64_t row) const;
   bool ranks_before(const Esv& esv, std::size_t a, std::size_t b,
@@ -168,30 +180,56 @@ void Engine::Impl::compile() {
 // Mamdani inference for one output variable (thesis §6.4.2): the activation of output set o is the max
 // over the rules concluding o of their firing strength (single antecedent: μ_i(x)); each set is clipped
 // at its activation (min implication), the clipped sets are max-aggregated and defuzzified by COA.
-double Engine::Impl::level(const std::int8_t* levels, const double* mu) const noexcept {
-  double height[kMaxSets] = {};
-  for (std::size_t i = 0; i < n_in; ++i) {
-    const int o = levels[i];
-    if (o >= 0 && mu[i] > height[o]) height[o] = mu[i];
-  }
-  ClippedSet clips[kMaxSets];
+double Engine::Impl::level(const std::int8_t* levels, const Active& act) const noexcept {
+  ClippedSet clips[kMaxSets];  // uninitialised aggregate array: only the first n are used
   std::size_t n = 0;
-  for (std::size_t o = 0; o < n_out; ++o)
-    if (height[o] > 0.0) clips[n++] = {&rules.output_sets[o], height[o]};
+  for (std::size_t k = 0; k < act.n; ++k) {
+    const int o = levels[act.set[k]];
+    if (o < 0) continue;
+    const double h = act.mu[k];
+    std::size_t j = 0;
+    while (j < n && clips[j].set != &rules.output_sets[static_cast<std::size_t>(o)]) ++j;
+    if (j == n)
+      clips[n++] = {&rules.output_sets[static_cast<std::size_t>(o)], h};
+    else if (h > clips[j].height)
+      clips[j].height = h;  // two rules conclude the same set: max (thesis §6.4.2, ∨ = max)
+  }
   if (n == 0) return 0.0;  // no rule fires: the muscle is not contracted
   return clamp01(centre_of_area(clips, n).centroid);
 }
 
 void Engine::Impl::run(const Plan& plan, const Esv& esv, Fmcv& out, double weight) const noexcept {
-  double mu[kEmotionCount][kMaxSets];
+  Active mu[kEmotionCount];
   std::uint32_t have = 0;
+  // At a given intensity only the consequents of the active input sets matter, so rows that agree on
+  // them (common: "vs s m b vb" and "vs s s b vb" between High and VeryHigh) share one inference.
+  struct Memo {
+    std::uint32_t emotion_key;
+    double value;
+  } memo[16];
+  std::size_t n_memo = 0;
   for (const auto& row : plan.rows) {
     const std::size_t e = index(row.emotion);
     if (!(have & (1u << e))) {
       memberships(esv[e], mu[e]);
       have |= 1u << e;
     }
-    const double v = weight * level(row.levels.data(), mu[e]);
+    const Active& act = mu[e];
+    double v = -1.0;
+    std::uint32_t key = 0;
+    const bool memoisable = act.n <= 3;
+    if (memoisable) {
+      key = static_cast<std::uint32_t>(e) << 24;
+      for (std::size_t k = 0; k < act.n; ++k)
+        key |= static_cast<std::uint32_t>(static_cast<std::uint8_t>(row.levels[act.set[k]] + 1)) << (8 * k);
+      for (std::size_t j = 0; j < n_memo; ++j)
+        if (memo[j].emotion_key == key) v = memo[j].value;
+    }
+    if (v < 0.0) {
+      v = level(row.levels.data(), act);
+      if (memoisable && n_memo < 16) memo[n_memo++] = {key, v};
+    }
+    v *= weight;
     for (std::uint32_t bits = row.muscles; bits; bits &= bits - 1)
       out[static_cast<std::size_t>(__builtin_ctz(bits))] += v;
   }
@@ -344,8 +382,9 @@ Fmcv Engine::convert(const Esv& esv, std::uint64_t row) const {
     else
       m.run(m.blend_plans[static_cast<std::size_t>(m.pair_plan[index(s.first)][index(s.second)])],
             esv, out, 1.0);
+    return out;  // crisp: every level is already a clamped centre of area
   }
-  for (double& v : out) v = clamp01(v);
+  for (double& v : out) v = clamp01(v);  // smooth: guard the weighted sum against rounding
   return out;
 }
 
@@ -380,7 +419,7 @@ Fmcv Engine::blend(Emotion a, double intensity_a, Emotion b, double intensity_b)
 double Engine::row_level(const RuleRow& row, double intensity) const noexcept {
   const Impl& m = *impl_;
   if (row.levels.size() != m.n_in) return 0.0;
-  double mu[kMaxSets];
+  Impl::Active mu;
   m.memberships(intensity, mu);
   const CompiledRow c = m.compile_row(Emotion::Sadness, row, 0);
   return m.level(c.levels.data(), mu);

@@ -256,6 +256,10 @@ struct EsvReader::Impl {
       std::string msg = e.what();
       auto colon = msg.find(": ");
       fail(e.byte, "invalid JSON: " + (colon == std::string::npos ? msg : msg.substr(colon + 2)));
+    } catch (const Json::exception& e) {  // e.g. number overflow (1e999): no position reported
+      std::string msg = e.what();
+      auto bracket = msg.find("] ");
+      fail(0, "invalid JSON: " + (bracket == std::string::npos ? msg : msg.substr(bracket + 2)));
     }
     if (!doc.is_object()) fail(1, "expected a JSON object with the six emotion fields");
     if (!dup.empty()) fail(0, "duplicated field \"" + dup + "\"");
@@ -312,6 +316,7 @@ void FmcvWriterOptions::validate() const {
 FmcvWriter::FmcvWriter(FmcvWriterOptions options, std::vector<std::string> extra_columns)
     : options_(options), extra_(std::move(extra_columns)) {
   options_.validate();
+  zero_ = "0." + std::string(static_cast<std::size_t>(options_.precision), '0');
   if (options_.sides)
     for (auto n : side_parameter_names()) names_.emplace_back(n);
   else
@@ -358,7 +363,12 @@ void FmcvWriter::append(std::string& out, const EsvRecord& record, const Fmcv& f
     n = kMuscleCount;
   }
   char buf[40];
+  // Most muscles are at rest: "0.000…" is written without formatting (same bytes as to_chars).
   auto num = [&](double v) {
+    if (v == 0.0) {
+      out += zero_;
+      return;
+    }
     auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, options_.precision);
     out.append(buf, res.ptr);
   };

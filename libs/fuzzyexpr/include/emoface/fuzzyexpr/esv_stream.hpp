@@ -90,6 +90,7 @@ class FmcvWriter {
   FmcvWriterOptions options_;
   std::vector<std::string> extra_;
   std::vector<std::string> names_;
+  std::string zero_;  // 0 formatted at the chosen precision
   std::size_t rows_ = 0;
 };
 

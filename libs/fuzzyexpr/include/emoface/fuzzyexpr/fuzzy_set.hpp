@@ -26,16 +26,24 @@ struct FuzzySet {
   static FuzzySet triangle(std::string name, double a, double b, double c);
   static FuzzySet trapezoid(std::string name, double a, double b, double c, double d);
 
-  double membership(double x) const noexcept;
+  double membership(double x) const noexcept {
+    const double a = points[0], b = points[1], c = points[2], d = points[3];
+    if (x < a || x > d) return 0.0;
+    if (x < b) return (x - a) / (b - a);
+    if (x <= c) return 1.0;
+    if (x < d) return (d - x) / (d - c);
+    return c == d ? 1.0 : 0.0;  // x == d: 1 only on a vertical right edge
+  }
   /// Throws InvalidInput unless the breakpoints are finite, ordered and span a positive width, and
   /// (for a triangle) b == c.
   void validate() const;
 };
 
 /// One activated output set: μ(y) = min(height, set.membership(y)) (Mamdani min implication).
+/// A plain aggregate (no default initialisers, so arrays of it are free): write ClippedSet{&set, h}.
 struct ClippedSet {
-  const FuzzySet* set = nullptr;
-  double height = 0.0;  ///< activation in (0, 1]
+  const FuzzySet* set;
+  double height;  ///< activation in (0, 1]; ≤ 0 means not activated
 };
 
 /// True if every x in [0, 1] has positive membership in at least one of `sets` (exact: checks every
