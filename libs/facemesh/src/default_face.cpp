@@ -410,9 +410,8 @@ Face make_default_face() {
         if (r == 0) {
           y = kMouthCy + kMouthB * st;
         } else {
-          const double base = (kMouthCy + kMouthB * st) * 0 + contact_y;
           const double span = st >= 0 ? (kMouthCy + kMouthB - contact_y) : (contact_y - (kMouthCy - kMouthB));
-          y = base + span * (st >= 0 ? row.up : row.down) * sh;
+          y = contact_y + span * (st >= 0 ? row.up : row.down) * sh;
         }
         // face surface height under the lip border, then the lip's own relief (fuller in the middle)
         const double zf = front_z(x, y);
@@ -475,7 +474,7 @@ Face make_default_face() {
     materials.push_back(Material::MouthInterior);
     for (int i = 0; i < na; ++i) tris.push_back({L(i, nac - 1), L(i + 1, nac - 1), cavity});
   }
-  const int lip_begin = lips.first_vertex, lip_end = lips.first_vertex + lips.samples_around * lips.samples_across;
+  const int lip_begin = lips.first_vertex;
 
   // ---- 5. mesh ----
   face.mesh.vertices.resize(static_cast<long>(pts.size()), 3);
@@ -549,7 +548,7 @@ Face make_default_face() {
     const auto& p = pts[static_cast<std::size_t>(k)];
     if (p.y() > kMouthCy + 0.002) continue;
     double w = smoothstep(kMouthCy + 0.002, kMouthCy - 0.012, p.y());
-    w *= 1.0 - smoothstep(0.035, 0.075, std::abs(p.x()) + std::max(0.0, kMouthCy - p.y()) * 0.0);
+    w *= 1.0 - smoothstep(0.035, 0.075, std::abs(p.x()));
     w *= smoothstep(-0.02, 0.04, p.z());
     if (w > 1e-3) {
       rig.jaw.vertices.push_back(k);
@@ -568,10 +567,9 @@ Face make_default_face() {
     lip_outer.push_back(lip_begin + i);
     lip_inner.push_back(lip_begin + 5 * lips.samples_around + i);
   }
-  (void)lip_end;
   auto jawline = [&](double t) {  // t in [0,1], right ear level -> chin -> left ear level
     const double a = kPi * (1.0 - t);                           // angle from +x
-    const double x = 0.068 * std::cos(a) * (t < 0.5 ? 1 : 1);
+    const double x = 0.068 * std::cos(a);
     const double y = -0.005 - 0.112 * std::sin(a);
     return std::pair<double, double>(-x, y);
   };
@@ -587,15 +585,11 @@ Face make_default_face() {
   for (auto& n : nostril) rig.ibug68.push_back(nearest_xy(pts, front_skin, n[0], n[1]));
   for (int e = 0; e < 2; ++e) {
     // iBUG eye order: right eye 36 outer, 37-38 upper, 39 inner, 40-41 lower; left eye 42 inner, ...
+    // in image order (x increasing): outer→inner for the right eye, inner→outer for the left
     const double cx = e == 0 ? -kEyeX : kEyeX;
-    const double s = e == 0 ? -1.0 : 1.0;  // +1: towards the subject's left
     const double a = kEyeHoleA * 1.02, b = kEyeHoleB * 1.05;
     const double pts6[6][2] = {{-a, 0}, {-a * 0.4, b * 0.95}, {a * 0.4, b * 0.95}, {a, 0}, {a * 0.4, -b * 0.95}, {-a * 0.4, -b * 0.95}};
-    for (auto& q : pts6) {
-      const double qx = e == 0 ? cx + q[0] : cx + q[0];
-      (void)s;
-      rig.ibug68.push_back(nearest_xy(pts, front_skin, qx, q[1]));
-    }
+    for (auto& q : pts6) rig.ibug68.push_back(nearest_xy(pts, front_skin, cx + q[0], q[1]));
   }
   // Mouth outer 48–59 and inner 60–67 on the lip samples (counter-clockwise from the right corner in
   // image space = clockwise seen by the subject; on our grid angle π is the right corner).
@@ -630,11 +624,10 @@ Face make_default_face() {
   named("cheek_l", nearest_xy(pts, front_skin, 0.045, -0.03));
   named("jaw_r", rig.ibug68[3]);
   named("jaw_l", rig.ibug68[13]);
-  std::vector<int> all_skin;
-  for (int k = 0; k < skin_count; ++k) all_skin.push_back(k);
-  named("ear_r", nearest(std::vector<Eigen::Vector3d>(pts.begin(), pts.begin() + skin_count), {-0.09, -0.005, -0.005}));
-  named("ear_l", nearest(std::vector<Eigen::Vector3d>(pts.begin(), pts.begin() + skin_count), {0.09, -0.005, -0.005}));
-  named("back_of_head", nearest(std::vector<Eigen::Vector3d>(pts.begin(), pts.begin() + skin_count), {0.0, 0.0, -0.12}));
+  const std::vector<Eigen::Vector3d> skin(pts.begin(), pts.begin() + skin_count);
+  named("ear_r", nearest(skin, {-0.09, -0.005, -0.005}));
+  named("ear_l", nearest(skin, {0.09, -0.005, -0.005}));
+  named("back_of_head", nearest(skin, {0.0, 0.0, -0.12}));
 
   // ---- 11. muscles (Table 2.1, Appendix B), right side; mirrored for the left ----
   auto P = [&](double x, double y, double depth) { return Eigen::Vector3d(x, y, front_z(x, y) - depth); };

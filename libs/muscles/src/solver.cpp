@@ -274,9 +274,9 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
           const double e2 = dx * dx * ia * ia + dy * dy * ib * ib;
           const double r2 = dx * dx + dy * dy;
           if (e2 >= 1.0 || r2 <= 0.0) return false;
-          const double s = ck * detail::cos_quadrant(std::abs(kPi * std::sqrt(e2) - kHalfPi)) / std::sqrt(r2);
-          acc.x() -= s * dx;
-          acc.y() -= s * dy;
+          const double f = ck * detail::cos_quadrant(std::abs(kPi * std::sqrt(e2) - kHalfPi)) / std::sqrt(r2);
+          acc.x() -= f * dx;
+          acc.y() -= f * dy;
           return true;
         };
         for (int v : m.vertices) {
