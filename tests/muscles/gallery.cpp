@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
 
   // facemesh: neutral face, front and three-quarter; regions
   fm::write_png((out / "facemesh/neutral.png").string(),
-                fm::contact_sheet({shot(neutral, fm::View::Front, 400, 470, colors), shot(neutral, fm::View::ThreeQuarter, 400, 470, colors)}, 2));
+                fm::contact_sheet({shot(neutral, fm::View::Front, 320, 376, colors), shot(neutral, fm::View::ThreeQuarter, 320, 376, colors)}, 2));
   {
     const Eigen::Vector3f palette[fm::kRegionCount] = {
         {0.85f, 0.35f, 0.30f}, {0.95f, 0.65f, 0.30f}, {0.55f, 0.80f, 0.40f}, {0.35f, 0.70f, 0.75f}, {0.45f, 0.50f, 0.90f},
@@ -63,18 +63,18 @@ int main(int argc, char** argv) {
     std::vector<Eigen::Vector3f> rc(face().rig.regions.size());
     for (std::size_t v = 0; v < rc.size(); ++v) rc[v] = palette[static_cast<int>(face().rig.regions[v])];
     fm::write_png((out / "facemesh/regions.png").string(),
-                  fm::contact_sheet({shot(neutral, fm::View::Front, 400, 470, rc), shot(neutral, fm::View::ThreeQuarter, 400, 470, rc)}, 2));
+                  fm::contact_sheet({shot(neutral, fm::View::Front, 320, 376, rc), shot(neutral, fm::View::ThreeQuarter, 320, 376, rc)}, 2));
   }
 
   // each muscle type at full contraction (both sides), Table 2.1 order, neutral first
   {
-    std::vector<fm::Image> tiles{shot(neutral, fm::View::Front, 240, 280, colors)};
+    std::vector<fm::Image> tiles{shot(neutral, fm::View::Front, 190, 222, colors)};
     for (const auto& type : mu::muscle_type_names()) {
       Named n;
       for (const auto& p : mu::side_parameter_names()) {
         if (p == type || p == type + "_l" || p == type + "_r") n[p] = 1.0;
       }
-      tiles.push_back(shot(solver.deform(n), fm::View::Front, 240, 280, colors));
+      tiles.push_back(shot(solver.deform(n), fm::View::Front, 190, 222, colors));
     }
     fm::write_png((out / "muscles/muscle_types.png").string(), fm::contact_sheet(tiles, 5));
   }
@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
       {0, 0, 0, 0, 0.9, 0}, {0, 0, 0, 0, 0, 0.9}, {0, 0.7, 0, 0, 0, 0.6}, {0.7, 0, 0, 0.5, 0, 0}};
   for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
     std::vector<fm::Image> tiles;
-    for (const auto& esv : esvs) tiles.push_back(shot(solver.deform(from_esv(engine, esv)), view, 280, 330, colors));
+    for (const auto& esv : esvs) tiles.push_back(shot(solver.deform(from_esv(engine, esv)), view, 230, 270, colors));
     fm::write_png((out / ("muscles/emotions_" + fm::to_string(view) + ".png")).string(), fm::contact_sheet(tiles, 4));
   }
 
@@ -100,8 +100,8 @@ int main(int argc, char** argv) {
     for (const auto& esv : {esvs[0], esvs[5]}) {
       const Named n = from_esv(engine, esv);
       fm::RenderOptions o;
-      o.width = 360;
-      o.height = 300;
+      o.width = 300;
+      o.height = 250;
       o.target = Eigen::Vector3d(0, 0.03, 0);
       o.distance = 0.45;
       const auto a = solver.deform(n);
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
         {{"orbicularis_oris_funneler", 1.0}}, {{"orbicularis_oris_pressor", 1.0}}, {{"masseter", 0.6}, {"orbicularis_oris_funneler", 0.8}},
         {{"head_yaw", 0.4}, {"head_pitch", 0.15}, {"eye_gaze_yaw", -0.3}}};
     std::vector<fm::Image> tiles;
-    for (const auto& p : poses) tiles.push_back(shot(solver.deform(p), fm::View::Front, 240, 280, colors));
+    for (const auto& p : poses) tiles.push_back(shot(solver.deform(p), fm::View::Front, 190, 222, colors));
     fm::write_png((out / "muscles/eyes_jaw_lips.png").string(), fm::contact_sheet(tiles, 4));
   }
   return 0;
