@@ -528,8 +528,8 @@ Face make_default_face() {
       const auto& p = pts[static_cast<std::size_t>(k)];
       if (p.z() < 0.03) continue;
       const double r = eye_holes[static_cast<std::size_t>(e)].radius(p);
-      if (r > 2.2) continue;
-      const double w = 1.0 - smoothstep(1.0, 2.2, r);
+      if (r > 2.3) continue;
+      const double w = 1.0 - smoothstep(1.35, 2.3, r);
       if (w <= 0.0) continue;
       if (p.y() >= 0.0) {
         eye.upper_lid.push_back(k);
