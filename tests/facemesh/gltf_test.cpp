@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tiny_gltf.h>
+
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 #include "test_util.hpp"
@@ -24,6 +26,14 @@ TEST_F(Gltf, WritesMorphTargetAnimation) {
   // target 1 moves vertex 3 by +1 in z: max of its POSITION accessor is (0, 0, 1)
   const int acc = doc["meshes"][0]["primitives"][0]["targets"][1]["POSITION"];
   EXPECT_DOUBLE_EQ(doc["accessors"][acc]["max"][2].get<double>(), 1.0);
+  // tinygltf reads it back as a valid glTF 2.0 model
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadASCIIFromFile(&model, &err, &warn, path("a.gltf"))) << err;
+  EXPECT_EQ(model.meshes[0].primitives[0].targets.size(), 3u);
+  EXPECT_EQ(model.accessors[static_cast<std::size_t>(model.meshes[0].primitives[0].attributes["POSITION"])].count, 4u);
+  EXPECT_EQ(model.animations[0].samplers[0].interpolation, "LINEAR");
   write_animated_gltf(path("a.glb"), m, {m.vertices}, {0.0});
   EXPECT_EQ(core::read_file(path("a.glb")).substr(0, 4), "glTF");
 }

@@ -65,6 +65,10 @@ TEST(RigIo, RejectsBadContent) {
   expect_bad([](Json& d) { d["lips"]["control_points"].erase(0); }, "/lips/control_points");
   expect_bad([](Json& d) { d["lips"]["control_points"][3] = Json::array({1, 2}); }, "/lips/control_points/3");
   expect_bad([](Json& d) { d["eyes"].erase(1); }, "/eyes");
+  expect_bad([](Json& d) { d["lips"]["samples_around"] = 5000; }, "/lips/samples_around");
+  expect_bad([](Json& d) { d["lips"]["first_vertex"] = 5000; }, "/lips/first_vertex");
+  expect_bad([](Json& d) { d["vertex_count"] = 20000000; }, "/vertex_count");
+  expect_bad([](Json& d) { d["muscles"][0]["k"] = 1e308 * 10; }, "/muscles/0/k");
   expect_bad([](Json& d) { d["landmarks"]["ibug68"].erase(0); }, "/landmarks/ibug68");
   expect_bad([](Json& d) { d["regions"]["rest"].erase(0); }, "/regions");
   expect_bad([](Json& d) { d["regions"]["left_lower_face"].push_back(d["regions"]["rest"][0]); }, "/regions/");

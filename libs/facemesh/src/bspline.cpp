@@ -48,9 +48,9 @@ std::vector<double> clamped_cubic_basis(int n, double v) {
 
 LipSampler::LipSampler(int samples_around, int samples_across)
     : samples_around_(samples_around), samples_across_(samples_across) {
-  if (samples_around < LipGrid::kAround || samples_across < LipGrid::kAcross || samples_around > 4096 ||
-      samples_across > 4096) {
-    throw InvalidInput("LipSampler: sample grid must be at least 24 x 6 and at most 4096 x 4096");
+  if (samples_around < LipGrid::kAround || samples_across < LipGrid::kAcross || samples_around > 1024 ||
+      samples_across > 256) {
+    throw InvalidInput("LipSampler: sample grid must be at least 24 x 6 and at most 1024 x 256");
   }
   constexpr int na = LipGrid::kAround;
   terms_.resize(static_cast<std::size_t>(samples_around * samples_across));

@@ -126,7 +126,7 @@ Json label_sets(const std::vector<Enum>& labels, int count) {
   return out;
 }
 
-constexpr std::size_t kMaxVertices = 50'000'000;
+constexpr std::size_t kMaxVertices = 10'000'000;  // bounds the memory a hostile file can make us allocate
 
 }  // namespace
 
@@ -137,7 +137,7 @@ Rig parse_rig(std::string_view text, const std::string& source) {
   Rig rig;
   rig.mesh_file = r.string(r.field(doc, "mesh", ""), "/mesh");
   const int nv = r.integer(r.field(doc, "vertex_count", ""), "/vertex_count");
-  if (nv <= 0 || static_cast<std::size_t>(nv) > kMaxVertices) r.fail("/vertex_count", "must be in [1, 50000000]");
+  if (nv <= 0 || static_cast<std::size_t>(nv) > kMaxVertices) r.fail("/vertex_count", "must be in [1, 10000000]");
   rig.vertex_count = static_cast<std::size_t>(nv);
   rig.regions = r.labels<Region>(r.field(doc, "regions", ""), "/regions", rig.vertex_count, region_from_string);
   rig.materials = r.labels<Material>(r.field(doc, "materials", ""), "/materials", rig.vertex_count, material_from_string);

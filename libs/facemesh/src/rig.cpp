@@ -92,8 +92,8 @@ void validate_rig(const Rig& rig, const std::string& source) {
   for (std::size_t i = 0; i < lips.control_points.size(); ++i) {
     c.finite(lips.control_points[i], "/lips/control_points/" + std::to_string(i));
   }
-  if (lips.samples_around < LipGrid::kAround || lips.samples_around > 4096) c.fail("/lips/samples_around", "must be in [24, 4096]");
-  if (lips.samples_across < LipGrid::kAcross || lips.samples_across > 4096) c.fail("/lips/samples_across", "must be in [6, 4096]");
+  if (lips.samples_around < LipGrid::kAround || lips.samples_around > 1024) c.fail("/lips/samples_around", "must be in [24, 1024]");
+  if (lips.samples_across < LipGrid::kAcross || lips.samples_across > 256) c.fail("/lips/samples_across", "must be in [6, 256]");
   const long long lip_end = static_cast<long long>(lips.first_vertex) +
                             static_cast<long long>(lips.samples_around) * lips.samples_across;
   if (!lips.control_points.empty() && (lips.first_vertex < 0 || lip_end > static_cast<long long>(n))) {

@@ -66,8 +66,8 @@ struct LipGrid {
   static constexpr int kAround = 24;
   static constexpr int kAcross = 6;
   std::vector<Eigen::Vector3d> control_points;  ///< kAcross*kAround, index row*kAround + column, m; empty = no lips
-  int samples_around = 48;                      ///< >= kAround
-  int samples_across = 8;                       ///< >= kAcross
+  int samples_around = 48;                      ///< [kAround, 1024]
+  int samples_across = 8;                       ///< [kAcross, 256]
   int first_vertex = 0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< mouth centre, m
   /// Column c sits at angle 2πc/kAround around the mouth, counter-clockwise seen from the front,
