@@ -36,17 +36,8 @@ int main(int argc, char** argv) {
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("facerender", [&]() {
     if (out.empty() && video.empty()) throw emoface::InvalidInput("give --out FILE.png and/or --video FILE.mp4");
-    std::vector<Eigen::Vector3f> colors;
-    std::size_t color_vertices = 0;
-    if (!rig_path.empty()) {
-      const auto rig = fm::read_rig(rig_path);
-      colors = fm::material_colors(rig);
-      color_vertices = rig.vertex_count;
-    } else {
-      const auto face = fm::make_default_face();
-      colors = fm::material_colors(face.rig);
-      color_vertices = face.rig.vertex_count;
-    }
+    const fm::Rig rig = rig_path.empty() ? fm::make_default_face().rig : fm::read_rig(rig_path);
+    std::vector<Eigen::Vector3f> colors;  // from the first mesh that fits the rig (same topology)
     fm::RenderOptions options;
     options.view = fm::view_from_string(view);
     options.width = width;
@@ -55,8 +46,9 @@ int main(int argc, char** argv) {
     std::vector<fm::Image> images;
     for (const auto& path : meshes) {
       const auto mesh = fm::read_mesh(path);
-      const bool fits = mesh.vertex_count() == color_vertices;
+      const bool fits = mesh.vertex_count() == rig.vertex_count;
       if (!rig_path.empty() && !fits) throw emoface::InvalidInput(path + ": mesh does not fit the rig's vertex count");
+      if (fits && colors.empty()) colors = fm::material_colors(rig, mesh);
       images.push_back(fm::render(mesh, fits ? colors : std::vector<Eigen::Vector3f>{}, {}, options));
     }
     auto numbered = [](const std::string& base, std::size_t i) {

@@ -94,3 +94,30 @@ TEST_F(Png, SheetAndPngBytes) {
 
 }  // namespace
 }  // namespace emoface::facemesh
+
+namespace emoface::facemesh {
+namespace {
+
+TEST(Render, SoftenedMaterialColours) {
+  const Face f = make_default_face();
+  const auto crisp = material_colors(f.rig);
+  const auto soft = material_colors(f.rig, f.mesh, 2);
+  ASSERT_EQ(soft.size(), crisp.size());
+  std::size_t changed = 0;
+  for (std::size_t v = 0; v < soft.size(); ++v) {
+    const Material m = f.rig.materials[v];
+    if (m == Material::Lip || m == Material::Iris || m == Material::EyeWhite || m == Material::Pupil) {
+      ASSERT_EQ(soft[v], crisp[v]) << v;  // lips and eyes keep crisp edges
+    }
+    changed += (soft[v] - crisp[v]).norm() > 1e-4f ? 1 : 0;
+    for (int k = 0; k < 3; ++k) ASSERT_TRUE(soft[v][k] >= 0.0f && soft[v][k] <= 1.0f);
+  }
+  EXPECT_GT(changed, 100u);                    // the brow and hair boundaries are softened
+  EXPECT_LT(changed, soft.size() / 2);         // ... and only they
+  EXPECT_EQ(material_colors(f.rig, f.mesh, 0), crisp);
+  EXPECT_THROW(material_colors(f.rig, f.mesh, 21), InvalidInput);
+  EXPECT_THROW(material_colors(f.rig, testing::tetrahedron(), 1), InvalidInput);
+}
+
+}  // namespace
+}  // namespace emoface::facemesh

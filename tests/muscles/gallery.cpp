@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   const std::filesystem::path out(argv[1]);
   std::filesystem::create_directories(out / "facemesh");
   std::filesystem::create_directories(out / "muscles");
-  const auto colors = fm::material_colors(face().rig);
+  const auto colors = fm::material_colors(face().rig, face().mesh);
   const mu::FaceSolver solver(face().mesh, face().rig);
   const auto neutral = solver.deform(Named{});
 

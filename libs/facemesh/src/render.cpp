@@ -58,6 +58,37 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
   return out;
 }
 
+std::vector<Eigen::Vector3f> material_colors(const Rig& rig, const Mesh& mesh, int iterations) {
+  if (iterations < 0 || iterations > 20) throw InvalidInput("material_colors: iterations must be in [0, 20]");
+  if (mesh.vertex_count() != rig.materials.size()) throw InvalidInput("material_colors: mesh and rig differ in vertex count");
+  std::vector<Eigen::Vector3f> colors = material_colors(rig);
+  auto soft = [&](int v) {
+    const Material m = rig.materials[static_cast<std::size_t>(v)];
+    return m == Material::Skin || m == Material::Brow || m == Material::Hair;
+  };
+  for (int it = 0; it < iterations; ++it) {
+    std::vector<Eigen::Vector3f> sum(colors.size(), Eigen::Vector3f::Zero());
+    std::vector<float> count(colors.size(), 0.0f);
+    for (long f = 0; f < mesh.faces.rows(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
+        if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= colors.size() || static_cast<std::size_t>(b) >= colors.size()) {
+          throw InvalidInput("material_colors: face id out of range");
+        }
+        if (!soft(a) || !soft(b)) continue;
+        sum[static_cast<std::size_t>(a)] += colors[static_cast<std::size_t>(b)];
+        count[static_cast<std::size_t>(a)] += 1.0f;
+        sum[static_cast<std::size_t>(b)] += colors[static_cast<std::size_t>(a)];
+        count[static_cast<std::size_t>(b)] += 1.0f;
+      }
+    }
+    for (std::size_t v = 0; v < colors.size(); ++v) {
+      if (count[v] > 0.0f) colors[v] = 0.5f * colors[v] + 0.5f * sum[v] / count[v];
+    }
+  }
+  return colors;
+}
+
 Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const std::vector<std::uint8_t>& crease,
              const RenderOptions& options) {
   options.validate();

@@ -39,6 +39,10 @@ struct RenderOptions {
 
 /// Per-vertex linear RGB colours in [0,1] for a rig's materials (skin, lips, eyes, brows, hair).
 std::vector<Eigen::Vector3f> material_colors(const Rig& rig);
+/// The same, with the skin/brow/hair boundaries softened over the mesh (`iterations` rounds of averaging
+/// with edge neighbours of those materials; lips and eyes keep crisp edges), so that colour edges on a
+/// coarse grid read as gradients instead of staircases. `iterations` in [0, 20].
+std::vector<Eigen::Vector3f> material_colors(const Rig& rig, const Mesh& mesh, int iterations = 2);
 
 /// Renders `mesh`. `colors` (per vertex) may be empty (uniform skin). `crease` (per vertex, optional)
 /// marks vertices shaded with their face normal instead of the averaged normal — the thesis' fix for the
