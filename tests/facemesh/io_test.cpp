@@ -103,3 +103,23 @@ TEST_F(FaceIo, RejectsMissingOrMismatchedMesh) {
 
 }  // namespace
 }  // namespace emoface::facemesh
+
+namespace emoface::facemesh {
+namespace {
+
+TEST(Enums, StringRoundTrips) {
+  for (int i = 0; i < kRegionCount; ++i) {
+    const auto r = static_cast<Region>(i);
+    EXPECT_EQ(region_from_string(to_string(r)), r);
+  }
+  EXPECT_EQ(to_string(Region::RightLowerFace), "right_lower_face");
+  EXPECT_EQ(thesis_number(Region::Rest), 11);
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(material_from_string(to_string(static_cast<Material>(i))), static_cast<Material>(i));
+  for (auto k : {MuscleKind::Vector, MuscleKind::Sphincter}) EXPECT_EQ(muscle_kind_from_string(to_string(k)), k);
+  EXPECT_THROW(region_from_string("forehead"), InvalidInput);
+  EXPECT_THROW(material_from_string(""), InvalidInput);
+  EXPECT_THROW(muscle_kind_from_string("sheet"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace emoface::facemesh
