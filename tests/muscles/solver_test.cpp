@@ -312,6 +312,9 @@ TEST(FaceSolver, RejectsBadInput) {
   f.rig.muscles[0].parameter = "nose_twitch";
   EXPECT_THROW(FaceSolver(f.mesh, f.rig), InvalidInput);
   f = synthetic();
+  f.rig.muscles[0].parameter = "head_yaw";
+  EXPECT_THROW(FaceSolver(f.mesh, f.rig), InvalidInput);
+  f = synthetic();
   f.rig.muscles[0].rs = f.rig.muscles[0].rf;
   EXPECT_THROW(FaceSolver(f.mesh, f.rig), InvalidInput);
   f = synthetic();

@@ -86,7 +86,8 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
   const auto regions = facemesh::region_vertices(rig_);
   const auto& cps = rig_.lips.control_points;
   // Region cut-off (thesis §2.4.1): a muscle visits only vertices of its regions; we further keep those
-  // whose neutral position is near the zone (Rf·(1 + margin)), so vertices can still move in and out.
+  // whose neutral position is near the zone (distance Rf·(1 + margin), angle Ω·(1 + margin)), so
+  // vertices can still move in and out of it.
   for (const auto& spec : rig_.muscles) {
     Muscle m;
     m.kind = spec.kind;
@@ -94,6 +95,10 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
     m.axis = spec.kind == facemesh::MuscleKind::Vector ? Eigen::Vector3d((spec.tail - spec.head).normalized()) : Eigen::Vector3d::Zero();
     m.semi_axes = spec.semi_axes;
     m.parameter = parameter_index(spec.parameter);
+    if (m.parameter >= kSideParameterCount) {
+      throw InvalidInput("FaceSolver: muscle '" + spec.name + "' is driven by '" + spec.parameter +
+                         "', which is not a contraction parameter");
+    }
     m.wrinkle_count = spec.wrinkle_count;
     m.wrinkle_height = spec.wrinkle_height;
     auto near = [&](const Eigen::Vector3d& p) {
