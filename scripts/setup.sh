@@ -11,8 +11,10 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
-  libpng-dev libtinygltf-dev        # facemesh: PNG output of the rasteriser, animated glTF export
+  libpng-dev                        # parlee charts (apps/parlee); facemesh PNG output
+  libtinygltf-dev                   # facemesh: animated glTF export
 )
+PACKAGES+=(libespeak-ng-dev espeak-ng-data libpugixml-dev libpng-dev)  # channels / talkinghead
 
 missing=()
 for p in "${PACKAGES[@]}"; do

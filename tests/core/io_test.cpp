@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <sys/stat.h>
+
 #include "emoface/core/version.hpp"
 
 namespace emoface::core {
@@ -120,6 +122,24 @@ TEST_F(TempDir, ReadFileErrors) {
   EXPECT_THROW(read_file(path, 999), IoError);
   EXPECT_EQ(read_file(path, 1000).size(), 1000u);
   EXPECT_THROW(AtomicFile((dir_ / "no" / "such" / "dir.txt").string()), IoError);
+}
+
+TEST_F(TempDir, DevicesAreWrittenNotReplaced) {
+  // Renaming over /dev/null as root would replace the device node with a regular file.
+  write_file_atomic("/dev/null", "discarded");
+  struct stat st {};
+  ASSERT_EQ(::stat("/dev/null", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode));
+  EXPECT_THROW(write_file_atomic(dir_.string(), "x"), IoError);  // a directory
+}
+
+TEST_F(TempDir, SymlinkTargetIsReplacedLinkKept) {
+  auto real = (dir_ / "real.txt").string(), link = (dir_ / "link.txt").string();
+  write_file_atomic(real, "old");
+  fs::create_symlink(real, link);
+  write_file_atomic(link, "new");
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read_file(real), "new");
 }
 
 TEST(JsonPointer, EscapesTokens) { EXPECT_EQ(json_pointer_token("a/b~c"), "a~1b~0c"); }

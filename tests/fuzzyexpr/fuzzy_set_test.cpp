@@ -106,7 +106,7 @@ TEST(CentreOfArea, EmptyIsNaN) {
 TEST(CentreOfArea, MatchesFineNumericalIntegration) {
   std::mt19937_64 gen(12345);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int trial = 0; trial < 300; ++trial) {
+  for (int trial = 0; trial < 120; ++trial) {
     const int n = 1 + static_cast<int>(gen() % 5);
     std::vector<FuzzySet> sets;
     std::vector<ClippedSet> clips;
@@ -121,7 +121,7 @@ TEST(CentreOfArea, MatchesFineNumericalIntegration) {
     for (int k = 0; k < n; ++k) clips.push_back({&sets[k], 0.05 + 0.95 * u(gen)});
     const auto exact = centre_of_area(clips.data(), clips.size());
     const double lo = -0.5, hi = 1.6;
-    const int steps = 400000;
+    const int steps = 200000;
     const double h = (hi - lo) / steps;
     double area = 0.0, moment = 0.0;
     for (int i = 0; i < steps; ++i) {
@@ -131,8 +131,8 @@ TEST(CentreOfArea, MatchesFineNumericalIntegration) {
       area += mu * h;
       moment += mu * y * h;
     }
-    ASSERT_NEAR(exact.area, area, 2e-5) << "trial " << trial;
-    ASSERT_NEAR(exact.centroid, moment / area, 2e-5) << "trial " << trial;
+    ASSERT_NEAR(exact.area, area, 4e-5) << "trial " << trial;
+    ASSERT_NEAR(exact.centroid, moment / area, 4e-5) << "trial " << trial;
   }
 }
 

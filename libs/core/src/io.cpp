@@ -1,6 +1,8 @@
 #include "emoface/core/io.hpp"
 
 #include <fcntl.h>
+#include <limits.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -117,14 +119,31 @@ void write_all(int fd, std::string_view data, const std::string& path) {
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   if (path_.empty()) throw InvalidInput("AtomicFile: empty output path");
-  temp_path_ = temp_name_for(path_);
+  std::string target = path_;
+  struct stat st {};
+  if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    if (S_ISDIR(st.st_mode)) throw IoError(path_ + ": is a directory");
+    // A device or FIFO (/dev/null, /dev/stdout, a pipe): renaming over it would replace the device
+    // node, so write to it directly. Atomicity does not apply to such targets.
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd_ < 0) throw IoError(path_ + ": cannot open output: " + std::strerror(errno));
+    direct_ = true;
+    return;
+  }
+  // A symbolic link to a file: replace the file it points to, not the link.
+  char resolved[PATH_MAX];
+  struct stat lst {};
+  if (::lstat(path_.c_str(), &lst) == 0 && S_ISLNK(lst.st_mode) && ::realpath(path_.c_str(), resolved))
+    target = resolved;
+  target_path_ = target;
+  temp_path_ = temp_name_for(target);
   fd_ = ::open(temp_path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd_ < 0) throw IoError(path_ + ": cannot create output file: " + std::strerror(errno));
 }
 
 AtomicFile::~AtomicFile() {
   if (fd_ >= 0) ::close(fd_);
-  if (!committed_) ::unlink(temp_path_.c_str());
+  if (!committed_ && !direct_) ::unlink(temp_path_.c_str());
 }
 
 void AtomicFile::write(std::string_view data) {
@@ -134,12 +153,19 @@ void AtomicFile::write(std::string_view data) {
 
 void AtomicFile::commit() {
   if (committed_) return;
+  if (direct_) {
+    const int rc = ::close(fd_);
+    fd_ = -1;
+    committed_ = true;
+    if (rc != 0) throw IoError(path_ + ": close failed: " + std::strerror(errno));
+    return;
+  }
   if (::fsync(fd_) != 0 && errno != EINVAL)
     throw IoError(path_ + ": fsync failed: " + std::strerror(errno));
   int rc = ::close(fd_);
   fd_ = -1;
   if (rc != 0) throw IoError(path_ + ": close failed: " + std::strerror(errno));
-  if (std::rename(temp_path_.c_str(), path_.c_str()) != 0)
+  if (std::rename(temp_path_.c_str(), target_path_.c_str()) != 0)
     throw IoError(path_ + ": cannot move the finished file into place: " + std::strerror(errno));
   committed_ = true;
 }

@@ -54,7 +54,9 @@ void write_file_atomic(const std::string& path, std::string_view content);
 
 /// Streaming counterpart of write_file_atomic: write() appends to a temporary file beside `path`;
 /// commit() flushes and renames it into place; destroying an uncommitted AtomicFile removes the
-/// temporary file, so `path` is either the complete new file or untouched.
+/// temporary file, so `path` is either the complete new file or untouched. A symbolic link is followed
+/// (the file it names is replaced, the link stays). An existing device or FIFO (/dev/null, a pipe) is
+/// written directly — never replaced — and there atomicity does not apply; a directory is an IoError.
 class AtomicFile {
  public:
   explicit AtomicFile(std::string path);
@@ -68,9 +70,12 @@ class AtomicFile {
 
  private:
   std::string path_;
+  std::string target_path_;  // path_, or the file a symbolic link at path_ names
   std::string temp_path_;
   int fd_ = -1;
   bool committed_ = false;
+  bool direct_ = false;  // writing straight to a device or FIFO
+
 };
 
 /// Escapes a JSON-pointer reference token (RFC 6901: "~" → "~0", "/" → "~1").

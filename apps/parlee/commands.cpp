@@ -1,0 +1,190 @@
+#include "commands.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "emoface/cli/cli.hpp"
+#include "emoface/core/io.hpp"
+#include "emoface/parlee/agent.hpp"
+#include "emoface/parlee/io.hpp"
+#include "plot.hpp"
+
+namespace emoface::parlee_app {
+using namespace emoface::parlee;
+
+int plan_command(const PlanArgs& a, std::ostream& out) {
+  const Domain domain(read_domain_files(a.files));
+  if (domain.goals().empty()) throw InvalidInput("the domain declares no goal");
+  std::size_t goal = 0;
+  if (!a.goal.empty()) {
+    goal = domain.goals().size();
+    for (std::size_t g = 0; g < domain.goals().size(); ++g)
+      if (domain.goals()[g].name == a.goal) goal = g;
+    if (goal == domain.goals().size()) throw InvalidInput("no goal named '" + a.goal + "'");
+  }
+  PlanOptions o;
+  o.horizon = a.horizon;
+  o.model_depth = a.depth;
+  o.semantics = goal_semantics_from_string(a.semantics);
+  Planner planner(domain, o);
+  const PlanResult r = planner.plan(goal, domain.initial_state());
+  const auto& g = domain.goals()[goal];
+  const std::string& agent = domain.spec().agents[static_cast<std::size_t>(g.agent)];
+  if (a.json) {
+    nlohmann::ordered_json j;
+    j["goal"] = g.name;
+    j["agent"] = agent;
+    j["horizon"] = o.horizon;
+    j["model_depth"] = o.model_depth;
+    j["semantics"] = a.semantics;
+    j["probability"] = r.probability;
+    j["states_evaluated"] = r.states_evaluated;
+    nlohmann::ordered_json steps = nlohmann::ordered_json::array();
+    for (const auto& s : r.steps)
+      steps.push_back({{"agent", domain.spec().agents[static_cast<std::size_t>(s.agent)]},
+                       {"action", domain.action_text(s.action)},
+                       {"p_choice", s.choice},
+                       {"p_goal_after", s.value},
+                       {"expected_outcome", domain.actions()[s.action].outcomes[s.outcome].label}});
+    j["plan"] = steps;
+    out << j.dump() << '\n';
+    return cli::kExitOk;
+  }
+  out << "goal " << g.name << " (agent " << agent << "), horizon " << o.horizon << ", model depth "
+      << (o.model_depth < 0 ? o.horizon - 1 : o.model_depth) << "\n";
+  out << (o.semantics == GoalSemantics::Within ? "P(goal within " : "P(goal holds after ") << o.horizon
+      << " steps) = " << std::setprecision(10) << r.probability << "\n";
+  out << "plan (own turns optimal, other agents most likely; expected outcome followed):\n";
+  for (std::size_t k = 0; k < r.steps.size(); ++k) {
+    const auto& s = r.steps[k];
+    out << "  " << k + 1 << ". " << domain.spec().agents[static_cast<std::size_t>(s.agent)] << ": "
+        << domain.action_text(s.action) << "  P(goal) after = " << std::setprecision(6) << s.value;
+    if (s.agent != g.agent) out << "  P(chosen) = " << s.choice;
+    out << "  -> " << domain.actions()[s.action].outcomes[s.outcome].label << "\n";
+  }
+  return cli::kExitOk;
+}
+
+namespace {
+
+void plot_runs(const std::string& dir, const std::vector<std::string>& names,
+               const std::vector<std::vector<StepRecord>>& runs) {
+  std::filesystem::create_directories(dir);
+  struct Channel {
+    const char* name;
+    std::size_t basic;
+    std::array<std::uint8_t, 3> rgb;
+  };
+  const Channel channels[] = {{"fear", 3, {130, 40, 160}},
+                              {"happiness", 1, {230, 140, 0}},
+                              {"surprise", 5, {0, 140, 200}},
+                              {"sadness", 0, {30, 60, 200}}};
+  double x_max = 10;
+  for (const auto& run : runs)
+    for (const auto& r : run) x_max = std::max(x_max, r.time);
+  x_max = std::ceil(x_max / 10) * 10;
+  auto series = [&](const std::vector<StepRecord>& run, std::size_t basic, std::array<std::uint8_t, 3> rgb) {
+    Series s;
+    s.rgb = rgb;
+    for (const auto& r : run) {
+      s.x.push_back(r.time);
+      s.y.push_back(r.basic[basic]);
+    }
+    return s;
+  };
+  for (std::size_t k = 0; k < runs.size(); ++k) {  // per personality: Figs. 7.4, 7.5, 7.7, 7.8
+    std::vector<Panel> panels;
+    for (const auto& c : channels) panels.push_back({names[k] + " " + c.name, {series(runs[k], c.basic, c.rgb)}, 1.0});
+    core::write_file_atomic(dir + "/" + names[k] + ".png", render_chart(panels, x_max));
+  }
+  for (const auto& c : channels) {  // per emotion, one panel per personality: Figs. 7.10, 7.11
+    std::vector<Panel> panels;
+    for (std::size_t k = 0; k < runs.size(); ++k) panels.push_back({names[k] + " " + c.name, {series(runs[k], c.basic, c.rgb)}, 1.0});
+    core::write_file_atomic(dir + "/" + std::string(c.name) + ".png", render_chart(panels, x_max));
+  }
+}
+
+}  // namespace
+
+int run_command(const RunArgs& a) {
+  const Domain domain(read_domain_files(a.files));
+  const std::vector<Event> events = read_events_file(a.events);
+  // cli::Output renames a temporary file over the target: never do that to a device or FIFO.
+  if (a.out != "-" && std::filesystem::exists(a.out) && !std::filesystem::is_regular_file(a.out))
+    throw InvalidInput("--out " + a.out + " is not a regular file (use '-' for stdout)");
+  cli::Output out(a.out);
+  std::vector<std::string> names;
+  std::vector<std::vector<StepRecord>> runs;
+  for (const auto& file : a.agents) {
+    AgentConfig config = read_agent_file(file);
+    Agent agent(domain, config);
+    std::vector<StepRecord> run{agent.initial_record()};
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      try {
+        run.push_back(agent.step(events[i]));
+      } catch (const InvalidInput& e) {
+        throw FormatError(SourceLocation{a.events, "", i + 1, 0}, e.what());
+      }
+    }
+    for (const auto& r : run) {
+      std::string line = timeline_line(r);
+      out.write("{\"agent\":" + nlohmann::json(config.name).dump() + "," + line.substr(1));
+    }
+    names.push_back(config.name);
+    runs.push_back(std::move(run));
+  }
+  out.commit();
+  if (!a.plot_dir.empty()) plot_runs(a.plot_dir, names, runs);
+  return cli::kExitOk;
+}
+
+int interact_command(const InteractArgs& a, std::istream& in, std::ostream& out) {
+  const Domain domain(read_domain_files(a.files));
+  AgentConfig config = a.agent.empty() ? AgentConfig{} : read_agent_file(a.agent);
+  if (config.self.empty()) config.self = "agent";
+  Agent agent(domain, config);
+  double time = 0;
+  for (;;) {
+    out << "FACT: " << domain.state_text(agent.state()) << "\n\nChoose an action: (-1 to exit)\n0: No Action\n";
+    const auto options = agent.applicable();
+    for (std::size_t k = 0; k < options.size(); ++k) out << k + 1 << ": " << options[k] << "\n";
+    out << "You choose: " << std::flush;
+    long choice = 0;
+    std::string line;
+    if (!std::getline(in, line)) break;
+    try {
+      choice = std::stol(line);
+    } catch (const std::exception&) {
+      out << "\nplease type a number\n";
+      continue;
+    }
+    if (choice < 0) break;
+    if (static_cast<std::size_t>(choice) > options.size()) {
+      out << "\nno such action\n";
+      continue;
+    }
+    Event e;
+    e.time = ++time;
+    e.action = choice == 0 ? "" : options[static_cast<std::size_t>(choice - 1)];
+    const StepRecord r = agent.step(e);
+    out << "\n";
+    for (const auto& act : r.actions) {
+      if (act.action == "pass") continue;
+      out << (act.actor == config.self ? "Agent" : "You") << " did: " << act.action << "\n" << act.outcome
+          << " (with probability of " << std::setprecision(3) << 100.0 * act.p_event
+          << " %) happened; effects: " << act.effects << "\n";
+    }
+    out << "Emotions:";
+    for (std::size_t i = 0; i < kEmotionCount; ++i)
+      if (r.emotions[i] >= 0.005) out << ' ' << to_string(static_cast<Emotion>(i)) << '=' << std::setprecision(2) << r.emotions[i];
+    out << "\n\n";
+  }
+  return cli::kExitOk;
+}
+
+}  // namespace emoface::parlee_app

@@ -1,0 +1,105 @@
+// talkinghead: marked-up text → parameter tracks (JSON/CSV) + speech WAV (thesis chapter 4).
+#include <algorithm>
+#include <iostream>
+#include <sstream>
+
+#include "emoface/channels/io.hpp"
+#include "emoface/channels/talking_head.hpp"
+#include "emoface/cli/cli.hpp"
+#include "emoface/fuzzyexpr/engine.hpp"
+#include "plot.hpp"
+
+namespace ch = emoface::channels;
+namespace fx = emoface::fuzzyexpr;
+
+namespace {
+
+// Emotion display → muscle targets: fuzzyexpr's FMCV (thesis ch. 6), both sides.
+ch::EmotionMapper fuzzy_mapper() {
+  auto engine = std::make_shared<fx::Engine>(fx::default_rule_base());
+  return [engine](const std::array<double, 6>& e) {
+    fx::Esv esv{};
+    for (std::size_t k = 0; k < 6; ++k) esv[k] = e[k];  // same ESV order (sadness … surprise)
+    const auto sides = fx::expand_to_sides(engine->convert(esv));
+    std::vector<ch::Target> out;
+    for (std::size_t i = 0; i < sides.size(); ++i) out.push_back({std::string(fx::side_parameter_names()[i]), sides[i]});
+    return out;
+  };
+}
+
+std::vector<std::string> split_names(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "talkinghead: marked-up text -> facial parameter tracks and speech (thesis chapter 4).\n"
+      "Example:\n  talkinghead --script data/channels/examples/oh_really.xml --fps 25 --out tracks.csv "
+      "--wav speech.wav --seed 1 --plot smile.png --plot-params zygomatic_major_l,orbicularis_oris_funneler"};
+  std::string script_path, out_path, wav_path, plot_path, plot_params, visemes_path, conflicts_path;
+  std::string dump_visemes, dump_conflicts;
+  ch::TalkingHeadOptions o;
+  double onset = 0.5, offset = 0.5;
+  bool no_blinks = false, no_gaze = false, no_head = false;
+  app.add_option("--script", script_path, "marked-up script (XML, see docs/channels.md)");
+  app.add_option("--fps", o.render.fps, "frames per second of the tracks")->capture_default_str();
+  app.add_option("--out", out_path, "output tracks: .csv (time + one column per parameter) or .json; - = stdout JSON");
+  app.add_option("--wav", wav_path, "write the synthesized speech (16-bit mono WAV, same length as the tracks)");
+  app.add_option("--seed", o.seed, "seed of blinks and gaze/head noise")->capture_default_str();
+  app.add_option("--duration", o.render.duration, "seconds of output (0 = until the last movement)")->capture_default_str();
+  app.add_option("--voice", o.speech.voice, "espeak-ng voice")->capture_default_str();
+  app.add_option("--rate", o.speech.rate, "speech rate, words per minute")->capture_default_str();
+  app.add_option("--onset", onset, "default onset of elements without one, s")->capture_default_str();
+  app.add_option("--offset", offset, "default offset of elements without one, s")->capture_default_str();
+  app.add_option("--dmin-plus", o.render.mix.dmin_plus, "Dmin+ of the conflict resolution, s")->capture_default_str();
+  app.add_option("--dmin-minus", o.render.mix.dmin_minus, "Dmin- of the conflict resolution, s")->capture_default_str();
+  app.add_flag("--no-blinks", no_blinks, "no random blinks");
+  app.add_flag("--no-gaze-noise", no_gaze, "no random gaze shifts");
+  app.add_flag("--no-head-noise", no_head, "no random head drift");
+  app.add_option("--visemes", visemes_path, "viseme set (emoface.channels.visemes JSON); default: built-in");
+  app.add_option("--conflicts", conflicts_path, "conflict table (emoface.channels.conflicts JSON); default: built-in");
+  app.add_option("--plot", plot_path, "write a PNG plot of --plot-params over time");
+  app.add_option("--plot-params", plot_params, "comma-separated parameter names to plot (colours: blue, red, green, "
+                                               "orange, purple, brown, black, cyan)");
+  app.add_option("--dump-visemes", dump_visemes, "write the built-in viseme set and exit");
+  app.add_option("--dump-conflicts", dump_conflicts, "write the built-in conflict table and exit");
+  if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
+
+  return emoface::cli::run("talkinghead", [&]() -> int {
+    if (!dump_visemes.empty() || !dump_conflicts.empty()) {
+      if (!dump_visemes.empty()) ch::write_visemes(dump_visemes, ch::default_viseme_set());
+      if (!dump_conflicts.empty()) ch::write_conflicts(dump_conflicts, ch::default_conflict_table());
+      return 0;
+    }
+    if (script_path.empty() || out_path.empty()) {
+      std::cerr << "talkinghead: error: --script and --out are required (see --help)\n";
+      return emoface::cli::kExitUsage;
+    }
+    o.timeline.blinks = !no_blinks;
+    o.timeline.gaze_noise = !no_gaze;
+    o.timeline.head_noise = !no_head;
+    const ch::Script script = ch::read_script(script_path, ch::ScriptDefaults{onset, offset});
+    const ch::VisemeSet visemes = visemes_path.empty() ? ch::default_viseme_set() : ch::read_visemes(visemes_path);
+    const ch::ConflictTable conflicts =
+        conflicts_path.empty() ? ch::default_conflict_table() : ch::read_conflicts(conflicts_path);
+    const ch::TalkingHead th = ch::run_talking_head(script, visemes, conflicts, fuzzy_mapper(), o);
+
+    emoface::cli::Output out(out_path);
+    out.write(ch::format_tracks(th.tracks, out_path));
+    if (!wav_path.empty()) ch::write_wav(wav_path, th.audio, th.sample_rate);
+    if (!plot_path.empty()) {
+      std::vector<std::vector<double>> series;
+      for (const auto& n : split_names(plot_params)) series.push_back(th.tracks.series(n));
+      if (series.empty()) throw emoface::InvalidInput("--plot needs --plot-params");
+      emoface::talkinghead::plot_png(plot_path, series, th.tracks.fps);
+    }
+    out.commit();
+    return 0;
+  });
+}

@@ -1,0 +1,92 @@
+#include "plot.hpp"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/core/io.hpp"
+
+namespace emoface::talkinghead {
+
+const char* const kPlotColours[8] = {"blue", "red", "green", "orange", "purple", "brown", "black", "cyan"};
+
+namespace {
+constexpr std::uint8_t kRgb[8][3] = {{31, 90, 200}, {215, 40, 40}, {30, 150, 60}, {240, 140, 0},
+                                     {130, 60, 170}, {140, 85, 40}, {0, 0, 0}, {0, 170, 190}};
+
+struct Image {
+  int w, h;
+  std::vector<std::uint8_t> px;
+  void set(int x, int y, const std::uint8_t* c) {
+    if (x < 0 || y < 0 || x >= w || y >= h) return;
+    std::copy(c, c + 3, px.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * w + x));
+  }
+  void line(double x0, double y0, double x1, double y1, const std::uint8_t* c, int thick) {
+    const int n = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
+    for (int i = 0; i <= n; ++i) {
+      const double t = static_cast<double>(i) / n;
+      const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0)));
+      const int y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
+      for (int dx = -thick / 2; dx <= thick / 2; ++dx)
+        for (int dy = -thick / 2; dy <= thick / 2; ++dy) set(x + dx, y + dy, c);
+    }
+  }
+};
+
+void write_fn(png_structp png, png_bytep data, png_size_t n) {
+  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), n);
+}
+void flush_fn(png_structp) {}
+}  // namespace
+
+void plot_png(const std::string& path, const std::vector<std::vector<double>>& series, double fps, int width,
+              int height) {
+  if (width < 50 || height < 50 || width > 8000 || height > 8000) throw InvalidInput("plot: bad image size");
+  if (!(fps > 0)) throw InvalidInput("plot: bad fps");
+  std::size_t frames = 0;
+  double lo = 0.0, hi = 1.0;
+  for (const auto& s : series) {
+    frames = std::max(frames, s.size());
+    for (double v : s) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+  Image img{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 3, 255)};
+  const int m = 20;  // margin, pixels
+  const double duration = frames > 1 ? static_cast<double>(frames - 1) / fps : 1.0;
+  const auto X = [&](double t) { return m + (width - 2 * m) * t / duration; };
+  const auto Y = [&](double v) { return height - m - (height - 2 * m) * (v - lo) / (hi - lo); };
+  const std::uint8_t grid[3] = {225, 225, 225}, axis[3] = {120, 120, 120};
+  for (double v = std::ceil(lo * 10) / 10; v <= hi + 1e-9; v += 0.1) img.line(X(0), Y(v), X(duration), Y(v), grid, 1);
+  const double step = duration > 60 ? 10.0 : 1.0;
+  for (double t = 0; t <= duration + 1e-9; t += step) img.line(X(t), Y(lo), X(t), Y(hi), grid, 1);
+  img.line(X(0), Y(0), X(duration), Y(0), axis, 1);
+  img.line(X(0), Y(lo), X(0), Y(hi), axis, 1);
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    const auto& s = series[k];
+    for (std::size_t f = 1; f < s.size(); ++f)
+      img.line(X((f - 1) / fps), Y(s[f - 1]), X(f / fps), Y(s[f]), kRgb[k % 8], 3);
+  }
+  std::string bytes;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) throw Error("plot: libpng initialisation failed");
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    throw Error("plot: PNG encoding failed");
+  }
+  png_set_write_fn(png, &bytes, write_fn, flush_fn);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < height; ++y) png_write_row(png, img.px.data() + 3 * static_cast<std::size_t>(y) * width);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  core::write_file_atomic(path, bytes);
+}
+
+}  // namespace emoface::talkinghead

@@ -1,0 +1,127 @@
+#pragma once
+// A ParleE agent living in a domain (thesis Fig. 5.3): planner + models of other agents →
+// appraisal → emotion impulse vector → emotion state with decay, personality, motivational states,
+// liking and learning. Used by `parlee run` (Obie, chapter 7) and the bread example (§5.9).
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emoface/core/rng.hpp"
+#include "emoface/parlee/appraisal.hpp"
+#include "emoface/parlee/domain.hpp"
+#include "emoface/parlee/emotion.hpp"
+#include "emoface/parlee/planner.hpp"
+
+namespace emoface::parlee {
+
+struct AgentConfig {
+  std::string name = "agent";        ///< label of this configuration ("neutral", "pessimistic", …)
+  std::string self;                  ///< the domain agent this is; empty = the first agent
+  Personality personality;
+  EmotionParams emotions = EmotionParams::defaults();
+  MotivationalState motivation;
+  MotivationOptions motivation_options;
+  AppraisalOptions appraisal;
+  PlanOptions planning;
+  bool learn_outcomes = false;       ///< §5.8 count-based outcome learning on observed events
+  double learning_prior = 10.0;      ///< presumed observations n0 (scaled by learningFocus + 0.5), ≥ 0
+  double liking_rate = 0.1;          ///< §5.6.1 liking update rate, [0,1]
+  std::map<std::string, double> liking;             ///< initial LikingLevel per other agent, [−1,1]
+  std::map<std::string, double> praiseworthiness;   ///< standards: value per operator name, [−1,1]
+  /// §5.5.4: operator name → what it does to the body: eat/drink/rest when the agent performs it,
+  /// hit when anyone performs it (the agent is hit). Every own action also counts as `action`.
+  std::map<std::string, BodyEvent> body_events;
+  std::uint64_t seed = 1;            ///< own action choices and unspecified outcomes
+  void validate() const;
+};
+
+/// One scripted or interactive event: an action of the agent on turn.
+struct Event {
+  double time = 0.0;         ///< event clock (e.g. match minute); must not decrease
+  std::string action;        ///< "(shot oteam)", a prefix of the arguments is enough; "" = pass
+  std::string outcome;       ///< outcome label, "case-N" or 1-based number; "" = sample (seeded)
+  std::optional<double> feedback;  ///< feedback in [−1,1] on the agent's own last action (§5.8)
+  std::string note;          ///< free text carried into the timeline
+};
+
+struct AppliedAction {
+  std::string actor;
+  std::string action;        ///< "(shot oteam)" or "pass"
+  std::string outcome;       ///< label
+  double p_event = 1.0;      ///< P(event) as appraised (§5.6.1)
+  std::string effects;       ///< "+(score one) -(score zero)"
+};
+
+struct StepRecord {
+  std::size_t step = 0;
+  double time = 0.0;
+  std::string note;
+  std::vector<AppliedAction> actions;
+  std::vector<std::string> goal_names;
+  std::vector<double> goal_probability;   ///< after the step (planner, horizon H)
+  std::vector<GoalStatus> goal_status;
+  EmotionVector impulse{};                ///< summed impulses of the step
+  EmotionVector emotions{};               ///< emotion state after decay + update
+  std::array<double, 6> basic{};          ///< basic_emotions(): sadness … surprise
+  std::map<std::string, double> liking;
+  std::string state;                      ///< facts after the step
+};
+
+class Agent {
+ public:
+  /// Copies `domain` (the agent's beliefs; learning changes the copy). Throws InvalidInput if the
+  /// config is invalid or names an unknown agent.
+  Agent(const Domain& domain, AgentConfig config);
+  Agent(const Agent&) = delete;
+  Agent& operator=(const Agent&) = delete;
+
+  /// Applies one event (the agent acts first if it is its turn, then the event, then the agent
+  /// responds if the turn came back), appraises each action, decays and updates the emotions.
+  /// Throws InvalidInput if the event's action is not applicable (message lists what is); the agent
+  /// may by then have taken its own turn, so treat the agent as spent after an exception.
+  StepRecord step(const Event& event);
+  /// The record of the initial state (step 0): goal probabilities and the resting emotions.
+  StepRecord initial_record();
+
+  const Domain& domain() const noexcept { return *domain_; }
+  const State& state() const noexcept { return state_; }
+  const AgentConfig& config() const noexcept { return config_; }
+  const MotivationalState& motivation() const noexcept { return config_.motivation; }
+  const EmotionVector& emotions() const noexcept { return emotions_; }
+  int self() const noexcept { return self_; }
+  /// Actions the agent on turn may take now ("(unload-food bread car1)").
+  std::vector<std::string> applicable() const;
+  Planner& planner() noexcept { return *planner_; }
+
+ private:
+  void act(const std::optional<std::size_t>& forced, const std::string& outcome, StepRecord& rec,
+           EmotionVector& impulse);
+  void self_act(StepRecord& rec, EmotionVector& impulse);
+  std::vector<double> own_goal_probabilities(const State& s);
+  GoalStatus confirm(std::size_t k, const State& s) const;
+  void fill(StepRecord& rec);
+  double event_probability(const State& s, std::size_t action, const State& after);
+
+  std::unique_ptr<Domain> domain_;
+  AgentConfig config_;
+  std::unique_ptr<Planner> planner_;
+  int self_ = 0;
+  State state_;
+  double time_ = 0.0;
+  std::size_t steps_ = 0;
+  core::Rng rng_;
+  EmotionVector emotions_{};
+  std::vector<std::size_t> own_goals_;
+  std::vector<double> p_goal_;
+  std::vector<GoalStatus> status_;
+  std::vector<double> prev_hope_, prev_fear_;
+  std::map<std::string, double> liking_;
+  std::map<std::string, RunningMean> feedback_;
+  std::map<std::size_t, OutcomeLearner> learners_;
+  std::optional<std::size_t> last_own_op_;
+};
+
+}  // namespace emoface::parlee

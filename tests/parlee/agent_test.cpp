@@ -1,0 +1,196 @@
+// The Obie scenario (thesis §7.4) and the bread illustration (§5.9) end to end.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/parlee/agent.hpp"
+#include "emoface/parlee/io.hpp"
+
+using namespace emoface::parlee;
+
+namespace {
+
+const std::string kData = std::string(EMOFACE_SOURCE_DIR) + "/data/parlee/";
+
+std::vector<StepRecord> run(const std::string& domain, const std::string& agent, const std::string& events) {
+  const Domain d(read_domain_files({kData + domain}));
+  Agent a(d, read_agent_file(kData + "agents/" + agent + ".json"));
+  std::vector<StepRecord> out{a.initial_record()};
+  for (const auto& e : read_events_file(kData + events)) out.push_back(a.step(e));
+  return out;
+}
+
+// ESV channel at the last record with time ≤ t.
+double at(const std::vector<StepRecord>& run, double t, std::size_t basic) {
+  double v = 0.0;
+  for (const auto& r : run)
+    if (r.time <= t) v = r.basic[basic];
+  return v;
+}
+constexpr std::size_t kSad = 0, kHappy = 1, kAnger = 2, kFear = 3, kSurprise = 5;
+
+class Obie : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    for (const char* p : {"neutral", "pessimistic", "realistic", "sensitive"})
+      runs_[p] = run("football.domain", p, "match.ndjson");
+  }
+  static std::map<std::string, std::vector<StepRecord>> runs_;
+};
+std::map<std::string, std::vector<StepRecord>> Obie::runs_;
+
+}  // namespace
+
+TEST_F(Obie, NeutralFollowsTheStory) {
+  const auto& r = runs_["neutral"];
+  ASSERT_EQ(r.size(), 92u);
+  // fear until 40' and again after 80'
+  for (double t : {10.0, 20.0, 35.0, 39.0}) EXPECT_GT(at(r, t, kFear), 0.5) << t;
+  EXPECT_LT(at(r, 60, kFear), 0.05);
+  EXPECT_GT(at(r, 85, kFear), 0.5);
+  // happiness after the goals, decaying afterwards
+  EXPECT_LT(at(r, 29, kHappy), 0.05);
+  EXPECT_GT(at(r, 30, kHappy), 0.2);
+  EXPECT_GT(at(r, 40.5, kHappy), 0.5);
+  EXPECT_LT(at(r, 60, kHappy), 0.5 * at(r, 40.5, kHappy));
+  // the biggest surprise is the long free-kick and the goal at 40'
+  double best_t = 0, best = -1;
+  for (const auto& s : r)
+    if (s.basic[kSurprise] > best) best = s.basic[kSurprise], best_t = s.time;
+  EXPECT_GE(best_t, 40.0);
+  EXPECT_LE(best_t, 41.0);
+  EXPECT_LT(at(r, 43, kSurprise), 0.05);  // and it decays very fast
+  // sadness after 80' decaying slowly
+  EXPECT_GT(at(r, 80, kSad), 0.8);
+  EXPECT_GT(at(r, 89, kSad), 0.6 * at(r, 80, kSad));
+  EXPECT_LT(at(r, 89, kSad), at(r, 81, kSad));
+  // the final whistle confirms both goals: a draw
+  EXPECT_EQ(r.back().goal_status[0], GoalStatus::Fail);
+  EXPECT_EQ(r.back().goal_status[1], GoalStatus::Success);
+}
+
+TEST_F(Obie, PersonalitiesDiffer) {
+  const auto& n = runs_["neutral"];
+  const auto& p = runs_["pessimistic"];
+  const auto& s = runs_["sensitive"];
+  const auto& re = runs_["realistic"];
+  for (double t : {12.0, 20.0, 80.0, 85.0}) EXPECT_GE(at(p, t, kSad), at(n, t, kSad)) << t;
+  for (double t : {30.0, 40.5, 50.0}) EXPECT_LE(at(p, t, kHappy), at(n, t, kHappy)) << t;
+  for (double t : {12.0, 30.0, 40.5, 60.0, 85.0}) {
+    EXPECT_GE(at(s, t, kSad), at(n, t, kSad)) << t;
+    EXPECT_GE(at(s, t, kHappy), at(n, t, kHappy)) << t;
+  }
+  bool differs = false;
+  for (std::size_t k = 0; k < n.size(); ++k) differs |= n[k].basic != re[k].basic;
+  EXPECT_TRUE(differs);
+}
+
+TEST_F(Obie, IntensitiesStayWithinThresholds) {
+  const EmotionParams p = EmotionParams::defaults();
+  for (const auto& [name, r] : runs_)
+    for (const auto& s : r)
+      for (std::size_t i = 0; i < kEmotionCount; ++i) {
+        ASSERT_GE(s.emotions[i], 0.0);
+        ASSERT_LE(s.emotions[i], p.omega[i]);
+      }
+}
+
+TEST(Agent, DeterministicForASeed) {
+  const auto a = run("football.domain", "neutral", "match.ndjson");
+  const auto b = run("football.domain", "neutral", "match.ndjson");
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) EXPECT_EQ(timeline_line(a[k]), timeline_line(b[k]));
+}
+
+TEST(Agent, BreadUserEatsTheBread) {
+  const auto n = run("bread.domain", "bread_neutral", "bread_events.ndjson");
+  const auto o = run("bread.domain", "bread_optimistic", "bread_events.ndjson");
+  const auto s = run("bread.domain", "bread_sensitive", "bread_events.ndjson");
+  // §5.9: the neutral agent gets angry after the user eats his bread, the optimistic one less
+  // (and stays a bit happy), the sensitive one very angry.
+  EXPECT_LT(at(n, 4, kAnger), 0.01);
+  EXPECT_GT(at(n, 5, kAnger), 0.3);
+  EXPECT_LT(at(o, 5, kAnger), at(n, 5, kAnger));
+  EXPECT_GT(at(o, 5, kHappy), at(n, 5, kHappy));
+  EXPECT_GT(at(s, 5, kAnger), at(n, 5, kAnger));
+  EXPECT_EQ(n[5].actions[0].action, "(eat bread user)");
+}
+
+TEST(Agent, RejectsInapplicableEventsAndUnknownAgents) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  AgentConfig c;
+  c.self = "agent";
+  Agent a(d, c);
+  Event e;
+  e.time = 1;
+  e.action = "(shot team)";
+  try {
+    a.step(e);
+    FAIL();
+  } catch (const emoface::InvalidInput& err) {
+    EXPECT_NE(std::string(err.what()).find("(re-kickoff team)"), std::string::npos);  // lists what is
+  }
+  e.action = "(re-kickoff team)";
+  e.outcome = "exploded";
+  EXPECT_THROW(a.step(e), emoface::InvalidInput);
+  e.outcome = "";
+  e.time = -1;
+  EXPECT_THROW(a.step(e), emoface::InvalidInput);
+  c.self = "referee";
+  EXPECT_THROW(Agent(d, c), emoface::InvalidInput);
+}
+
+TEST(Agent, LearnsOutcomeProbabilities) {
+  const Domain d(read_domain_files({kData + "rocket.domain"}));
+  AgentConfig c;
+  c.learn_outcomes = true;
+  c.learning_prior = 9.0;  // × (learningFocus + 0.5) = 9 presumed observations
+  Agent a(d, c);
+  Event e;
+  e.action = "(LOAD c1)";
+  e.outcome = "failed";
+  a.step(e);
+  const auto& outs = a.domain().actions()[static_cast<std::size_t>(
+      a.domain().find_action("(LOAD c2)", a.domain().applicable_actions(a.state())))].outcomes;
+  EXPECT_NEAR(outs[0].probability, 0.9 * 9 / 10, 1e-12);  // 0.81
+  EXPECT_NEAR(outs[1].probability, (0.1 * 9 + 1) / 10, 1e-12);  // 0.19
+  // the original domain is untouched
+  EXPECT_EQ(d.actions()[0].outcomes[0].probability, 0.9);
+}
+
+TEST(Agent, MotivationalStatesFollowActions) {
+  const Domain d(read_domain_files({kData + "bread.domain"}));
+  AgentConfig c = read_agent_file(kData + "agents/bread_neutral.json");
+  c.motivation.hunger = 0.5;
+  c.body_events["eat"] = BodyEvent::Eat;
+  c.body_events["go-working"] = BodyEvent::Hit;  // pretend the user's leaving hurts
+  Agent a(d, c);
+  Event e;
+  e.time = 1;
+  e.action = "(go-working car1)";  // the user drives off (a "hit"), then the agent acts once
+  const StepRecord r = a.step(e);
+  ASSERT_EQ(r.actions.size(), 2u);
+  EXPECT_EQ(r.actions[1].actor, "agent");
+  EXPECT_NEAR(a.motivation().pain, 0.2, 1e-12);
+  EXPECT_NEAR(a.motivation().hunger, 0.51, 1e-12);  // +0.01 per own action
+  EXPECT_NEAR(a.motivation().fatigue, 0.01, 1e-12);
+  EXPECT_EQ(to_string(BodyEvent::Rest), "rest");
+  EXPECT_EQ(body_event_from_string("hit"), BodyEvent::Hit);
+  EXPECT_THROW(body_event_from_string("nap"), emoface::InvalidInput);
+}
+
+TEST(Agent, FeedbackBecomesPraiseworthiness) {
+  const Domain d(read_domain_files({kData + "rocket.domain"}));
+  AgentConfig c;
+  Agent a(d, c);
+  Event e;
+  e.action = "(LOAD c1)";
+  e.outcome = "loaded";
+  a.step(e);
+  e.time = 1;
+  e.action = "(LOAD c2)";
+  e.feedback = 0.8;  // on the previous LOAD
+  const StepRecord r = a.step(e);
+  EXPECT_NEAR(r.impulse[index(Emotion::Pride)], 0.8, 1e-12);
+}

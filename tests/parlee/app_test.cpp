@@ -1,0 +1,128 @@
+// `parlee` CLI end to end: plan / run / interact, outputs, exit codes, atomic outputs.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kData = std::string(EMOFACE_SOURCE_DIR) + "/data/parlee/";
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+class ParleeApp : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("parlee_app_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& content) const {
+    std::ofstream(path(name), std::ios::binary) << content;
+    return path(name);
+  }
+  static std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  Result run(const std::string& args, const std::string& stdin_file = "") const {
+    const std::string out = path("stdout.txt"), err = path("stderr.txt");
+    std::string cmd = std::string(PARLEE_EXE) + " " + args + " >" + out + " 2>" + err;
+    if (!stdin_file.empty()) cmd += " <" + stdin_file;
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(ParleeApp, PlanTextAndJson) {
+  auto r = run("plan --domain " + kData + "rocket.domain --horizon 5");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("= 0.52488"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(MOVE r1 london paris)"), std::string::npos);
+  r = run("plan --domain " + kData + "rocket2.domain --horizon 3 --depth 0 --semantics at_horizon --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["goal"], "deliver");
+  EXPECT_EQ(j["model_depth"], 0);
+  EXPECT_EQ(j["plan"].size(), 3u);
+  EXPECT_EQ(run("--help").code, 0);
+}
+
+TEST_F(ParleeApp, PlanErrors) {
+  const std::string bad = write("bad.domain", "(predicates (p 1))\n(objects a)\n(initial (q a))\n");
+  auto r = run("plan --domain " + bad + " --horizon 2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bad.domain:3:10: unknown predicate 'q'"), std::string::npos) << r.err;
+  EXPECT_EQ(run("plan --domain " + kData + "rocket.domain --horizon 99").code, 1);
+  EXPECT_EQ(run("plan --horizon 3").code, 1);
+  EXPECT_EQ(run("plan --domain " + path("missing") + " --horizon 3").code, 2);
+  EXPECT_EQ(run("plan --domain " + kData + "rocket.domain --horizon 3 --goal nope").code, 2);
+}
+
+TEST_F(ParleeApp, RunWritesTimelineAndCharts) {
+  const auto r = run("run --domain " + kData + "football.domain --agent " + kData + "agents/neutral.json --events " +
+                     kData + "match.ndjson --out " + path("t.ndjson") + " --plot " + path("charts"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream lines(slurp(path("t.ndjson")));
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(lines, line)) {
+    const auto j = nlohmann::json::parse(line);
+    EXPECT_EQ(j["agent"], "neutral");
+    EXPECT_EQ(j["emotions"].size(), 21u);
+    EXPECT_EQ(j["esv"].size(), 6u);
+    ++n;
+  }
+  EXPECT_EQ(n, 92u);  // initial state + 91 events
+  for (const char* png : {"neutral.png", "fear.png", "happiness.png", "surprise.png", "sadness.png"}) {
+    const std::string bytes = slurp(path(std::string("charts/") + png));
+    ASSERT_GT(bytes.size(), 8u) << png;
+    EXPECT_EQ(bytes.substr(1, 3), "PNG") << png;
+  }
+}
+
+TEST_F(ParleeApp, RunRejectsBadEventsWithoutWriting) {
+  const auto r = run("run --domain " + kData + "football.domain --agent " + kData + "agents/neutral.json --events " +
+                     kData + "bread_events.ndjson --out " + path("t.ndjson"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bread_events.ndjson:5"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("t.ndjson")));
+  const std::string agent = write("a.json", R"({"format":"emoface.parlee_agent","version":"1.0","personality":{"x":1}})");
+  EXPECT_EQ(run("run --domain " + kData + "football.domain --agent " + agent + " --events " + kData +
+                "match.ndjson --out " + path("t.ndjson"))
+                .code,
+            2);
+}
+
+TEST_F(ParleeApp, InteractListsActionsAndTheAgentResponds) {
+  const std::string in = write("in.txt", "0\n7\nx\n-1\n");
+  const auto r = run("interact --domain " + kData + "bread.domain --agent " + kData + "agents/bread_neutral.json", in);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("FACT: (acting user) (at-home car1) (in-shop bread)"), std::string::npos);
+  EXPECT_NE(r.out.find("0: No Action\n1: (go-shopping car1 user)\n2: (go-working car1)"), std::string::npos);
+  EXPECT_NE(r.out.find("Agent did: (go-shopping car1 agent)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no such action"), std::string::npos);
+  EXPECT_NE(r.out.find("please type a number"), std::string::npos);
+}
