@@ -11,10 +11,11 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
-  libpng-dev                        # parlee charts (apps/parlee)
-  zlib1g-dev                        # motiongraph: PNG encoding of landmark renders
+  libpng-dev zlib1g-dev             # PNG output (facemesh renders, parlee/channels charts, motiongraph sheets)
+  libtinygltf-dev                   # facemesh: animated glTF export
+  libespeak-ng-dev espeak-ng-data libpugixml-dev   # channels / talkinghead: speech, markup
+  ffmpeg                            # facerender / talkinghead: MP4 from rendered frames
 )
-PACKAGES+=(libespeak-ng-dev espeak-ng-data libpugixml-dev libpng-dev)  # channels / talkinghead
 
 missing=()
 for p in "${PACKAGES[@]}"; do
