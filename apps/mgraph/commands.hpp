@@ -1,0 +1,28 @@
+#pragma once
+// The mgraph subcommands: glue between parsed arguments and the motiongraph library.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace emoface::mgraph {
+
+struct Args {
+  std::string db, ckplus, layout, graph, out = "-", sheet, plot, frames_dir, idle_label;
+  bool no_align = false, no_clean = false, no_reverse = false, vary = false, no_sigmoid = false;
+  double lambda = 0.5, sample_threshold = 0.4, merge_threshold = 0.4, target_compression = -1.0;
+  double replace = 0.0, hint = 1.0, idle_after = 0.0, duration = 4.0, hop_interval = 1.0, dwell = 0.4;
+  double noise = 0.4;
+  std::uint64_t seed = 1;
+  std::size_t per_label = 10, subjects = 20, curve = 0;
+  int columns = 8, every = 1, cell_width = 200;
+  std::vector<std::string> labels;
+  std::vector<double> compressions{0.5753, 0.78, 0.90}, thresholds;
+};
+
+int generate(const Args& a);
+int build(const Args& a);
+int synth(const Args& a);
+int idle(const Args& a);
+int eval(const Args& a);
+
+}  // namespace emoface::mgraph

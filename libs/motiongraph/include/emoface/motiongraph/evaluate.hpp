@@ -1,0 +1,39 @@
+#pragma once
+// The paper's §7 evaluation: re-synthesize every training sample from the graph built on the whole
+// database and compare with the sample (length difference in frames, pose difference in pixels),
+// against the compression ratio of the graph.
+#include <cstddef>
+#include <vector>
+
+#include "emoface/motiongraph/graph.hpp"
+#include "emoface/motiongraph/preprocess.hpp"
+#include "emoface/motiongraph/synthesis.hpp"
+
+namespace emoface::motiongraph {
+
+struct EvaluationRow {
+  double threshold = 0.0;    ///< sample and merge threshold used (GraphOptions units)
+  double compression = 0.0;  ///< graph compression ratio in [0, 1]
+  std::size_t nodes = 0;
+  double length_mean = 0.0, length_std = 0.0;  ///< |synth − original| frames, over samples
+  double pose_mean = 0.0, pose_std = 0.0;      ///< landmark distance (units), over all landmarks
+                                               ///< of all frames of all samples
+};
+
+struct EvaluationOptions {
+  GraphOptions graph;           ///< thresholds are overridden per row
+  SmoothingOptions smoothing;   ///< smoothing of the re-synthesized samples
+  void validate() const;
+};
+
+/// One row: builds the graph with sample = merge = `threshold`, re-synthesizes each sample from its
+/// first-frame node to its peak node (Dijkstra + §5 steps 1–4, no variation) and compares it with
+/// the sample's neutral-to-peak part (synthesized frames resampled to the original length).
+EvaluationRow evaluate(const PreparedDatabase& data, double threshold,
+                       const EvaluationOptions& options = {});
+
+/// Threshold whose graph compression is closest to `target` in [0, 1) (bisection, ~20 builds).
+double threshold_for_compression(const PreparedDatabase& data, double target,
+                                 const GraphOptions& options = {});
+
+}  // namespace emoface::motiongraph

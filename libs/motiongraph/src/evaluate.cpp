@@ -1,0 +1,110 @@
+#include "emoface/motiongraph/evaluate.hpp"
+
+#include <cmath>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/motiongraph/curves.hpp"
+
+namespace emoface::motiongraph {
+
+void EvaluationOptions::validate() const {
+  graph.validate();
+  smoothing.validate();
+}
+
+namespace {
+struct Stats {
+  double sum = 0.0, sum2 = 0.0;
+  double n = 0.0;
+  void add(double x) {
+    sum += x;
+    sum2 += x * x;
+    n += 1.0;
+  }
+  double mean() const { return n > 0 ? sum / n : 0.0; }
+  double std() const { return n > 0 ? std::sqrt(std::max(0.0, sum2 / n - mean() * mean())) : 0.0; }
+};
+}  // namespace
+
+// §7: "We have compared the training samples against the synthesized equivalent".
+EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const EvaluationOptions& options) {
+  options.validate();
+  GraphOptions go = options.graph;
+  go.sample_threshold = go.merge_threshold = threshold;
+  GraphBuildReport built;
+  const MotionGraph graph = build_graph(data, go, &built);
+  EvaluationRow row;
+  row.threshold = threshold;
+  row.compression = graph.compression_ratio();
+  row.nodes = graph.node_count();
+  Stats length, pose;
+  const int d = data.dimensions;
+  for (std::size_t s = 0; s < data.samples.size(); ++s) {
+    const PreparedSample& ps = data.samples[s];
+    std::vector<Eigen::MatrixXd> region_frames;
+    for (std::size_t r = 0; r < graph.regions.size(); ++r) {
+      const RegionGraph& rg = graph.regions[r];
+      const auto& nodes = built.frame_nodes[r][s];
+      std::vector<char> target(rg.nodes.size(), 0);
+      target[nodes[ps.peak_frame]] = 1;
+      std::vector<std::size_t> path = shortest_path(rg.adjacency(false), nodes[0], target);
+      if (path.empty()) path = shortest_path(rg.adjacency(true), nodes[0], target);
+      const double len = path_length(rg, path);
+      region_frames.push_back(recover_path(rg, path, static_cast<std::size_t>(std::lround(len))));
+    }
+    const std::vector<Pose> synth = assemble(graph, std::move(region_frames), options.smoothing);
+    const std::size_t original = ps.peak_frame + 1;
+    length.add(std::abs(static_cast<double>(synth.size()) - static_cast<double>(original)));
+    // Compare at corresponding times: the synthesized sequence resampled to the original length.
+    Eigen::Index k_total = synth[0].rows();
+    Eigen::MatrixXd flat(static_cast<Eigen::Index>(synth.size()), k_total * d);
+    for (std::size_t t = 0; t < synth.size(); ++t)
+      for (Eigen::Index l = 0; l < k_total; ++l)
+        for (int j = 0; j < d; ++j) flat(static_cast<Eigen::Index>(t), l * d + j) = synth[t](l, j);
+    const Eigen::MatrixXd resampled = resample_linear(flat, static_cast<Eigen::Index>(original));
+    for (std::size_t t = 0; t < original; ++t) {
+      Eigen::Index col = 0;
+      for (std::size_t r = 0; r < graph.regions.size(); ++r) {
+        const Eigen::RowVectorXd truth =
+            graph.regions[r].neutral + ps.displacement[r].row(static_cast<Eigen::Index>(t));
+        for (Eigen::Index l = 0; l < truth.size() / d; ++l, ++col) {
+          double d2 = 0.0;
+          for (int j = 0; j < d; ++j) {
+            const double e = resampled(static_cast<Eigen::Index>(t), col * d + j) - truth[l * d + j];
+            d2 += e * e;
+          }
+          pose.add(std::sqrt(d2));
+        }
+      }
+    }
+  }
+  row.length_mean = length.mean();
+  row.length_std = length.std();
+  row.pose_mean = pose.mean();
+  row.pose_std = pose.std();
+  return row;
+}
+
+double threshold_for_compression(const PreparedDatabase& data, double target, const GraphOptions& options) {
+  if (!(target >= 0.0 && target < 1.0)) throw InvalidInput("threshold_for_compression: target must be in [0, 1)");
+  GraphOptions go = options;
+  auto compression = [&](double t) {
+    go.sample_threshold = go.merge_threshold = t;
+    return build_graph(data, go).compression_ratio();
+  };
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 40 && compression(hi) < target; ++i) hi *= 2.0;
+  double best = hi, best_err = std::abs(compression(hi) - target);
+  for (int i = 0; i < 20; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double c = compression(mid);
+    if (std::abs(c - target) < best_err) {
+      best_err = std::abs(c - target);
+      best = mid;
+    }
+    (c < target ? lo : hi) = mid;
+  }
+  return best;
+}
+
+}  // namespace emoface::motiongraph

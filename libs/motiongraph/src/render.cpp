@@ -1,0 +1,206 @@
+#include "emoface/motiongraph/render.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <zlib.h>
+
+#include "emoface/core/errors.hpp"
+
+namespace emoface::motiongraph {
+
+namespace {
+const std::uint32_t kPalette[] = {0x1f77b4, 0xd62728, 0x2ca02c, 0x9467bd, 0xff7f0e,
+                                  0x8c564b, 0xe377c2, 0x17becf, 0x7f7f7f, 0xbcbd22};
+std::uint32_t palette(int i) { return kPalette[static_cast<std::size_t>(std::abs(i)) % 10]; }
+
+void disc(Image& img, double cx, double cy, double r, std::uint32_t colour) {
+  for (int y = static_cast<int>(std::floor(cy - r)); y <= static_cast<int>(std::ceil(cy + r)); ++y)
+    for (int x = static_cast<int>(std::floor(cx - r)); x <= static_cast<int>(std::ceil(cx + r)); ++x)
+      if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) img.set(x, y, colour);
+}
+
+void line(Image& img, double x0, double y0, double x1, double y1, std::uint32_t colour) {
+  const int steps = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
+  if (steps > 100000) return;
+  for (int i = 0; i <= steps; ++i) {
+    const double t = static_cast<double>(i) / steps;
+    const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0)));
+    const int y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
+    img.set(x, y, colour);
+    img.set(x + 1, y, colour);
+    img.set(x, y + 1, colour);
+  }
+}
+}  // namespace
+
+Image::Image(int w, int h, std::uint8_t grey) : width(w), height(h) {
+  if (w < 1 || h < 1 || static_cast<long long>(w) * h > (1LL << 28)) throw InvalidInput("image: bad size");
+  rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, grey);
+}
+
+void Image::set(int x, int y, std::uint32_t c) {
+  if (x < 0 || y < 0 || x >= width || y >= height) return;
+  const std::size_t o = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+  rgb[o] = static_cast<std::uint8_t>(c >> 16);
+  rgb[o + 1] = static_cast<std::uint8_t>(c >> 8);
+  rgb[o + 2] = static_cast<std::uint8_t>(c);
+}
+
+View fit_view(const std::vector<Pose>& frames, int width, int height, double margin) {
+  if (frames.empty() || width < 2 || height < 2 || !(margin >= 0.0 && margin < 0.5))
+    throw InvalidInput("fit_view: need frames, a size >= 2 and a margin in [0, 0.5)");
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  for (const Pose& p : frames) {
+    if (p.cols() < 2) throw InvalidInput("fit_view: poses need x and y columns");
+    for (Eigen::Index i = 0; i < p.rows(); ++i) {
+      if (!std::isfinite(p(i, 0)) || !std::isfinite(p(i, 1))) continue;
+      x0 = std::min(x0, p(i, 0));
+      x1 = std::max(x1, p(i, 0));
+      y0 = std::min(y0, p(i, 1));
+      y1 = std::max(y1, p(i, 1));
+    }
+  }
+  View v;
+  if (!(x1 >= x0)) return v;  // no finite point
+  const double w = std::max(x1 - x0, 1e-9), h = std::max(y1 - y0, 1e-9);
+  v.scale = std::min(width * (1.0 - 2.0 * margin) / w, height * (1.0 - 2.0 * margin) / h);
+  v.offset_x = 0.5 * width - v.scale * 0.5 * (x0 + x1);
+  v.offset_y = 0.5 * height - v.scale * 0.5 * (y0 + y1);
+  return v;
+}
+
+void draw_pose(Image& image, const Pose& pose, const std::vector<int>& groups, const View& view,
+               double dot_radius) {
+  if (pose.cols() < 2) throw InvalidInput("draw_pose: poses need at least 2 columns");
+  if (!(dot_radius > 0.0 && dot_radius < 100.0)) throw InvalidInput("draw_pose: dot_radius must be in (0, 100)");
+  for (Eigen::Index i = 0; i < pose.rows(); ++i) {
+    const int g = static_cast<std::size_t>(i) < groups.size() ? groups[static_cast<std::size_t>(i)] : 0;
+    const double x = view.offset_x + view.scale * pose(i, 0), y = view.offset_y + view.scale * pose(i, 1);
+    if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e6 || std::abs(y) > 1e6) continue;
+    disc(image, x, y, dot_radius, palette(g));
+  }
+}
+
+Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& groups, int columns,
+                    int cell_width, int cell_height) {
+  if (frames.empty() || columns < 1 || cell_width < 8 || cell_height < 8 || cell_width > 4096 ||
+      cell_height > 4096)
+    throw InvalidInput("contact sheet: need frames, columns >= 1 and cells of 8..4096 pixels");
+  const int cols = std::min<int>(columns, static_cast<int>(frames.size()));
+  const int rows = static_cast<int>((frames.size() + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
+  Image img(cols * cell_width, rows * cell_height);
+  const View base = fit_view(frames, cell_width, cell_height);
+  const double radius = std::max(1.0, 0.012 * std::min(cell_width, cell_height));
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    const int cx = static_cast<int>(f % static_cast<std::size_t>(cols)) * cell_width;
+    const int cy = static_cast<int>(f / static_cast<std::size_t>(cols)) * cell_height;
+    for (int x = cx; x < cx + cell_width; ++x) img.set(x, cy, 0xcccccc);
+    for (int y = cy; y < cy + cell_height; ++y) img.set(cx, y, 0xcccccc);
+    View v = base;
+    v.offset_x += cx;
+    v.offset_y += cy;
+    draw_pose(img, frames[f], groups, v, radius);
+  }
+  return img;
+}
+
+Image plot_series(const std::vector<std::vector<double>>& series, int width, int height, double min_range) {
+  Image img(width, height);
+  std::size_t n = 0;
+  for (const auto& s : series) n = std::max(n, s.size());
+  const int m = 10;
+  for (int x = m; x < width - m; ++x) img.set(x, height - m, 0x000000);
+  for (int y = m; y <= height - m; ++y) img.set(m, y, 0x000000);
+  if (n < 2 || series.empty()) return img;
+  const double band = (height - 2.0 * m) / static_cast<double>(series.size());
+  auto px = [&](std::size_t i) { return m + (width - 2.0 * m) * static_cast<double>(i) / static_cast<double>(n - 1); };
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 4; ++k) img.set(static_cast<int>(px(i)), height - m + k, 0x000000);
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (double v : series[k])
+      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    if (!(hi >= lo)) continue;
+    const double mid = 0.5 * (lo + hi), range = std::max(hi - lo, min_range);
+    const double top = m + band * static_cast<double>(k);
+    for (int x = m; x < width - m; x += 4) img.set(x, static_cast<int>(top + band), 0xdddddd);
+    auto py = [&](double v) { return top + band * (0.5 - 0.85 * (v - mid) / range); };
+    for (std::size_t i = 1; i < series[k].size(); ++i)
+      line(img, px(i - 1), py(series[k][i - 1]), px(i), py(series[k][i]), palette(static_cast<int>(k)));
+  }
+  return img;
+}
+
+Image plot_trajectories(const std::vector<Pose>& frames, const std::vector<int>& groups, int coordinate,
+                        int width, int height) {
+  if (frames.empty() || coordinate < 0 || coordinate >= frames[0].cols())
+    throw InvalidInput("plot_trajectories: no frames or bad coordinate");
+  const Eigen::Index n = frames[0].rows();
+  std::vector<Eigen::Index> best;   // per group: landmark with the largest range
+  std::vector<double> range;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const int g = static_cast<std::size_t>(i) < groups.size() ? groups[static_cast<std::size_t>(i)] : 0;
+    if (g < 0 || g > 1000) throw InvalidInput("plot_trajectories: group ids must be in [0, 1000]");
+    if (static_cast<std::size_t>(g) >= best.size()) best.resize(static_cast<std::size_t>(g) + 1, -1), range.resize(best.size(), -1.0);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Pose& p : frames) {
+      if (p.rows() != n) throw InvalidInput("plot_trajectories: frames differ in landmark count");
+      lo = std::min(lo, p(i, coordinate));
+      hi = std::max(hi, p(i, coordinate));
+    }
+    if (hi - lo > range[static_cast<std::size_t>(g)]) range[static_cast<std::size_t>(g)] = hi - lo, best[static_cast<std::size_t>(g)] = i;
+  }
+  std::vector<std::vector<double>> series;
+  for (Eigen::Index i : best) {
+    series.emplace_back();
+    if (i < 0) continue;
+    // Image y grows downwards: plot −y so "up in the face" is up in the plot.
+    for (const Pose& p : frames) series.back().push_back(coordinate == 1 ? -p(i, 1) : p(i, coordinate));
+  }
+  return plot_series(series, width, height);
+}
+
+namespace {
+void put32(std::string& out, std::uint32_t v) {
+  for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<char>((v >> s) & 0xff));
+}
+void chunk(std::string& out, const char* type, const std::string& data) {
+  put32(out, static_cast<std::uint32_t>(data.size()));
+  const std::string body = std::string(type, 4) + data;
+  out += body;
+  put32(out, static_cast<std::uint32_t>(crc32(0L, reinterpret_cast<const Bytef*>(body.data()),
+                                              static_cast<uInt>(body.size()))));
+}
+}  // namespace
+
+std::string encode_png(const Image& image) {
+  if (image.width < 1 || image.height < 1 ||
+      image.rgb.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3)
+    throw InvalidInput("encode_png: inconsistent image");
+  std::string raw;
+  raw.reserve(image.rgb.size() + static_cast<std::size_t>(image.height));
+  const std::size_t stride = static_cast<std::size_t>(image.width) * 3;
+  for (int y = 0; y < image.height; ++y) {
+    raw.push_back('\0');  // filter: none
+    raw.append(reinterpret_cast<const char*>(image.rgb.data()) + static_cast<std::size_t>(y) * stride, stride);
+  }
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  std::string z(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(z.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
+                static_cast<uLong>(raw.size()), 9) != Z_OK)
+    throw Error("encode_png: zlib compression failed");
+  z.resize(size);
+  std::string out("\x89PNG\r\n\x1a\n", 8);
+  std::string ihdr;
+  put32(ihdr, static_cast<std::uint32_t>(image.width));
+  put32(ihdr, static_cast<std::uint32_t>(image.height));
+  ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8-bit RGB, deflate, no filter, no interlace
+  chunk(out, "IHDR", ihdr);
+  chunk(out, "IDAT", z);
+  chunk(out, "IEND", "");
+  return out;
+}
+
+}  // namespace emoface::motiongraph
