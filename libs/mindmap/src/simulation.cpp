@@ -50,13 +50,15 @@ std::size_t choose_response(const MindMap& map, std::size_t emotion, double mood
   for (const auto& e : map.response_edges)
     if (e.emotion == emotion) best = std::min(best, std::fabs(e.weight - mood_value));
   if (!std::isfinite(best)) return kNone;
-  std::size_t candidates[64];
+  // Allocation-free: count the candidates, draw one, find it.
+  const double limit = best + tie_tolerance + 1e-12;
   std::size_t count = 0;
   for (const auto& e : map.response_edges)
-    if (e.emotion == emotion && std::fabs(e.weight - mood_value) <= best + tie_tolerance + 1e-12 &&
-        count < 64)
-      candidates[count++] = e.action;
-  return count == 1 ? candidates[0] : candidates[rng.uniform_int(count)];
+    count += e.emotion == emotion && std::fabs(e.weight - mood_value) <= limit;
+  std::size_t pick = count == 1 ? 0 : static_cast<std::size_t>(rng.uniform_int(count));
+  for (const auto& e : map.response_edges)
+    if (e.emotion == emotion && std::fabs(e.weight - mood_value) <= limit && pick-- == 0) return e.action;
+  return kNone;  // unreachable
 }
 
 std::vector<std::size_t> chain_from(const MindMap& map, std::size_t first, std::size_t max_length) {
