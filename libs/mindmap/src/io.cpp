@@ -92,6 +92,33 @@ Json to_json_array(const std::vector<double>& v) {
   return a;
 }
 
+
+// Calls fn(object, line) for every non-blank NDJSON line that does not start with '#'. A syntax
+// error becomes a FormatError naming the line (and the column within it).
+template <class Fn>
+void for_each_ndjson(std::string_view text, const std::string& file, Fn fn) {
+  std::size_t line_no = 0, pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    const auto first = line.find_first_not_of(" \t");
+    if (first == std::string_view::npos || line[first] == '#') continue;
+    Json j;
+    try {
+      j = core::parse_json(line, file);
+    } catch (const FormatError& e) {
+      throw FormatError(SourceLocation{file, "", line_no, e.where().column}, e.message());
+    }
+    const Parser p(file, line_no, true);
+    p.object(j, "");
+    fn(j, p, line_no);
+  }
+}
+
 }  // namespace
 
 MindMap parse_mind_map(std::string_view json_text, const std::string& file,
@@ -329,27 +356,10 @@ std::vector<MindMap> read_mind_map_dir(const std::string& dir,
 
 std::vector<Event> parse_events(std::string_view text, const std::string& file) {
   std::vector<Event> events;
-  std::size_t line_no = 0, pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    const auto first = line.find_first_not_of(" \t");
-    if (first == std::string_view::npos || line[first] == '#') continue;
-    Json j;
-    try {
-      j = core::parse_json(line, file);
-    } catch (const FormatError& e) {
-      throw FormatError(SourceLocation{file, "", line_no, e.where().column}, e.message());
-    }
-    const Parser p(file, line_no, true);
-    p.object(j, "");
+  for_each_ndjson(text, file, [&](const Json& j, const Parser& p, std::size_t line) {
     p.only_keys(j, "", {"time", "to", "stimulus", "from", "weights"});
     Event ev;
-    ev.line = line_no;
+    ev.line = line;
     ev.time = p.number(p.member(j, "", "time"), "/time", 0.0, 1e9);
     ev.target = p.string(p.member(j, "", "to"), "/to");
     ev.stimulus = p.string(p.member(j, "", "stimulus"), "/stimulus");
@@ -360,7 +370,7 @@ std::vector<Event> parse_events(std::string_view text, const std::string& file) 
         ev.weights.emplace_back(it.key(), p.number(it.value(), "/weights/" + core::json_pointer_token(it.key()), 0.0, 1.0));
     }
     events.push_back(std::move(ev));
-  }
+  });
   return events;
 }
 
@@ -427,22 +437,7 @@ std::string actions_to_ndjson(const std::vector<TriggeredAction>& actions) {
 
 std::vector<TriggeredAction> parse_actions(std::string_view text, const std::string& file) {
   std::vector<TriggeredAction> out;
-  std::size_t line_no = 0, pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;
-    Json j;
-    try {
-      j = core::parse_json(line, file);
-    } catch (const FormatError& e) {
-      throw FormatError(SourceLocation{file, "", line_no, e.where().column}, e.message());
-    }
-    const Parser p(file, line_no, true);
-    p.object(j, "");
+  for_each_ndjson(text, file, [&](const Json& j, const Parser& p, std::size_t) {
     p.only_keys(j, "", {"time", "character", "action", "label", "emotion", "mood", "cause", "stimulus", "depth"});
     TriggeredAction a;
     a.time = p.number(p.member(j, "", "time"), "/time", 0.0, 1e9);
@@ -460,7 +455,7 @@ std::vector<TriggeredAction> parse_actions(std::string_view text, const std::str
     a.stimulus = s.get<std::string>();
     a.chain_depth = static_cast<std::size_t>(p.number(p.member(j, "", "depth"), "/depth", 0.0, 1e6));
     out.push_back(std::move(a));
-  }
+  });
   return out;
 }
 
