@@ -249,3 +249,14 @@ TEST(ExampleData, TwoCharactersReactDifferentlyToTheSameStimuli) {
   ASSERT_FALSE(seq[1].empty());
   EXPECT_NE(seq[0], seq[1]);
 }
+
+// Golden output of the example characters, made with
+//   build/apps/mindmap/mindmap simulate --maps data/mindmap/characters --events data/mindmap/events.ndjson \
+//     --out /tmp/golden --seed 0 --no-charts && cp /tmp/golden/actions.ndjson tests/data/mindmap/example_actions_seed0.ndjson
+// A difference means the behaviour changed: check it, then regenerate.
+TEST(ExampleData, MatchesTheGoldenActions) {
+  const std::string dir = std::string(EMOFACE_SOURCE_DIR) + "/data/mindmap";
+  const auto r = mm::simulate(mm::read_mind_map_dir(dir + "/characters"), mm::read_events(dir + "/events.ndjson"), {});
+  EXPECT_EQ(mm::actions_to_ndjson(r.actions),
+            emoface::core::read_file(std::string(EMOFACE_TEST_DATA_DIR) + "/mindmap/example_actions_seed0.ndjson"));
+}

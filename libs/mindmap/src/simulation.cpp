@@ -35,6 +35,15 @@ void SimulationOptions::validate() const {
   if (!(duration >= 0.0 && duration <= 1e6)) bad("duration must be in [0, 1e6] seconds");
 }
 
+namespace {
+
+// "event on line 7: " (or "event: " when the line is unknown), the prefix of every event error.
+std::string event_prefix(const Event& event) {
+  return event.line ? "event on line " + std::to_string(event.line) + ": " : "event: ";
+}
+
+}  // namespace
+
 std::size_t top_emotion(const double* mood, std::size_t n) noexcept {
   std::size_t best = 0;
   for (std::size_t i = 1; i < n; ++i)
@@ -147,7 +156,7 @@ void World::advance_to(double t, std::vector<TriggeredAction>* out) {
 // emotional node and edge weights to be copied."
 std::size_t World::learn(std::size_t c, const Event& event) {
   MindMap& m = characters_[c].map;
-  const std::string where = event.line ? "event on line " + std::to_string(event.line) + ": " : "event: ";
+  const std::string where = event_prefix(event);
   if (!options_.copy_unknown_stimuli)
     throw InvalidInput(where + "character \"" + m.character + "\" has no stimulus \"" + event.stimulus + "\"");
   std::vector<std::pair<std::size_t, double>> edges;  // (emotion in m, weight)
@@ -223,7 +232,7 @@ void World::deliver(std::size_t c, const Event& event, std::vector<TriggeredActi
 }
 
 void World::apply(const Event& event, std::vector<TriggeredAction>* out) {
-  const std::string where = event.line ? "event on line " + std::to_string(event.line) + ": " : "event: ";
+  const std::string where = event_prefix(event);
   if (!std::isfinite(event.time) || event.time < time_)
     throw InvalidInput(where + "time must be finite and not before the previous event");
   if (event.stimulus.empty()) throw InvalidInput(where + "empty stimulus name");
