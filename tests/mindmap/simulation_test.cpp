@@ -222,6 +222,17 @@ TEST(World, BadEventsAreRejectedWithTheirLine) {
   EXPECT_THROW(mm::World({make_alice(), make_alice()}), emoface::InvalidInput);
 }
 
+TEST(World, AFailingEventLeavesTheWorldUnchanged) {
+  mm::World w({make_alice(), make_bob()});
+  const std::vector<double> before = w.mood(0);
+  // alice knows "gift", bob does not and nothing carries its weights: nobody is touched.
+  EXPECT_THROW(w.apply(event(1.0, "*", "gift"), nullptr), emoface::InvalidInput);
+  EXPECT_EQ(w.mood(0), before);
+  EXPECT_EQ(w.time(), 0.0);
+  EXPECT_TRUE(w.copied().empty());
+  EXPECT_FALSE(w.map(1).find_action("gift"));
+}
+
 TEST(World, OptionsAreValidated) {
   auto bad = [](auto mutate) {
     mm::SimulationOptions o;

@@ -154,13 +154,15 @@ void World::advance_to(double t, std::vector<TriggeredAction>* out) {
 // paper §6.1: "the character will copy the stimulus and respective emotional weights from the mind
 // map of the stimulus source. For world stimuli ... the particular stimulus should contain the
 // emotional node and edge weights to be copied."
-std::size_t World::learn(std::size_t c, const Event& event) {
-  MindMap& m = characters_[c].map;
+World::CopyPlan World::plan_copy(std::size_t c, const Event& event) const {
+  const MindMap& m = characters_[c].map;
   const std::string where = event_prefix(event);
   if (!options_.copy_unknown_stimuli)
     throw InvalidInput(where + "character \"" + m.character + "\" has no stimulus \"" + event.stimulus + "\"");
-  std::vector<std::pair<std::size_t, double>> edges;  // (emotion in m, weight)
-  std::string from = "world";
+  if (m.find_emotion(event.stimulus))
+    throw InvalidInput(where + "stimulus \"" + event.stimulus + "\" is an emotion node of \"" + m.character + "\"");
+  CopyPlan plan;
+  plan.from = "world";
   const MindMap* src = nullptr;
   std::optional<std::size_t> src_action;
   if (!event.source.empty()) {
@@ -169,41 +171,44 @@ std::size_t World::learn(std::size_t c, const Event& event) {
     if (src_action && !src->actions[*src_action].receivable) src_action.reset();
   }
   if (src_action) {
-    from = src->character;
+    plan.from = src->character;
     for (const auto& e : src->stimulus_edges)
       if (e.action == *src_action)
-        if (auto me = m.find_emotion(src->emotions[e.emotion])) edges.emplace_back(*me, e.weight);
+        if (auto me = m.find_emotion(src->emotions[e.emotion])) plan.edges.emplace_back(*me, e.weight);
   } else if (!event.weights.empty()) {
     for (const auto& [name, w] : event.weights) {
       if (!std::isfinite(w) || w < 0.0 || w > 1.0)
         throw InvalidInput(where + "weight of \"" + name + "\" must be in [0, 1]");
-      if (auto me = m.find_emotion(name)) edges.emplace_back(*me, w);
+      if (auto me = m.find_emotion(name)) plan.edges.emplace_back(*me, w);
     }
   } else {
     throw InvalidInput(where + "character \"" + m.character + "\" has no stimulus \"" + event.stimulus +
                        "\", and neither the source nor the event carries its weights");
   }
+  return plan;
+}
+
+std::size_t World::learn(std::size_t c, const Event& event, const CopyPlan& plan) {
+  MindMap& m = characters_[c].map;
   std::size_t a;
   if (auto existing = m.find_action(event.stimulus)) {
-    a = *existing;
-  } else if (m.find_emotion(event.stimulus)) {
-    throw InvalidInput(where + "stimulus \"" + event.stimulus + "\" is an emotion node of \"" +
-                       m.character + "\"");
+    a = *existing;  // a performing-only action becomes receivable
   } else {
     a = m.actions.size();
     m.actions.push_back({event.stimulus, true, false, {}});
   }
   m.actions[a].receivable = true;
-  for (const auto& [e, w] : edges) m.stimulus_edges.push_back({a, e, w});
-  copied_.push_back({event.time, m.character, event.stimulus, from, edges.size()});
+  for (const auto& [e, w] : plan.edges) m.stimulus_edges.push_back({a, e, w});
+  copied_.push_back({event.time, m.character, event.stimulus, plan.from, plan.edges.size()});
   return a;
 }
 
-void World::deliver(std::size_t c, const Event& event, std::vector<TriggeredAction>* out) {
+void World::deliver(std::size_t c, const Event& event, const CopyPlan* plan,
+                    std::vector<TriggeredAction>* out) {
   Character& ch = characters_[c];
   const std::size_t n = ch.map.emotion_count();
   std::optional<std::size_t> a = ch.map.find_action(event.stimulus);
-  if (!a || !ch.map.actions[*a].receivable) a = learn(c, event);
+  if (plan) a = learn(c, event, *plan);
   const Traits& tr = ch.map.traits;
   // paper §6.1 step 1: the stimulus' emotion weights (ActionEmot)
   std::fill(ch.scratch.begin(), ch.scratch.end(), 0.0);
@@ -244,11 +249,20 @@ void World::apply(const Event& event, std::vector<TriggeredAction>* out) {
     if (!target) throw InvalidInput(where + "unknown target character \"" + event.target + "\"");
     if (event.target == event.source) throw InvalidInput(where + "a character cannot stimulate itself");
   }
-  advance_to(event.time, out);
+  // Every target is checked (and its copy planned) before any state changes, so a bad event leaves
+  // the world as it was.
+  std::vector<std::size_t> targets;
+  std::vector<std::optional<CopyPlan>> plans;
   for (std::size_t c = 0; c < characters_.size(); ++c) {
     if (target ? c != *target : characters_[c].map.character == event.source) continue;
-    deliver(c, event, out);
+    const MindMap& m = characters_[c].map;
+    const auto a = m.find_action(event.stimulus);
+    targets.push_back(c);
+    plans.push_back(a && m.actions[*a].receivable ? std::nullopt : std::optional<CopyPlan>(plan_copy(c, event)));
   }
+  advance_to(event.time, out);
+  for (std::size_t k = 0; k < targets.size(); ++k)
+    deliver(targets[k], event, plans[k] ? &*plans[k] : nullptr, out);
 }
 
 SimulationResult simulate(std::vector<MindMap> maps, std::vector<Event> events,

@@ -112,7 +112,7 @@ class World {
 
   /// advance_to(event.time), then delivers the stimulus to its target(s): eqs. 2–4, action choice,
   /// chain. Throws InvalidInput for unknown characters, an unknown stimulus that cannot be copied,
-  /// bad weights or an event in the past (messages name the event's line).
+  /// bad weights or an event in the past (messages name the event's line); the world is then unchanged.
   void apply(const Event& event, std::vector<TriggeredAction>* out);
 
  private:
@@ -123,8 +123,13 @@ class World {
     bool decaying = true;
     core::Rng rng;
   };
-  void deliver(std::size_t c, const Event& event, std::vector<TriggeredAction>* out);
-  std::size_t learn(std::size_t c, const Event& event);
+  struct CopyPlan {
+    std::vector<std::pair<std::size_t, double>> edges;  // (emotion node of the receiver, weight)
+    std::string from;                                   // source character or "world"
+  };
+  CopyPlan plan_copy(std::size_t c, const Event& event) const;  // throws if it cannot be copied
+  std::size_t learn(std::size_t c, const Event& event, const CopyPlan& plan);
+  void deliver(std::size_t c, const Event& event, const CopyPlan* plan, std::vector<TriggeredAction>* out);
   void decay(Character& ch, double t, std::vector<TriggeredAction>* out);
 
   std::vector<Character> characters_;
