@@ -106,6 +106,8 @@ int main(int argc, char** argv) {
   sim->add_option("--tie-tolerance", a.sim.tie_tolerance, "near-equal edge tolerance")->capture_default_str();
   sim->add_option("--chain-delay", a.sim.chain_delay, "seconds between chained actions")->capture_default_str();
   sim->add_option("--decay-interval", a.sim.decay_interval, "seconds between decay hints")->capture_default_str();
+  sim->add_option("--propagate", a.sim.propagation_depth, "hops a performed stimulus travels to the others (0 = off)")
+      ->capture_default_str();
   sim->add_option("--hint-fraction", a.motion.hint_path_fraction, "path fraction of decay hints")
       ->capture_default_str();
   sim->add_option("--chart-width", a.chart.width, "chart pixels")->capture_default_str();

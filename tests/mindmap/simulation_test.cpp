@@ -312,3 +312,40 @@ TEST(Simulate, PropertyMoodStaysInRangeForRandomWorlds) {
     }
   }
 }
+
+TEST(Simulate, PerformedStimuliPropagateBetweenCharactersUpToTheDepth) {
+  // bob answers an insult with an insult (receive + perform); alice answers one with "retort", which
+  // is also a stimulus, so insults could ping-pong for ever without the depth limit.
+  mm::MindMap a = make_alice(), b = make_bob();
+  b.response_edges = {{0, 0, 0.7}};  // anger → insult
+  a.actions.push_back({"retort", true, true, "anger"});
+  a.response_edges.push_back({1, 6, 0.5});  // sadness → retort
+  a.stimulus_edges.push_back({6, 1, 0.6});  // retort → sadness
+  mm::SimulationOptions o;
+  o.tie_tolerance = 0.0;
+  o.duration = 2.0;
+  const std::vector<mm::Event> events = {event(1.0, "bob", "insult", "alice")};
+  auto performed = [&](std::size_t depth) {
+    o.propagation_depth = depth;
+    std::vector<std::string> seq;
+    for (const auto& x : mm::simulate({a, b}, events, o).actions)
+      if (x.cause == mm::Cause::Stimulus) seq.push_back(x.character + ":" + x.action + "<-" + x.stimulus);
+    return seq;
+  };
+  EXPECT_EQ(performed(0), (std::vector<std::string>{"bob:insult<-insult"}));
+  EXPECT_EQ(performed(1), (std::vector<std::string>{"bob:insult<-insult", "alice:sigh<-insult"}));
+  // Depth 3: bob insults, alice sighs (not a stimulus): the chain stops by itself.
+  EXPECT_EQ(performed(3), performed(1));
+  // With alice retorting, the exchange is cut after `depth` hops; bob learns "retort" from alice.
+  a.response_edges = {{1, 6, 0.5}};
+  b.response_edges = {{0, 0, 0.7}, {1, 0, 0.4}};  // bob also insults when sad
+  const auto r = [&] { o.propagation_depth = 3; return mm::simulate({a, b}, events, o); }();
+  std::vector<std::string> seq;
+  for (const auto& x : r.actions)
+    if (x.cause == mm::Cause::Stimulus) seq.push_back(x.character + ":" + x.action);
+  EXPECT_EQ(seq, (std::vector<std::string>{"bob:insult", "alice:retort", "bob:insult", "alice:retort"}));
+  ASSERT_EQ(r.copied.size(), 1u);
+  EXPECT_EQ(r.copied[0].character, "bob");
+  EXPECT_EQ(r.copied[0].stimulus, "retort");
+  EXPECT_EQ(r.copied[0].from, "alice");
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <queue>
 #include <set>
 
 #include "emoface/core/errors.hpp"
@@ -33,6 +34,7 @@ void SimulationOptions::validate() const {
   if (!(sigmoid_steepness > 0.0 && sigmoid_steepness <= 200.0)) bad("sigmoid_steepness must be in (0, 200]");
   if (!(frame_rate > 0.0 && frame_rate <= 1000.0)) bad("frame_rate must be in (0, 1000]");
   if (!(duration >= 0.0 && duration <= 1e6)) bad("duration must be in [0, 1e6] seconds");
+  if (propagation_depth > 64) bad("propagation_depth must be <= 64");
 }
 
 namespace {
@@ -283,18 +285,46 @@ SimulationResult simulate(std::vector<MindMap> maps, std::vector<Event> events,
   for (std::size_t c = 0; c < world.size(); ++c) r.characters.push_back(world.map(c).character);
   r.mood.resize(world.size());
   const auto samples = static_cast<std::size_t>(std::floor(duration * options.frame_rate + 1e-9)) + 1;
-  std::size_t next_event = 0;
+  // Pending events in time order (ties: first queued first); propagated actions join the queue.
+  struct Pending {
+    double time;
+    std::size_t seq, depth;
+    Event event;
+  };
+  auto later = [](const Pending& a, const Pending& b) { return a.time != b.time ? a.time > b.time : a.seq > b.seq; };
+  std::priority_queue<Pending, std::vector<Pending>, decltype(later)> queue(later);
+  std::size_t seq = 0;
+  for (auto& e : events) queue.push({e.time, seq++, 0, std::move(e)});
+  std::vector<TriggeredAction> fresh;
+  auto run_next = [&] {
+    Pending p = queue.top();
+    queue.pop();
+    fresh.clear();
+    world.apply(p.event, &fresh);
+    for (const auto& a : fresh) {
+      // §6.1 "as the characters interact": a performed action that is also a stimulus in the
+      // performer's map reaches every other character, up to propagation_depth hops.
+      if (p.depth < options.propagation_depth && a.cause != Cause::Decay) {
+        const MindMap& m = world.map(*world.find(a.character));
+        const auto ia = m.find_action(a.action);
+        if (ia && m.actions[*ia].receivable) {
+          Event e{a.time, "*", a.action, a.character, {}, p.event.line};
+          queue.push({a.time, seq++, p.depth + 1, std::move(e)});
+        }
+      }
+      r.actions.push_back(a);
+    }
+  };
   for (std::size_t k = 0; k < samples; ++k) {
     const double t = static_cast<double>(k) / options.frame_rate;
-    while (next_event < events.size() && events[next_event].time <= t)
-      world.apply(events[next_event++], &r.actions);
+    while (!queue.empty() && queue.top().time <= t) run_next();
     world.advance_to(t, &r.actions);
     r.times.push_back(t);
     for (std::size_t c = 0; c < world.size(); ++c)
       r.mood[c].insert(r.mood[c].end(), world.mood(c).begin(), world.mood(c).end());
   }
   // Events after the timeline still count (their actions are reported).
-  while (next_event < events.size()) world.apply(events[next_event++], &r.actions);
+  while (!queue.empty()) run_next();
   std::stable_sort(r.actions.begin(), r.actions.end(),
                    [](const TriggeredAction& a, const TriggeredAction& b) { return a.time < b.time; });
   r.copied = world.copied();

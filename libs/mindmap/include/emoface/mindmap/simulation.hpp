@@ -75,6 +75,11 @@ struct SimulationOptions {
   /// simulate(): length of the timeline in seconds; 0 = until the last event's decay has ended
   /// (rounded up to a whole sample).
   double duration = 0.0;
+  /// simulate(): a performed action that is also a stimulus of the performer's map (receive and
+  /// perform) is delivered to every other character (source = the performer, so the affection and
+  /// stimulus copying apply) at the action's time, up to this many hops per original event, [0, 64];
+  /// 0 = off (stimuli come only from the events).
+  std::size_t propagation_depth = 0;
   std::uint64_t seed = 0;  ///< character c draws from core::Rng(seed, c)
   void validate() const;   ///< throws InvalidInput
 };
