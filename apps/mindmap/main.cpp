@@ -9,7 +9,9 @@
 #include "emoface/core/version.hpp"
 #include "emoface/mindmap/chart.hpp"
 #include "emoface/mindmap/io.hpp"
+#include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmotion/behaviour.hpp"
+#include "emoface/mindmotion/muscle_tracks.hpp"
 #include "emoface/motiongraph/io.hpp"
 #include "emoface/motiongraph/render.hpp"
 
@@ -20,15 +22,14 @@ namespace cli = emoface::cli;
 namespace {
 
 struct Args {
-  std::string maps, events, out, graph, mood_form = "sum";
+  std::string maps, events, out, graph, rig, mood_form = "sum";
   mm::SimulationOptions sim;
   mm::ChartOptions chart;
   emoface::mindmotion::BehaviourMotionOptions motion;
-  bool no_charts = false;
+  bool no_charts = false, muscles = false;
 };
 
-// Character names become file names: keep them portable.
-std::string file_stem(const std::string& name) {
+std::string file_stem(const std::string& name) {  // character names become file names: keep them portable
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') || name[0] == '.')
       throw emoface::InvalidInput("character \"" + name + "\": only letters, digits, '_', '-' and '.' "
@@ -50,6 +51,14 @@ int simulate(Args& a) {
   const std::vector<mm::MindMap> maps = mm::read_mind_map_dir(a.maps, labels);
   for (const auto& m : maps) file_stem(m.character);
   const mm::SimulationResult r = mm::simulate(maps, mm::read_events(a.events), a.sim);
+  std::unique_ptr<emoface::muscles::FaceSolver> face;
+  std::unique_ptr<emoface::bridge::LandmarkFitter> fitter;
+  if (a.muscles) {
+    if (!graph) throw cli::UsageError("--muscles needs --graph");
+    auto f = a.rig.empty() ? emoface::facemesh::make_default_face() : emoface::facemesh::load_face(a.rig);
+    face = std::make_unique<emoface::muscles::FaceSolver>(std::move(f.mesh), std::move(f.rig));
+    fitter = std::make_unique<emoface::bridge::LandmarkFitter>(*face);
+  }
 
   // Everything is computed before anything is written.
   std::vector<std::pair<std::string, std::string>> files;
@@ -70,6 +79,13 @@ int simulate(Args& a) {
                                                                     r.duration, a.motion);
       files.emplace_back(stem + "_motion.json", mg::database_to_json(emoface::mindmotion::to_database(*graph, motion)));
       files.emplace_back(stem + "_segments.csv", emoface::mindmotion::segments_csv(motion));
+      if (fitter) {
+        emoface::mindmotion::TrackFitSummary fs;
+        const auto frames = emoface::mindmotion::fit_muscle_tracks(*fitter, *graph, motion, &fs);
+        files.emplace_back(stem + "_muscles.csv", emoface::muscles::format_parameter_frames_csv(frames));
+        std::cout << maps[c].character << ": muscle fit RMS residual mean " << fs.mean_rms * 1e3 << " mm, max "
+                  << fs.max_rms * 1e3 << " mm, " << fs.not_converged << " frame(s) at the iteration limit\n";
+      }
       std::cout << maps[c].character << ": " << motion.frames.size() << " frames, " << motion.segments.size()
                 << " segments, " << motion.dropped_hints << " decay hints dropped (face busy)\n";
     }
@@ -77,8 +93,7 @@ int simulate(Args& a) {
   std::filesystem::create_directories(a.out);
   for (const auto& [path, content] : files) emoface::core::write_file_atomic(path, content);
   for (const auto& s : r.copied)
-    std::cout << s.character << " learnt stimulus \"" << s.stimulus << "\" from " << s.from << " at t="
-              << s.time << " s (" << s.edges << " edge(s))\n";
+    std::cout << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time << " s\n";
   std::cout << r.actions.size() << " action(s) by " << maps.size() << " character(s) over " << r.duration
             << " s; wrote " << files.size() << " file(s) to " << a.out << "\n";
   return cli::kExitOk;
@@ -99,6 +114,8 @@ int main(int argc, char** argv) {
   sim->add_option("--events", a.events, "stimuli (NDJSON, see docs/mindmap.md)")->required();
   sim->add_option("--out", a.out, "output directory")->required();
   sim->add_option("--graph", a.graph, "motion graph (mgraph build): also synthesize landmark motion");
+  sim->add_flag("--muscles", a.muscles, "also fit muscle tracks (faceanim CSV) to the motion (needs --graph)");
+  sim->add_option("--rig", a.rig, "rig for --muscles (default: the built-in default face)");
   sim->add_option("--seed", a.sim.seed, "random seed (near-tie choices, motion variation)")->capture_default_str();
   sim->add_option("--mood-form", a.mood_form, "sum|printed reading of eq. 4")->capture_default_str();
   sim->add_option("--frame-rate", a.sim.frame_rate, "mood samples per second")->capture_default_str();

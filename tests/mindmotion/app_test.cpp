@@ -69,6 +69,15 @@ TEST(MindmapApp, SynthesizesMotionWithAGraph) {
   for (const auto& s : motion.sequences) frames += s.frames.size();
   EXPECT_GT(frames, 300u);  // > 10 s at 30 fps
   EXPECT_TRUE(fs::exists(dir / "out" / "ben_segments.csv"));
+  // Muscle tracks fitted on the default face, ready for faceanim (one row per landmark frame).
+  ASSERT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --no-charts --muscles " +
+                "--duration 4 --graph " + (dir / "graph.json").string() + " --out " + (dir / "m").string()),
+            0);
+  const std::string tracks = emoface::core::read_file((dir / "m" / "ana_muscles.csv").string());
+  EXPECT_EQ(tracks.substr(0, 22), "time,zygomatic_major_l");
+  EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --muscles --out " +
+                (dir / "x").string()),
+            1);  // --muscles needs --graph
   EXPECT_FALSE(fs::exists(dir / "out" / "ana_mood.png"));
   EXPECT_EQ(run("check --maps " + kData + "/characters --graph " + (dir / "graph.json").string()), 0);
   fs::remove_all(dir);

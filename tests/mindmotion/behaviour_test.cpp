@@ -1,4 +1,5 @@
 #include "emoface/mindmotion/behaviour.hpp"
+#include "emoface/mindmotion/muscle_tracks.hpp"
 
 #include <algorithm>
 
@@ -111,4 +112,28 @@ TEST(Behaviour, DeterministicPerSeedAndBadInputThrows) {
   EXPECT_THROW(mo::synthesize_behaviour(small_graph(), actions, "ana", 0, -1.0), emoface::InvalidInput);
   for (auto k : {mo::SegmentKind::Action, mo::SegmentKind::Hint, mo::SegmentKind::Idle})
     EXPECT_EQ(mo::segment_kind_from_string(mo::to_string(k)), k);
+}
+
+TEST(MuscleTracks, NeutralPoseAndDisplacementsInFaceUnits) {
+  const Eigen::MatrixXd neutral = mo::graph_neutral_ibug68(small_graph());
+  ASSERT_EQ(neutral.rows(), 68);
+  EXPECT_TRUE(neutral.row(36).allFinite());
+  EXPECT_TRUE(neutral.row(45).allFinite());
+  // A motion that is the neutral pose everywhere has zero displacement on every observed landmark.
+  mo::CharacterMotion still;
+  still.frame_rate = 30.0;
+  mg::Pose pose(static_cast<Eigen::Index>(small_graph().landmark_ids().size()), 2);
+  const auto ids = small_graph().landmark_ids();
+  for (std::size_t i = 0; i < ids.size(); ++i) pose.row(static_cast<Eigen::Index>(i)) = neutral.row(ids[i]);
+  still.frames = {pose, pose};
+  Eigen::MatrixXd face = Eigen::MatrixXd::Zero(68, 3);
+  face.row(36) << -0.04, 0.0, 0.0;
+  face.row(45) << 0.04, 0.0, 0.0;
+  const auto d = mo::face_displacements(small_graph(), still, face);
+  ASSERT_EQ(d.size(), 2u);
+  for (std::size_t i = 0; i < ids.size(); ++i) EXPECT_EQ(d[0].row(ids[i]).norm(), 0.0);
+  // One pixel to the right of the neutral pose = (eye-corner distance in m / in px) metres.
+  still.frames[1](0, 0) += 1.0;
+  const double scale = 0.08 / (neutral.row(45) - neutral.row(36)).norm();
+  EXPECT_NEAR(mo::face_displacements(small_graph(), still, face)[1](ids[0], 0), scale, 1e-15);
 }

@@ -219,7 +219,7 @@ Eigen::MatrixXd image_to_face(const Eigen::MatrixXd& displacement_px, const Eige
     throw InvalidInput("image_to_face: expected 68 by 2 displacements and neutral pose, 68 by 3 face landmarks");
   const double px = (neutral_px.row(45) - neutral_px.row(36)).norm();
   const double m = (face_neutral.row(45).head<2>() - face_neutral.row(36).head<2>()).norm();
-  if (!(px > 0.0) || !(m > 0.0) || !std::isfinite(px / m)) throw InvalidInput("image_to_face: degenerate eye corners");
+  if (!(px > 0.0) || !(m > 0.0) || !std::isfinite(px / m)) throw InvalidInput("image_to_face: the outer eye corners (iBUG 36, 45) are missing or coincide");
   Eigen::MatrixXd out = displacement_px * (m / px);
   out.col(1) *= -1.0;  // image y points down, face y up
   return out;

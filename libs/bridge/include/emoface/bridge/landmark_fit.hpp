@@ -62,6 +62,8 @@ class LandmarkFitter {
                                              std::vector<FitReport>* reports = nullptr) const;
 
   const FitOptions& options() const noexcept { return options_; }
+  /// The 68 iBUG landmarks of the neutral face (68 by 3, metres).
+  const Eigen::MatrixXd& neutral_landmarks() const noexcept { return neutral_; }
 
  private:
   const muscles::FaceSolver& solver_;
