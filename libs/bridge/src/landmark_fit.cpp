@@ -168,12 +168,13 @@ FitReport LandmarkFitter::fit(const Eigen::MatrixXd& target, std::vector<double>
     problem.SetParameterUpperBound(p.data(), j, 1.0);
   }
   ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   so.max_num_iterations = options_.max_iterations;
   so.num_threads = 1;
-  so.function_tolerance = 1e-12;
-  so.gradient_tolerance = 1e-14;
-  so.parameter_tolerance = 1e-10;
+  so.trust_region_strategy_type = ceres::DOGLEG;
+  so.function_tolerance = 1e-8;
+  so.gradient_tolerance = 1e-12;
+  so.parameter_tolerance = 1e-8;
   so.logging_type = ceres::SILENT;
   so.minimizer_progress_to_stdout = false;
   ceres::Solver::Summary summary;
