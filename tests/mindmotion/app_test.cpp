@@ -61,7 +61,7 @@ TEST(MindmapApp, SynthesizesMotionWithAGraph) {
   o.max_frames = 12;
   const auto db = mg::generate_synthetic_database(mg::ParametricLandmarkModel(), o);
   mg::write_graph((dir / "graph.json").string(), mg::build_graph(mg::preprocess(db, mg::default_layout())));
-  ASSERT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --no-charts --graph " +
+  ASSERT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --no-charts --duration 12 --graph " +
                 (dir / "graph.json").string() + " --out " + (dir / "out").string()),
             0);
   const auto motion = mg::parse_database_json(emoface::core::read_file((dir / "out" / "ana_motion.json").string()));
@@ -71,7 +71,7 @@ TEST(MindmapApp, SynthesizesMotionWithAGraph) {
   EXPECT_TRUE(fs::exists(dir / "out" / "ben_segments.csv"));
   // Muscle tracks fitted on the default face, ready for faceanim (one row per landmark frame).
   ASSERT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --no-charts --muscles " +
-                "--duration 4 --graph " + (dir / "graph.json").string() + " --out " + (dir / "m").string()),
+                "--duration 2 --graph " + (dir / "graph.json").string() + " --out " + (dir / "m").string()),
             0);
   const std::string tracks = emoface::core::read_file((dir / "m" / "ana_muscles.csv").string());
   EXPECT_EQ(tracks.substr(0, 22), "time,zygomatic_major_l");

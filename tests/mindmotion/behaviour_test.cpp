@@ -50,6 +50,8 @@ TEST(Behaviour, SegmentsCoverTheTimelineWithIdleBetweenActions) {
       act(1.5, "gasp", "surprise", mm::Cause::Chain), act(5.0, "pout", "sadness", mm::Cause::Decay)};
   const auto m = mo::synthesize_behaviour(small_graph(), actions, "ana", 0, 8.0);
   ASSERT_GE(m.segments.size(), 5u);  // idle, smile, gasp, (idle), pout, idle
+  const auto cut = mo::synthesize_behaviour(small_graph(), actions, "ana", 0, 1.2);  // actions after 1.2 s ignored
+  EXPECT_EQ(cut.segments.size(), 2u);
   EXPECT_EQ(m.segments.front().kind, mo::SegmentKind::Idle);
   EXPECT_EQ(m.segments.front().label, "neutral");
   EXPECT_EQ(m.segments[1].action, "smile");
@@ -91,7 +93,7 @@ TEST(Behaviour, HintsUseOnlyTheInitialNodesAndAreDroppedWhenBusy) {
   for (std::size_t f = 0; f < whole.frames.size(); ++f) ASSERT_EQ(whole.frames[f], full.frames[f]);
   const auto busy = mo::synthesize_behaviour(
       small_graph(), {act(0.0, "a", "fear", mm::Cause::Stimulus), act(0.01, "b", "sadness", mm::Cause::Decay)},
-      "ana", 0, 0.0);
+      "ana", 0, 0.01);
   EXPECT_EQ(busy.dropped_hints, 1u);
   EXPECT_EQ(busy.segments.size(), 1u);
 }

@@ -130,7 +130,7 @@ CharacterMotion synthesize_behaviour(const mg::MotionGraph& graph,
   motion.frame_rate = graph.frame_rate;
   std::vector<const mindmap::TriggeredAction*> mine;
   for (const auto& a : actions)
-    if (a.character == character) mine.push_back(&a);
+    if (a.character == character && a.time <= duration) mine.push_back(&a);
   std::stable_sort(mine.begin(), mine.end(), [](auto* x, auto* y) { return x->time < y->time; });
   Animator animator(graph, motion, options, core::derive_seed(options.seed, character_index));
   for (const auto* a : mine) animator.perform(*a);

@@ -61,7 +61,8 @@ struct CharacterMotion {
 std::vector<std::string> graph_labels(const motiongraph::MotionGraph& graph);
 
 /// Animates `character` (index `character_index` in the world, used for the seed) from the actions
-/// of a simulation (other characters' actions are ignored) over [0, duration] seconds.
+/// of a simulation over [0, duration] seconds (other characters' actions and actions after `duration`
+/// are ignored; the last animation may run past `duration`).
 /// Throws InvalidInput for a label the graph cannot synthesize.
 CharacterMotion synthesize_behaviour(const motiongraph::MotionGraph& graph,
                                      const std::vector<mindmap::TriggeredAction>& actions,
