@@ -36,13 +36,13 @@ struct Segment {
   std::size_t frame_count = 0;
 };
 
+/// Stimulus and chained actions that arrive while the face is busy start as soon as it is free; decay
+/// hints that arrive while it is busy are dropped (they only hint at the mood).
 struct BehaviourMotionOptions {
   /// Leading fraction of each path used for decay hints (§6.1 "only the initial nodes"), (0, 1].
   double hint_path_fraction = 0.35;
   /// Gaps shorter than this (seconds) hold the last pose instead of idle movements, ≥ 0.
   double min_idle = 0.25;
-  /// Stimulus and chained actions that arrive while the face is busy start as soon as it is free;
-  /// decay hints that arrive while it is busy are dropped (they only hint at the mood).
   motiongraph::SynthesisOptions synthesis;  ///< seed is replaced by derive_seed(seed, character)
   motiongraph::IdleOptions idle;            ///< duration is set per gap; seed as above
   std::uint64_t seed = 0;
