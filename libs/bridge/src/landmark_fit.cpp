@@ -161,8 +161,36 @@ FitReport LandmarkFitter::fit(const Eigen::MatrixXd& target, std::vector<double>
   po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   std::vector<double> p = side;
-  problem.AddResidualBlock(new SurrogateCost(knots_, responses_, coords, t, side, options_.smoothness), nullptr,
-                           p.data());
+  auto* cost = new SurrogateCost(knots_, responses_, coords, t, side, options_.smoothness);
+  problem.AddResidualBlock(cost, nullptr, p.data());
+  // Initial guess: the bounded minimum of the model linearised at the warm start (projected
+  // Gauss–Seidel on the normal equations), so the trust region starts near the answer.
+  double warm_cost = 0.0;
+  for (int outer = 0; outer < 3; ++outer) {  // re-linearised where a parameter crossed a knot
+    const int m = cost->num_residuals(), n = static_cast<int>(kParams);
+    Eigen::VectorXd r(m);
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(m, n);
+    const double* params[] = {p.data()};
+    double* jac[] = {J.data()};
+    cost->Evaluate(params, r.data(), jac);
+    if (outer == 0) warm_cost = 0.5 * r.squaredNorm();
+    const Eigen::MatrixXd A = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * r;
+    Eigen::VectorXd delta = Eigen::VectorXd::Zero(n);
+    for (int sweep = 0; sweep < 300; ++sweep) {
+      double change = 0.0;
+      for (int j = 0; j < n; ++j) {
+        if (!(A(j, j) > 0.0)) continue;
+        const double grad = g(j) + A.row(j).dot(delta);
+        const double next = std::clamp(p[static_cast<std::size_t>(j)] + delta(j) - grad / A(j, j), 0.0, 1.0) -
+                            p[static_cast<std::size_t>(j)];
+        change = std::max(change, std::fabs(next - delta(j)));
+        delta(j) = next;
+      }
+      if (change < 1e-9) break;
+    }
+    for (int j = 0; j < n; ++j) p[static_cast<std::size_t>(j)] += delta(j);
+  }
   for (int j = 0; j < static_cast<int>(kParams); ++j) {
     problem.SetParameterLowerBound(p.data(), j, 0.0);
     problem.SetParameterUpperBound(p.data(), j, 1.0);
@@ -183,7 +211,7 @@ FitReport LandmarkFitter::fit(const Eigen::MatrixXd& target, std::vector<double>
   rep.converged = summary.termination_type == ceres::CONVERGENCE;
   rep.message = summary.message;
   rep.iterations = static_cast<int>(summary.iterations.size());
-  rep.initial_cost = summary.initial_cost;
+  rep.initial_cost = warm_cost;
   rep.final_cost = summary.final_cost;
   for (double& v : p) v = std::clamp(v, 0.0, 1.0);
   side = p;
