@@ -1,0 +1,39 @@
+#include "emoface/mindmap/chart.hpp"
+
+#include <gtest/gtest.h>
+
+#include "emoface/core/errors.hpp"
+#include "fixtures.hpp"
+
+namespace mm = emoface::mindmap;
+
+TEST(Chart, DrawsEveryEmotionAndTheActionTicks) {
+  mm::Event e;
+  e.time = 1.0;
+  e.target = "alice";
+  e.stimulus = "gift";
+  const auto r = mm::simulate({mm::test::make_alice()}, {e}, {});
+  const auto img = mm::mood_chart(r, mm::test::make_alice(), 0, {320, 120});
+  ASSERT_EQ(img.width, 320);
+  ASSERT_EQ(img.height, 120);
+  ASSERT_EQ(img.rgb.size(), 320u * 120u * 3u);
+  std::size_t count[2] = {0, 0}, white = 0;
+  for (std::size_t i = 0; i < img.rgb.size(); i += 3) {
+    const std::uint32_t c = (std::uint32_t{img.rgb[i]} << 16) | (std::uint32_t{img.rgb[i + 1]} << 8) | img.rgb[i + 2];
+    for (std::size_t k = 0; k < 2; ++k) count[k] += c == mm::emotion_colour(k);
+    white += c == 0xffffff;
+  }
+  EXPECT_GT(count[0], 200u);  // lines of ~300 px plus swatch and ticks
+  EXPECT_GT(count[1], 200u);
+  EXPECT_GT(white, img.rgb.size() / 3 / 2);
+  EXPECT_NE(mm::emotion_colour(0), mm::emotion_colour(1));
+}
+
+TEST(Chart, BadArgumentsThrow) {
+  const auto r = mm::simulate({mm::test::make_alice()}, {}, {});
+  EXPECT_THROW(mm::mood_chart(r, mm::test::make_alice(), 0, {10, 100}), emoface::InvalidInput);
+  EXPECT_THROW(mm::mood_chart(r, mm::test::make_alice(), 1), emoface::InvalidInput);
+  mm::MindMap three = mm::test::make_alice();
+  three.emotions.push_back("fear");
+  EXPECT_THROW(mm::mood_chart(r, three, 0, {100, 100}), emoface::InvalidInput);
+}

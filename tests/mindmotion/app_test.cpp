@@ -1,0 +1,101 @@
+// End-to-end tests of the mindmap CLI: run the built binary on the example characters.
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "emoface/core/io.hpp"
+#include "emoface/mindmap/io.hpp"
+#include "emoface/motiongraph/io.hpp"
+#include "emoface/motiongraph/layout.hpp"
+#include "emoface/motiongraph/preprocess.hpp"
+#include "emoface/motiongraph/synthetic.hpp"
+
+namespace fs = std::filesystem;
+namespace mg = emoface::motiongraph;
+
+namespace {
+
+const std::string kData = std::string(EMOFACE_SOURCE_DIR) + "/data/mindmap";
+
+int run(const std::string& args) {
+  const std::string cmd = std::string(MINDMAP_EXE) + " " + args + " >/dev/null 2>&1";
+  const int rc = std::system(cmd.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+fs::path scratch(const char* name) {
+  const fs::path p = fs::temp_directory_path() / (std::string("emoface_mindmap_app_") + name);
+  fs::remove_all(p);
+  return p;
+}
+
+}  // namespace
+
+TEST(MindmapApp, SimulatesTheExampleCharacters) {
+  const fs::path out = scratch("sim");
+  const std::string args = "simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --seed 3 --out ";
+  ASSERT_EQ(run(args + out.string()), 0);
+  for (const char* f : {"actions.ndjson", "actions.csv", "ana_mood.csv", "ben_mood.csv", "ana_mood.png", "ben_mood.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const auto actions = emoface::mindmap::parse_actions(emoface::core::read_file((out / "actions.ndjson").string()));
+  EXPECT_GT(actions.size(), 8u);
+  EXPECT_EQ(emoface::core::read_file((out / "ana_mood.png").string()).substr(1, 3), "PNG");
+  // Same seed, same bytes.
+  const fs::path again = scratch("sim2");
+  ASSERT_EQ(run(args + again.string()), 0);
+  for (const char* f : {"actions.ndjson", "ana_mood.csv", "ben_mood.png"})
+    EXPECT_EQ(emoface::core::read_file((out / f).string()), emoface::core::read_file((again / f).string())) << f;
+  fs::remove_all(out);
+  fs::remove_all(again);
+}
+
+TEST(MindmapApp, SynthesizesMotionWithAGraph) {
+  const fs::path dir = scratch("graph");
+  fs::create_directories(dir);
+  mg::SyntheticOptions o;
+  o.sequences_per_label = 2;
+  o.subjects = 3;
+  o.min_frames = 6;
+  o.max_frames = 12;
+  const auto db = mg::generate_synthetic_database(mg::ParametricLandmarkModel(), o);
+  mg::write_graph((dir / "graph.json").string(), mg::build_graph(mg::preprocess(db, mg::default_layout())));
+  ASSERT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --no-charts --duration 12 --graph " +
+                (dir / "graph.json").string() + " --out " + (dir / "out").string()),
+            0);
+  const auto motion = mg::parse_database_json(emoface::core::read_file((dir / "out" / "ana_motion.json").string()));
+  std::size_t frames = 0;
+  for (const auto& s : motion.sequences) frames += s.frames.size();
+  EXPECT_GT(frames, 300u);  // > 10 s at 30 fps
+  EXPECT_TRUE(fs::exists(dir / "out" / "ben_segments.csv"));
+  // Muscle tracks fitted on the default face, ready for faceanim (one row per landmark frame).
+  ASSERT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --no-charts --muscles " +
+                "--duration 2 --graph " + (dir / "graph.json").string() + " --out " + (dir / "m").string()),
+            0);
+  const std::string tracks = emoface::core::read_file((dir / "m" / "ana_muscles.csv").string());
+  EXPECT_EQ(tracks.substr(0, 22), "time,zygomatic_major_l");
+  EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --muscles --out " +
+                (dir / "x").string()),
+            1);  // --muscles needs --graph
+  EXPECT_FALSE(fs::exists(dir / "out" / "ana_mood.png"));
+  EXPECT_EQ(run("check --maps " + kData + "/characters --graph " + (dir / "graph.json").string()), 0);
+  fs::remove_all(dir);
+}
+
+TEST(MindmapApp, ErrorsHaveTheirExitCodes) {
+  const fs::path out = scratch("err");
+  EXPECT_EQ(run("simulate --maps " + kData + "/characters --out " + out.string()), 1);  // --events missing
+  EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --mood-form abs --out " +
+                out.string()),
+            1);
+  EXPECT_EQ(run("simulate --maps /nonexistent --events " + kData + "/events.ndjson --out " + out.string()), 2);
+  fs::create_directories(out);
+  emoface::core::write_file_atomic((out / "bad.ndjson").string(), "{\"time\": 1, \"to\": \"nobody\", \"stimulus\": \"gift\"}\n");
+  EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + (out / "bad.ndjson").string() + " --out " +
+                (out / "o").string()),
+            2);
+  EXPECT_FALSE(fs::exists(out / "o"));  // nothing written on failure
+  EXPECT_EQ(run("check --maps " + kData + "/characters"), 0);
+  fs::remove_all(out);
+}
