@@ -11,6 +11,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
+  libpng-dev libtinygltf-dev        # facemesh: PNG output of the rasteriser, animated glTF export
 )
 
 missing=()

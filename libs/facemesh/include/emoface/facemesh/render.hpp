@@ -1,0 +1,58 @@
+#pragma once
+// A small software rasteriser (z-buffer, per-pixel Phong shading of interpolated normals) for looking
+// at faces headlessly, plus contact sheets and PNG output (libpng, private).
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "emoface/facemesh/mesh.hpp"
+#include "emoface/facemesh/rig.hpp"
+
+namespace emoface::facemesh {
+
+enum class View { Front, ThreeQuarter };
+std::string to_string(View view);
+View view_from_string(std::string_view name);
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;  ///< width*height*3, row 0 at the top
+};
+
+struct RenderOptions {
+  View view = View::Front;
+  int width = 480;               ///< pixels, [16, 8192]
+  int height = 560;              ///< pixels, [16, 8192]
+  double yaw = 0.0;              ///< extra camera yaw about the head centre, radians, [-π, π]
+  double field_of_view = 0.35;   ///< vertical field of view, radians, (0.05, 2.5)
+  double distance = 0.75;        ///< camera distance from the framing centre, m, > 0
+  Eigen::Vector3d target = Eigen::Vector3d(0.0, -0.01, 0.0);  ///< framing centre, m
+  Eigen::Vector3d background = Eigen::Vector3d(0.93, 0.94, 0.96);  ///< RGB in [0,1]
+  double shininess = 24.0;       ///< Phong exponent, [1, 512]
+  double specular = 0.18;        ///< specular strength, [0, 1]
+  void validate() const;
+};
+
+/// Per-vertex linear RGB colours in [0,1] for a rig's materials (skin, lips, eyes, brows, hair).
+std::vector<Eigen::Vector3f> material_colors(const Rig& rig);
+
+/// Renders `mesh`. `colors` (per vertex) may be empty (uniform skin). `crease` (per vertex, optional)
+/// marks vertices shaded with their face normal instead of the averaged normal — the thesis' fix for the
+/// "unrepresentative vertex normal" at wrinkle feet (§2.4.1). Back faces are shaded dark (mouth inside).
+Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
+             const std::vector<std::uint8_t>& crease, const RenderOptions& options);
+
+/// Tiles equally sized images into `columns` columns (white gaps of `gap` px). Throws InvalidInput
+/// for no images, mismatched sizes or columns < 1.
+Image contact_sheet(const std::vector<Image>& images, int columns, int gap = 4);
+
+/// Writes an 8-bit RGB PNG atomically. Throws IoError.
+void write_png(const std::string& path, const Image& image);
+/// Encodes PNG bytes in memory.
+std::string encode_png(const Image& image);
+
+}  // namespace emoface::facemesh

@@ -1,0 +1,144 @@
+// Mesh I/O through OpenMesh (the only place OpenMesh is used).
+#include "emoface/facemesh/mesh_io.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/core/io.hpp"
+
+namespace emoface::facemesh {
+namespace {
+
+struct Traits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Status);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  HalfedgeAttributes(OpenMesh::Attributes::Status);
+};
+using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<Traits>;
+
+std::string extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool known_extension(const std::string& ext) { return ext == ".obj" || ext == ".ply" || ext == ".off"; }
+
+// OpenMesh reports problems on its own error stream; a library must not print, so mute it while we
+// read and detect the problems ourselves (non-manifold faces are marked by the importer).
+struct MuteOpenMesh {
+  MuteOpenMesh() { ::omerr().disable(); ::omlog().disable(); }
+  ~MuteOpenMesh() { ::omerr().enable(); ::omlog().enable(); }
+};
+
+}  // namespace
+
+Mesh read_mesh(const std::string& path) {
+  const std::string ext = extension(path);
+  SourceLocation where;
+  where.file = path;
+  if (!known_extension(ext)) throw FormatError(where, "unknown mesh extension '" + ext + "' (use .obj, .ply or .off)");
+  if (!std::filesystem::is_regular_file(path)) throw IoError(path + ": cannot open mesh file");
+  // Count the faces the file declares for OBJ/OFF so that faces OpenMesh silently drops (repeated or
+  // out-of-range ids) are reported instead of lost.
+  std::size_t declared_faces = 0;
+  bool counted = false;
+  const std::string text = core::read_file(path);
+  if (ext == ".obj") {
+    counted = true;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+      std::size_t end = text.find('\n', pos);
+      if (end == std::string::npos) end = text.size();
+      std::size_t s = pos;
+      while (s < end && (text[s] == ' ' || text[s] == '\t')) ++s;
+      if (s + 1 < end && text[s] == 'f' && (text[s + 1] == ' ' || text[s + 1] == '\t')) ++declared_faces;
+      pos = end + 1;
+    }
+  }
+  OmMesh om;
+  om.request_vertex_status();
+  om.request_face_status();
+  bool ok = false;
+  {
+    MuteOpenMesh mute;
+    OpenMesh::IO::Options opt;
+    ok = OpenMesh::IO::read_mesh(om, path, opt);
+  }
+  if (!ok) throw FormatError(where, "OpenMesh could not parse the mesh");
+  if (counted && om.n_faces() != declared_faces) {
+    throw FormatError(where, "the file declares " + std::to_string(declared_faces) + " faces but only " +
+                                 std::to_string(om.n_faces()) +
+                                 " are valid (repeated or out-of-range vertex ids)");
+  }
+  Mesh mesh;
+  mesh.vertices.resize(static_cast<long>(om.n_vertices()), 3);
+  for (auto vh : om.vertices()) {
+    const auto& p = om.point(vh);
+    mesh.vertices.row(vh.idx()) << p[0], p[1], p[2];
+  }
+  std::vector<std::array<int, 3>> tris;
+  for (auto fh : om.faces()) {
+    if (om.status(fh).fixed_nonmanifold()) {
+      where.line = static_cast<std::size_t>(fh.idx()) + 1;
+      throw FormatError(where, "face " + std::to_string(fh.idx()) + " is non-manifold");
+    }
+    std::vector<int> ids;
+    for (auto vh : om.fv_range(fh)) ids.push_back(vh.idx());
+    for (std::size_t k = 1; k + 1 < ids.size(); ++k) tris.push_back({ids[0], ids[k], ids[k + 1]});
+  }
+  mesh.faces.resize(static_cast<long>(tris.size()), 3);
+  for (std::size_t f = 0; f < tris.size(); ++f) {
+    mesh.faces.row(static_cast<long>(f)) << tris[f][0], tris[f][1], tris[f][2];
+  }
+  validate_mesh(mesh, path);
+  return mesh;
+}
+
+void write_mesh(const std::string& path, const Mesh& mesh) {
+  const std::string ext = extension(path);
+  if (!known_extension(ext)) throw InvalidInput("write_mesh: unknown extension '" + ext + "' (use .obj, .ply or .off)");
+  // Written by hand for OBJ/OFF/PLY ASCII (simple, exact "%.9g" text, atomic); OpenMesh is used to
+  // read, which accepts far more variants than we write.
+  std::string out;
+  out.reserve(mesh.vertex_count() * 40 + mesh.face_count() * 20);
+  char buf[128];
+  const long nv = mesh.vertices.rows(), nf = mesh.faces.rows();
+  if (ext == ".off") {
+    out += "OFF\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n";
+  } else if (ext == ".ply") {
+    out += "ply\nformat ascii 1.0\ncomment emoface\nelement vertex " + std::to_string(nv) +
+           "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string(nf) +
+           "\nproperty list uchar int vertex_indices\nend_header\n";
+  } else {
+    out += "# emoface mesh\n";
+  }
+  for (long v = 0; v < nv; ++v) {
+    std::snprintf(buf, sizeof buf, ext == ".obj" ? "v %.9g %.9g %.9g\n" : "%.9g %.9g %.9g\n",
+                  mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2));
+    out += buf;
+  }
+  for (long f = 0; f < nf; ++f) {
+    if (ext == ".obj") {
+      std::snprintf(buf, sizeof buf, "f %d %d %d\n", mesh.faces(f, 0) + 1, mesh.faces(f, 1) + 1, mesh.faces(f, 2) + 1);
+    } else {
+      std::snprintf(buf, sizeof buf, "3 %d %d %d\n", mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2));
+    }
+    out += buf;
+  }
+  core::write_file_atomic(path, out);
+}
+
+}  // namespace emoface::facemesh

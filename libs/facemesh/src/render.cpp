@@ -1,0 +1,230 @@
+// Software rasteriser: perspective camera, z-buffer, per-pixel Phong shading (Bui Tuong Phong 1975,
+// the shading the thesis uses in §2.3), 2x2 supersampling; PNG through libpng.
+#include "emoface/facemesh/render.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <csetjmp>
+#include <cstring>
+#include <limits>
+
+#include <Eigen/Geometry>
+
+#include <png.h>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/core/io.hpp"
+
+namespace emoface::facemesh {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+std::string to_string(View view) { return view == View::Front ? "front" : "threequarter"; }
+View view_from_string(std::string_view name) {
+  if (name == "front") return View::Front;
+  if (name == "threequarter") return View::ThreeQuarter;
+  throw InvalidInput("unknown view '" + std::string(name) + "' (front or threequarter)");
+}
+
+void RenderOptions::validate() const {
+  auto check = [](bool ok, const char* what) {
+    if (!ok) throw InvalidInput(std::string("RenderOptions: ") + what);
+  };
+  check(width >= 16 && width <= 8192 && height >= 16 && height <= 8192, "width/height must be in [16, 8192]");
+  check(std::isfinite(yaw) && std::abs(yaw) <= kPi, "yaw must be in [-pi, pi]");
+  check(field_of_view > 0.05 && field_of_view < 2.5, "field_of_view must be in (0.05, 2.5)");
+  check(std::isfinite(distance) && distance > 0.0, "distance must be > 0");
+  check(target.allFinite(), "target must be finite");
+  check(background.allFinite() && background.minCoeff() >= 0.0 && background.maxCoeff() <= 1.0, "background in [0,1]");
+  check(shininess >= 1.0 && shininess <= 512.0, "shininess must be in [1, 512]");
+  check(specular >= 0.0 && specular <= 1.0, "specular must be in [0, 1]");
+}
+
+std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
+  std::vector<Eigen::Vector3f> out(rig.materials.size());
+  for (std::size_t v = 0; v < out.size(); ++v) {
+    switch (rig.materials[v]) {
+      case Material::Skin: out[v] = {0.87f, 0.69f, 0.58f}; break;
+      case Material::Lip: out[v] = {0.72f, 0.45f, 0.42f}; break;
+      case Material::EyeWhite: out[v] = {0.94f, 0.93f, 0.90f}; break;
+      case Material::Iris: out[v] = {0.30f, 0.42f, 0.55f}; break;
+      case Material::Pupil: out[v] = {0.05f, 0.05f, 0.06f}; break;
+      case Material::Brow: out[v] = {0.33f, 0.22f, 0.16f}; break;
+      case Material::Hair: out[v] = {0.28f, 0.19f, 0.13f}; break;
+      case Material::MouthInterior: out[v] = {0.35f, 0.12f, 0.12f}; break;
+    }
+  }
+  return out;
+}
+
+Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const std::vector<std::uint8_t>& crease,
+             const RenderOptions& options) {
+  options.validate();
+  const std::size_t nv = mesh.vertex_count();
+  if (!colors.empty() && colors.size() != nv) throw InvalidInput("render: colors must be empty or one per vertex");
+  if (!crease.empty() && crease.size() != nv) throw InvalidInput("render: crease must be empty or one per vertex");
+  for (long f = 0; f < mesh.faces.rows(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      if (mesh.faces(f, c) < 0 || static_cast<std::size_t>(mesh.faces(f, c)) >= nv) throw InvalidInput("render: face id out of range");
+    }
+  }
+  constexpr int ss = 2;  // supersampling factor
+  const int w = options.width * ss, h = options.height * ss;
+  // Camera: orbit about the target; three-quarter = 35 degrees towards the subject's right.
+  const double yaw = options.yaw + (options.view == View::ThreeQuarter ? -35.0 * kPi / 180.0 : 0.0);
+  const Eigen::Vector3d forward(-std::sin(yaw), 0.0, -std::cos(yaw));  // camera looks along this
+  const Eigen::Vector3d eye = options.target - options.distance * forward;
+  const Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitY()).normalized();
+  const Eigen::Vector3d up = right.cross(forward);
+  const double focal = 0.5 * h / std::tan(0.5 * options.field_of_view);
+
+  const Vertices vn = vertex_normals(mesh.vertices, mesh.faces);
+  const Vertices fn = face_normals(mesh.vertices, mesh.faces);
+  std::vector<Eigen::Vector3d> screen(nv);  // x, y pixels; z = depth along forward
+  for (std::size_t v = 0; v < nv; ++v) {
+    const Eigen::Vector3d d = Eigen::Vector3d(mesh.vertices.row(static_cast<long>(v))) - eye;
+    const double z = d.dot(forward);
+    screen[v] = {0.5 * w + focal * d.dot(right) / std::max(z, 1e-6), 0.5 * h - focal * d.dot(up) / std::max(z, 1e-6), z};
+  }
+  std::vector<float> depth(static_cast<std::size_t>(w) * h, std::numeric_limits<float>::infinity());
+  std::vector<Eigen::Vector3f> color(static_cast<std::size_t>(w) * h, options.background.cast<float>());
+  const Eigen::Vector3d key_light = Eigen::Vector3d(-0.35, 0.55, 0.75).normalized();
+  const Eigen::Vector3d fill_light = Eigen::Vector3d(0.6, 0.1, 0.5).normalized();
+  const Eigen::Vector3f skin(0.87f, 0.69f, 0.58f);
+
+  for (long f = 0; f < mesh.faces.rows(); ++f) {
+    const int ids[3] = {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
+    const Eigen::Vector3d& a = screen[ids[0]];
+    const Eigen::Vector3d& b = screen[ids[1]];
+    const Eigen::Vector3d& c = screen[ids[2]];
+    if (a.z() <= 1e-4 || b.z() <= 1e-4 || c.z() <= 1e-4) continue;
+    const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+    if (area == 0.0) continue;
+    const bool back = area > 0.0;  // screen y points down: counter-clockwise triangles have area < 0
+    Eigen::Vector3d n[3];
+    Eigen::Vector3f col[3];
+    for (int k = 0; k < 3; ++k) {
+      const bool use_face = !crease.empty() && crease[static_cast<std::size_t>(ids[k])];
+      n[k] = use_face ? Eigen::Vector3d(fn.row(f)) : Eigen::Vector3d(vn.row(ids[k]));
+      col[k] = colors.empty() ? skin : colors[static_cast<std::size_t>(ids[k])];
+    }
+    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
+    const int x1 = std::min(w - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
+    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
+    const int y1 = std::min(h - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const double px = x + 0.5, py = y + 0.5;
+        double w0 = ((b.x() - px) * (c.y() - py) - (b.y() - py) * (c.x() - px)) / area;
+        double w1 = ((c.x() - px) * (a.y() - py) - (c.y() - py) * (a.x() - px)) / area;
+        double w2 = 1.0 - w0 - w1;
+        if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
+        // perspective-correct weights
+        const double q0 = w0 / a.z(), q1 = w1 / b.z(), q2 = w2 / c.z();
+        const double qs = q0 + q1 + q2;
+        const double z = 1.0 / qs;
+        const std::size_t idx = static_cast<std::size_t>(y) * w + x;
+        if (z >= depth[idx]) continue;
+        depth[idx] = static_cast<float>(z);
+        w0 = q0 / qs, w1 = q1 / qs, w2 = q2 / qs;
+        Eigen::Vector3d normal = (w0 * n[0] + w1 * n[1] + w2 * n[2]);
+        if (normal.squaredNorm() > 0.0) normal.normalize();
+        Eigen::Vector3f base = static_cast<float>(w0) * col[0] + static_cast<float>(w1) * col[1] + static_cast<float>(w2) * col[2];
+        if (back) {
+          color[idx] = Eigen::Vector3f(0.18f, 0.07f, 0.07f);  // inside of the head: dark mouth cavity
+          continue;
+        }
+        const Eigen::Vector3d view = -forward;
+        const double kd = std::max(0.0, normal.dot(key_light));
+        const double fd = std::max(0.0, normal.dot(fill_light));
+        const Eigen::Vector3d half = (key_light + view).normalized();
+        const double spec = options.specular * std::pow(std::max(0.0, normal.dot(half)), options.shininess);
+        const double light = 0.22 + 0.68 * kd + 0.22 * fd;
+        Eigen::Vector3f out = base * static_cast<float>(light) + Eigen::Vector3f::Constant(static_cast<float>(spec));
+        color[idx] = out.cwiseMin(1.0f).cwiseMax(0.0f);
+      }
+    }
+  }
+  Image image;
+  image.width = options.width;
+  image.height = options.height;
+  image.rgb.resize(static_cast<std::size_t>(options.width) * options.height * 3);
+  for (int y = 0; y < options.height; ++y) {
+    for (int x = 0; x < options.width; ++x) {
+      Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+      for (int dy = 0; dy < ss; ++dy) {
+        for (int dx = 0; dx < ss; ++dx) sum += color[static_cast<std::size_t>(y * ss + dy) * w + (x * ss + dx)];
+      }
+      sum /= static_cast<float>(ss * ss);
+      for (int k = 0; k < 3; ++k) {
+        image.rgb[(static_cast<std::size_t>(y) * options.width + x) * 3 + k] =
+            static_cast<std::uint8_t>(std::lround(std::min(1.0f, std::max(0.0f, sum[k])) * 255.0f));
+      }
+    }
+  }
+  return image;
+}
+
+Image contact_sheet(const std::vector<Image>& images, int columns, int gap) {
+  if (images.empty()) throw InvalidInput("contact_sheet: no images");
+  if (columns < 1) throw InvalidInput("contact_sheet: columns must be >= 1");
+  if (gap < 0 || gap > 1000) throw InvalidInput("contact_sheet: gap must be in [0, 1000]");
+  const int w = images[0].width, h = images[0].height;
+  for (const auto& im : images) {
+    if (im.width != w || im.height != h || im.rgb.size() != static_cast<std::size_t>(w) * h * 3) {
+      throw InvalidInput("contact_sheet: images differ in size");
+    }
+  }
+  const int cols = std::min<int>(columns, static_cast<int>(images.size()));
+  const int rows = (static_cast<int>(images.size()) + cols - 1) / cols;
+  Image sheet;
+  sheet.width = cols * w + (cols + 1) * gap;
+  sheet.height = rows * h + (rows + 1) * gap;
+  sheet.rgb.assign(static_cast<std::size_t>(sheet.width) * sheet.height * 3, 255);
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const int cx = gap + static_cast<int>(i % cols) * (w + gap);
+    const int cy = gap + static_cast<int>(i / cols) * (h + gap);
+    for (int y = 0; y < h; ++y) {
+      std::memcpy(&sheet.rgb[(static_cast<std::size_t>(cy + y) * sheet.width + cx) * 3],
+                  &images[i].rgb[static_cast<std::size_t>(y) * w * 3], static_cast<std::size_t>(w) * 3);
+    }
+  }
+  return sheet;
+}
+
+namespace {
+void png_write_to_string(png_structp png, png_bytep data, png_size_t length) {
+  auto* out = static_cast<std::string*>(png_get_io_ptr(png));
+  out->append(reinterpret_cast<const char*>(data), length);
+}
+void png_flush_noop(png_structp) {}
+}  // namespace
+
+std::string encode_png(const Image& image) {
+  if (image.width <= 0 || image.height <= 0 || image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3) {
+    throw InvalidInput("encode_png: image size and pixel buffer disagree");
+  }
+  std::string out;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  if (!png) throw IoError("encode_png: libpng init failed");
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    throw IoError("encode_png: libpng failed");
+  }
+  png_set_write_fn(png, &out, png_write_to_string, png_flush_noop);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < image.height; ++y) {
+    png_write_row(png, const_cast<png_bytep>(&image.rgb[static_cast<std::size_t>(y) * image.width * 3]));
+  }
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return out;
+}
+
+void write_png(const std::string& path, const Image& image) { core::write_file_atomic(path, encode_png(image)); }
+
+}  // namespace emoface::facemesh

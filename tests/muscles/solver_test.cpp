@@ -1,0 +1,364 @@
+#include "emoface/muscles/solver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/facemesh/default_face.hpp"
+#include "../../libs/muscles/src/fast_math.hpp"
+
+namespace emoface::muscles {
+namespace {
+
+namespace fm = facemesh;
+constexpr double kPi = 3.14159265358979323846;
+
+const fm::Face& face() {
+  static const fm::Face f = fm::make_default_face();
+  return f;
+}
+const FaceSolver& solver() {
+  static const FaceSolver s(face().mesh, face().rig);
+  return s;
+}
+
+// A flat 21×21 grid (5 mm spacing, z = 0) with one vector muscle and no lips/eyes.
+fm::Face synthetic(int muscles = 1) {
+  fm::Face f;
+  const int n = 21;
+  f.mesh.vertices.resize(n * n, 3);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) f.mesh.vertices.row(j * n + i) << -0.05 + 0.005 * i, -0.05 + 0.005 * j, 0.0;
+  }
+  f.mesh.faces.resize(2 * (n - 1) * (n - 1), 3);
+  int k = 0;
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
+      f.mesh.faces.row(k++) << a, b, c;
+      f.mesh.faces.row(k++) << a, c, d;
+    }
+  }
+  auto& rig = f.rig;
+  rig.vertex_count = static_cast<std::size_t>(n * n);
+  rig.regions.assign(rig.vertex_count, fm::Region::LeftLowerFace);
+  rig.materials.assign(rig.vertex_count, fm::Material::Skin);
+  fm::MuscleSpec m;
+  m.name = "zm";
+  m.parameter = "zygomatic_major_l";
+  m.head = {0.04, 0.03, -0.005};
+  m.tail = {0.0, 0.0, 0.0};
+  m.omega = 0.5;
+  m.rs = 0.035;
+  m.rf = 0.065;
+  m.k = 0.01;
+  m.regions = {fm::Region::LeftLowerFace};
+  rig.muscles.push_back(m);
+  if (muscles > 1) {
+    fm::MuscleSpec t = m;
+    t.name = "tri";
+    t.parameter = "triangularis_l";
+    t.head = {0.03, -0.04, -0.005};
+    rig.muscles.push_back(t);
+    fm::MuscleSpec r = m;
+    r.name = "ris";
+    r.parameter = "risorius_l";
+    r.head = {0.05, 0.0, -0.005};
+    rig.muscles.push_back(r);
+  }
+  return f;
+}
+
+// Independent Waters displacement (angle through atan2 instead of acos).
+Eigen::Vector3d reference_displacement(const fm::MuscleSpec& m, const Eigen::Vector3d& p, double c) {
+  const Eigen::Vector3d a = m.tail - m.head, b = p - m.head;
+  const double d = b.norm();
+  const double alpha = std::atan2(a.cross(b).norm(), a.dot(b));
+  if (d > m.rf || alpha >= m.omega || d == 0.0) return Eigen::Vector3d::Zero();
+  const double A = std::cos(alpha / m.omega * kPi / 2);
+  const double R = d <= m.rs ? std::sin(d / m.rs * kPi / 2) : std::cos((d - m.rs) / (m.rf - m.rs) * kPi / 2);
+  return -c * m.k * A * R * b / d;
+}
+
+std::vector<double> values(const std::map<std::string, double>& named) { return to_parameter_vector(named); }
+
+TEST(FaceSolver, SingleMuscleMatchesIndependentFormula) {
+  const fm::Face f = synthetic();
+  SolverOptions o;
+  o.delta_c = 1.0;  // one step: displacement at the neutral positions
+  const FaceSolver s(f.mesh, f.rig, o);
+  const auto d = s.deform(values({{"zygomatic_major_l", 0.6}}));
+  double moved = 0.0;
+  for (long v = 0; v < f.mesh.vertices.rows(); ++v) {
+    const Eigen::Vector3d p = f.mesh.vertices.row(v).transpose();
+    const Eigen::Vector3d expected = p + reference_displacement(f.rig.muscles[0], p, 0.6);
+    // the solver's hot loop uses polynomial cos/acos (error < 1e-8 → < 1e-10 m here)
+    EXPECT_NEAR((d.vertices.row(v).transpose() - expected).norm(), 0.0, 2e-10) << v;
+    moved = std::max(moved, (expected - p).norm());
+  }
+  EXPECT_GT(moved, 0.003);
+  // the origin is the insertion, on the axis (A = 1) at D = √0.002525 = 0.0502494 > Rs:
+  // |Δ| = 0.6·0.01·cos((0.0502494 − 0.035)/0.03·π/2) = 0.0041868827 (hand/calculator value)
+  const long origin = 10 * 21 + 10;
+  EXPECT_NEAR((d.vertices.row(origin) - f.mesh.vertices.row(origin)).norm(), 0.0041868827, 1e-10);
+  // the non-parallel mode gives the same single-muscle result in one go
+  o.parallel = false;
+  const auto e = FaceSolver(f.mesh, f.rig, o).deform(values({{"zygomatic_major_l", 0.6}}));
+  EXPECT_LT((e.vertices - d.vertices).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+TEST(FaceSolver, ZeroParametersGiveTheNeutralMesh) {
+  const auto d = solver().deform(std::vector<double>(kParameterCount, 0.0));
+  EXPECT_EQ(d.vertices, face().mesh.vertices);
+  EXPECT_EQ(d.steps, 0);
+  EXPECT_TRUE(std::none_of(d.crease.begin(), d.crease.end(), [](auto c) { return c != 0; }));
+}
+
+const std::map<std::string, double> kSadness = {
+    {"frontalis_medialis_l", 1.0}, {"frontalis_medialis_r", 1.0}, {"corrugator_supercilii_l", 0.8},
+    {"corrugator_supercilii_r", 0.8}, {"depressor_supercilii_l", 0.6}, {"depressor_supercilii_r", 0.6},
+    {"triangularis_l", 0.7}, {"triangularis_r", 0.7}, {"depressor_labii_l", 0.3}, {"depressor_labii_r", 0.3},
+    {"mentalis_l", 0.4}, {"mentalis_r", 0.4}, {"orbicularis_oris_pressor", 0.3}};
+
+TEST(FaceSolver, OrderOfMusclesDoesNotMatter) {
+  fm::Rig reversed = face().rig;
+  std::reverse(reversed.muscles.begin(), reversed.muscles.end());
+  fm::Rig rotated = face().rig;
+  std::rotate(rotated.muscles.begin(), rotated.muscles.begin() + 7, rotated.muscles.end());
+  const auto a = solver().deform(kSadness);
+  const auto b = FaceSolver(face().mesh, reversed).deform(kSadness);
+  const auto c = FaceSolver(face().mesh, rotated).deform(kSadness);
+  EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((a.vertices - c.vertices).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_GT((a.vertices - face().mesh.vertices).cwiseAbs().maxCoeff(), 1e-3);  // it did move
+}
+
+TEST(FaceSolver, ConvergesAsDeltaCShrinks) {
+  auto run = [&](double dc) {
+    SolverOptions o;
+    o.delta_c = dc;
+    o.wrinkles = false;
+    return FaceSolver(face().mesh, face().rig, o).deform(kSadness).vertices;
+  };
+  const auto reference = run(0.0025);
+  double previous = 1e9;
+  std::vector<double> errors;
+  for (double dc : {0.4, 0.2, 0.1, 0.05}) {
+    const double err = (run(dc) - reference).cwiseAbs().maxCoeff();
+    errors.push_back(err);
+    EXPECT_LT(err, previous) << dc;
+    previous = err;
+  }
+  EXPECT_LT(errors.back(), 0.5 * errors[1]);  // first order: δc/4 → error well below half
+  // and the plain sum of full displacements (Waters' original combination) differs from the limit
+  SolverOptions plain;
+  plain.parallel = false;
+  plain.wrinkles = false;
+  EXPECT_GT((FaceSolver(face().mesh, face().rig, plain).deform(kSadness).vertices - reference).cwiseAbs().maxCoeff(), errors[1]);
+}
+
+TEST(FaceSolver, RegionCutOff) {
+  // frontalis_lateralis_r may move only the right upper face (Table 2.1: region 5).
+  const auto d = solver().deform(values({{"frontalis_lateralis_r", 1.0}}));
+  const auto regions = fm::region_vertices(face().rig);
+  std::vector<char> allowed(face().mesh.vertex_count(), 0);
+  for (int v : regions[static_cast<std::size_t>(fm::Region::RightUpperFace)]) allowed[static_cast<std::size_t>(v)] = 1;
+  std::size_t moved = 0;
+  for (long v = 0; v < d.vertices.rows(); ++v) {
+    const bool changed = d.vertices.row(v) != face().mesh.vertices.row(v);
+    if (!allowed[static_cast<std::size_t>(v)]) ASSERT_FALSE(changed) << v;
+    moved += changed ? 1 : 0;
+  }
+  EXPECT_GT(moved, 20u);
+  for (std::size_t i = 0; i < face().rig.muscles.size(); ++i) EXPECT_LT(solver().candidate_count(i), face().mesh.vertex_count() / 3);
+}
+
+TEST(FaceSolver, ContractionIsMonotone) {
+  const int corner = face().rig.ibug68[54];  // left mouth corner (lip sample)
+  double last = 0.0;
+  for (double c : {0.25, 0.5, 0.75, 1.0}) {
+    const auto d = solver().deform(values({{"zygomatic_major_l", c}}));
+    const double moved = (d.vertices.row(corner) - face().mesh.vertices.row(corner)).norm();
+    EXPECT_GT(moved, last) << c;
+    last = moved;
+  }
+  EXPECT_GT(last, 0.004);
+  // and the corner moves up and outwards (towards the zygomatic bone)
+  const auto d = solver().deform(values({{"zygomatic_major_l", 1.0}}));
+  EXPECT_GT(d.vertices(corner, 0), face().mesh.vertices(corner, 0));
+  EXPECT_GT(d.vertices(corner, 1), face().mesh.vertices(corner, 1));
+}
+
+TEST(FaceSolver, JawRotatesAboutThePivot) {
+  const auto& jaw = face().rig.jaw;
+  const auto d = solver().deform(values({{"masseter", 1.0}}));
+  int checked = 0;
+  for (std::size_t k = 0; k < jaw.vertices.size(); ++k) {
+    if (jaw.weights[k] < 0.999) continue;
+    const int v = jaw.vertices[k];
+    const Eigen::Vector3d p0 = face().mesh.vertices.row(v).transpose() - jaw.pivot;
+    const Eigen::Vector3d p1 = d.vertices.row(v).transpose() - jaw.pivot;
+    EXPECT_NEAR(p0.norm(), p1.norm(), 1e-12);
+    EXPECT_NEAR(p0.x(), p1.x(), 1e-15);
+    const double angle = std::atan2(p0.y() * p1.z() - p0.z() * p1.y(), p0.y() * p1.y() + p0.z() * p1.z());
+    EXPECT_NEAR(angle, jaw.max_angle * jaw.weights[k], 1e-9);
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+  // lower lip: middle of the inner rows drops more than the corners (one third at the corners)
+  const auto& lips = face().rig.lips;
+  const auto& c0 = lips.control_points;
+  const auto& c1 = d.lip_control_points;
+  const int middle = 5 * 24 + 18, corner = 5 * 24 + 0;
+  EXPECT_GT((c0[middle] - c1[middle]).norm(), 2.0 * (c0[corner] - c1[corner]).norm());
+}
+
+TEST(FaceSolver, EyelidsCloseOverTheEyeball) {
+  const auto& eye = face().rig.eyes[0];  // right
+  const auto d = solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_palpebralis_l", 1.0}}));
+  for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {
+    if (eye.upper_lid_weights[k] < 0.99) continue;
+    const int v = eye.upper_lid[k];
+    EXPECT_LT(d.vertices(v, 1), face().mesh.vertices(v, 1) - 0.003);  // margin comes down by millimetres
+    EXPECT_NEAR((d.vertices.row(v).transpose() - eye.centre).norm(),
+                (face().mesh.vertices.row(v).transpose() - eye.centre).norm(), 1e-12);  // rotation about the centre
+  }
+  // the levator opens: the margin goes up
+  const auto o = solver().deform(values({{"levator_palpebrae_superioris_r", 1.0}}));
+  const int v = eye.upper_lid[static_cast<std::size_t>(std::max_element(eye.upper_lid_weights.begin(), eye.upper_lid_weights.end()) - eye.upper_lid_weights.begin())];
+  EXPECT_GT(o.vertices(v, 1), face().mesh.vertices(v, 1));
+  // closing one eye alone squeezes it (coupling): the orbitalis sphincter moves the right cheek
+  const auto one = solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}}));
+  const auto lid_only = FaceSolver(face().mesh, face().rig).deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_palpebralis_l", 1.0}}));
+  EXPECT_GT((one.vertices - lid_only.vertices).cwiseAbs().maxCoeff(), 1e-4);
+}
+
+TEST(FaceSolver, GazeRotatesEyeballsWithinTheLimit) {
+  const auto& eye = face().rig.eyes[1];
+  const int front = eye.eyeball_vertices[0];  // pole looking forward
+  auto direction = [&](const fm::Vertices& X) { return (X.row(front).transpose() - eye.centre).normalized(); };
+  const auto d = solver().deform(values({{"eye_gaze_yaw", 0.3}, {"eye_gaze_pitch", 0.1}}));
+  const Eigen::Vector3d g = direction(d.vertices);
+  EXPECT_NEAR(std::asin(g.y()), 0.1, 1e-12);                  // + pitch = up
+  EXPECT_NEAR(std::atan2(g.x(), g.z()), 0.3, 1e-12);          // + yaw = subject's left (+x)
+  const auto far = solver().deform(values({{"eye_gaze_yaw", 2.0}}));
+  EXPECT_NEAR(std::atan2(direction(far.vertices).x(), direction(far.vertices).z()), eye.yaw_limit, 1e-12);
+  // nothing but the eyeballs moved
+  for (long v = 0; v < d.vertices.rows(); ++v) {
+    const bool eyeball = std::find(eye.eyeball_vertices.begin(), eye.eyeball_vertices.end(), v) != eye.eyeball_vertices.end() ||
+                         std::find(face().rig.eyes[0].eyeball_vertices.begin(), face().rig.eyes[0].eyeball_vertices.end(), v) !=
+                             face().rig.eyes[0].eyeball_vertices.end();
+    if (!eyeball) ASSERT_EQ(d.vertices.row(v), face().mesh.vertices.row(v));
+  }
+}
+
+TEST(FaceSolver, WrinklesAlongNormalsOnlyInTheBand) {
+  SolverOptions off;
+  off.wrinkles = false;
+  const auto named = values({{"frontalis_medialis_l", 1.0}, {"frontalis_medialis_r", 1.0}});
+  const auto with = solver().deform(named);
+  const auto without = FaceSolver(face().mesh, face().rig, off).deform(named);
+  const double diff = (with.vertices - without.vertices).rowwise().norm().maxCoeff();
+  EXPECT_GT(diff, 0.0003);
+  EXPECT_LE(diff, 0.0016 + 1e-12);  // never more than the wrinkle height a
+  EXPECT_TRUE(std::any_of(with.crease.begin(), with.crease.end(), [](auto c) { return c != 0; }));
+  EXPECT_TRUE(std::none_of(without.crease.begin(), without.crease.end(), [](auto c) { return c != 0; }));
+  // wrinkles only on the forehead (upper face)
+  for (long v = 0; v < with.vertices.rows(); ++v) {
+    if ((with.vertices.row(v) - without.vertices.row(v)).norm() > 0.0) {
+      const auto r = face().rig.regions[static_cast<std::size_t>(v)];
+      ASSERT_TRUE(r == fm::Region::RightUpperFace || r == fm::Region::LeftUpperFace) << v;
+    }
+  }
+}
+
+TEST(FaceSolver, HeadPoseIsRigid) {
+  const auto d = solver().deform(values({{"head_yaw", 0.4}, {"head_pitch", -0.2}, {"head_roll", 0.1}}));
+  for (int a : {0, 100, 2000}) {
+    for (int b : {50, 1500, 3000}) {
+      EXPECT_NEAR((d.vertices.row(a) - d.vertices.row(b)).norm(), (face().mesh.vertices.row(a) - face().mesh.vertices.row(b)).norm(), 1e-12);
+    }
+  }
+}
+
+TEST(FaceSolver, DeterministicAndOneOffAgrees) {
+  const auto a = solver().deform(kSadness);
+  const auto b = solver().deform(kSadness);
+  EXPECT_EQ(a.vertices, b.vertices);
+  const auto c = deform_face(face().mesh, face().rig, kSadness);
+  EXPECT_EQ(a.vertices, c.vertices);
+  Deformation reuse;
+  solver().deform(to_parameter_vector(kSadness), reuse);
+  solver().deform(to_parameter_vector(kSadness), reuse);
+  EXPECT_EQ(reuse.vertices, a.vertices);
+}
+
+TEST(FaceSolver, RejectsBadInput) {
+  EXPECT_THROW(solver().deform(std::map<std::string, double>{{"smile", 1.0}}), InvalidInput);
+  EXPECT_THROW(solver().deform(std::map<std::string, double>{{"masseter", std::nan("")}}), InvalidInput);
+  EXPECT_THROW(solver().deform(std::map<std::string, double>{{"masseter", 2.0}}), InvalidInput);
+  EXPECT_THROW(solver().deform(std::vector<double>(3, 0.0)), InvalidInput);
+  SolverOptions bad;
+  bad.delta_c = 0.0;
+  EXPECT_THROW(FaceSolver(face().mesh, face().rig, bad), InvalidInput);
+  fm::Face f = synthetic();
+  f.rig.vertex_count = 10;
+  EXPECT_THROW(FaceSolver(f.mesh, f.rig), InvalidInput);
+  f = synthetic();
+  f.rig.muscles[0].parameter = "nose_twitch";
+  EXPECT_THROW(FaceSolver(f.mesh, f.rig), InvalidInput);
+  f = synthetic();
+  f.rig.muscles[0].rs = f.rig.muscles[0].rf;
+  EXPECT_THROW(FaceSolver(f.mesh, f.rig), InvalidInput);
+  f = synthetic();
+  f.rig.muscles[0].tail = f.rig.muscles[0].head;
+  EXPECT_THROW(FaceSolver(f.mesh, f.rig), InvalidInput);
+}
+
+TEST(FaceSolver, SyntheticPermutationWithThreeMuscles) {
+  fm::Face f = synthetic(3);
+  const auto p = values({{"zygomatic_major_l", 1.0}, {"triangularis_l", 0.7}, {"risorius_l", 0.5}});
+  const auto a = FaceSolver(f.mesh, f.rig).deform(p);
+  std::swap(f.rig.muscles[0], f.rig.muscles[2]);
+  const auto b = FaceSolver(f.mesh, f.rig).deform(p);
+  EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+TEST(FastMath, PolynomialsMatchLibm) {
+  double worst_cos = 0.0, worst_acos = 0.0;
+  for (int i = 0; i <= 100000; ++i) {
+    const double t = kPi / 2 * i / 100000.0;
+    worst_cos = std::max(worst_cos, std::abs(detail::cos_quadrant(t) - std::cos(t)));
+    const double x = -1.0 + 2.0 * i / 100000.0;
+    worst_acos = std::max(worst_acos, std::abs(detail::acos_fast(x) - std::acos(x)));
+  }
+  EXPECT_LT(worst_cos, 1e-9);
+  EXPECT_LT(worst_acos, 1e-7);
+}
+
+}  // namespace
+}  // namespace emoface::muscles
+
+namespace emoface::muscles {
+namespace {
+
+TEST(FaceSolver, EyelidCouplingModes) {
+  const auto& f = face();
+  const auto& eye = f.rig.eyes[0];
+  const int v = eye.upper_lid[static_cast<std::size_t>(std::max_element(eye.upper_lid_weights.begin(), eye.upper_lid_weights.end()) - eye.upper_lid_weights.begin())];
+  const auto p = values({{"orbicularis_oculi_orbitalis_r", 0.6}});
+  SolverOptions thesis;
+  thesis.eyelid_coupling = EyelidCoupling::Thesis;
+  const auto closed = FaceSolver(f.mesh, f.rig, thesis).deform(p);
+  const auto open = solver().deform(p);  // default OneEye: squeezing alone does not close the lid
+  EXPECT_LT(closed.vertices(v, 1), open.vertices(v, 1) - 0.003);
+  EXPECT_EQ(eyelid_coupling_from_string(to_string(EyelidCoupling::Off)), EyelidCoupling::Off);
+  EXPECT_THROW(eyelid_coupling_from_string("wink"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace emoface::muscles
