@@ -1,0 +1,67 @@
+#pragma once
+// The whole fit of thesis chapter 3 (Fig. 3.1): align the target head into the source frame, detect the
+// easy landmarks (§3.2.1), initialise the others with an RBF trained on the detected ones (§3.3), adjust
+// them with the GA (§3.6) on the error function (§3.5), then deform the source face — mesh, muscles, lip
+// grid, jaw pivot, eyes, head pivot — with the final RBF networks (§3.4, §3.7).
+//
+//   facemesh::Face source = facemesh::make_default_face();
+//   facemesh::Mesh target = facemesh::read_mesh("head.obj");
+//   RetargetResult r = retarget_face(source, target, options);
+//   facemesh::save_face("out/face.rig", r.face);
+//
+// The result lives in the source (thesis) frame — looking down +z, y up, the source's size — because
+// the muscle model's jaw, eyelid and eye rotations assume that frame; `alignment` maps the input target
+// into it (and back with Alignment::inverse).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "emoface/facemesh/io.hpp"
+#include "emoface/retarget/align.hpp"
+#include "emoface/retarget/error.hpp"
+#include "emoface/retarget/ga.hpp"
+#include "emoface/retarget/rbf.hpp"
+
+namespace emoface::retarget {
+
+struct RetargetOptions {
+  AlignOptions align;
+  RbfOptions rbf;
+  /// bottom_y left at its default (−∞) is replaced by the height of the source's "chin" landmark.
+  ErrorOptions error;
+  GaOptions ga;
+  /// Landmarks found by the §3.2.1 heuristics and kept fixed; every other rig landmark is searched.
+  std::vector<std::string> detected = {"top_of_head", "nose_tip", "ear_r", "ear_l"};
+  void validate() const;
+};
+
+struct RetargetResult {
+  facemesh::Face face;                     ///< the deformed source face: mesh + complete rig
+  Alignment alignment;                     ///< input target → thesis frame
+  facemesh::Mesh aligned_target;           ///< the target in the thesis frame
+  std::vector<std::string> landmark_names; ///< rig retarget landmarks, rig order
+  std::vector<bool> detected;              ///< per landmark: auto-detected (fixed) or searched
+  Eigen::MatrixX3d source_landmarks;       ///< #L by 3, m
+  Eigen::MatrixX3d initial_landmarks;      ///< on the target before the GA (§3.3), #L by 3, m
+  Eigen::MatrixX3d target_landmarks;       ///< final, #L by 3, m
+  double length_scale = 1.0;               ///< factor applied to muscle radii, elasticities, eye radii
+  GaReport ga;
+};
+
+/// Position of a named rig landmark; throws InvalidInput if the rig lacks it.
+Eigen::Vector3d landmark_position(const facemesh::Face& face, const std::string& name);
+
+/// Applies `network` to every point of the face (mesh vertices, muscle ends, lip control points and
+/// centre, jaw pivot, eye centres, head pivot) and multiplies lengths (Rs, Rf, k, wrinkle height,
+/// sphincter semi-axes, eye radius, lip funnel extrusion is in SolverOptions and unchanged) by
+/// `length_scale`. Topology, regions, weights and landmark vertex ids are kept.
+facemesh::Face transfer_face(const facemesh::Face& source, const RbfNetwork& network, double length_scale);
+
+/// The fit. Throws InvalidInput for a rig without the needed landmarks or a degenerate target.
+RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh& target,
+                             const RetargetOptions& options = {},
+                             const std::function<void(const GaProgress&)>& progress = {});
+
+}  // namespace emoface::retarget
