@@ -22,6 +22,7 @@ void RetargetOptions::validate() const {
   rbf.validate();
   error.validate();
   ga.validate();
+  if (!(prior_weight >= 0.0) || !std::isfinite(prior_weight)) throw InvalidInput("RetargetOptions::prior_weight must be finite and >= 0");
   if (std::find(detected.begin(), detected.end(), "top_of_head") == detected.end())
     throw InvalidInput("RetargetOptions::detected must contain top_of_head (it defines the centreline, thesis §3.5)");
 }
@@ -114,10 +115,42 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
     error_options.bottom_y = landmark_position(source, "chin").y();
   const ErrorFunction error(r.aligned_target, target_top, source.mesh.faces, source.mesh.vertex_count(), error_options);
 
+  // Mirror partner of every searched landmark (index into `free`, −1 = on the symmetry plane).
+  const double mirror_x = r.aligned_target.vertices(target_top, 0);
+  std::vector<int> partner(free.size(), -1);
+  for (std::size_t k = 0; k < free.size(); ++k) {
+    const std::string& name = r.landmark_names[static_cast<std::size_t>(free[k])];
+    if (name.size() < 2 || (name.compare(name.size() - 2, 2, "_l") != 0 && name.compare(name.size() - 2, 2, "_r") != 0)) continue;
+    const std::string other = name.substr(0, name.size() - 1) + (name.back() == 'l' ? "r" : "l");
+    for (std::size_t j = 0; j < free.size(); ++j)
+      if (r.landmark_names[static_cast<std::size_t>(free[j])] == other) partner[k] = static_cast<int>(j);
+    if (partner[k] < 0) partner[k] = static_cast<int>(k);  // partner is detected: leave it alone
+  }
+  auto symmetrize = [&](Eigen::MatrixX3d& p) {
+    const Eigen::MatrixX3d in = p;
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      const auto i = static_cast<Eigen::Index>(k);
+      if (partner[k] < 0) {
+        p(i, 0) = mirror_x;
+      } else if (partner[k] != static_cast<int>(k)) {
+        const auto j = static_cast<Eigen::Index>(partner[k]);
+        p.row(i) = 0.5 * (in.row(i) + in.row(j));
+        p(i, 0) = 0.5 * (in(i, 0) + 2 * mirror_x - in(j, 0));
+      }
+    }
+  };
+  if (options.symmetric) {
+    Eigen::MatrixX3d initial_free = rows(r.initial_landmarks, free);
+    symmetrize(initial_free);
+    for (std::size_t k = 0; k < free.size(); ++k) r.initial_landmarks.row(free[k]) = initial_free.row(static_cast<Eigen::Index>(k));
+  }
+  const Eigen::MatrixX3d prior = rows(r.initial_landmarks, free);
+
   Eigen::MatrixX3d all = r.initial_landmarks;
   facemesh::Vertices deformed;
   const bool project = options.ga.projection != ProjectionMode::Off;
   const GaEvaluate evaluate = [&](Eigen::MatrixX3d& positions) {
+    if (options.symmetric) symmetrize(positions);
     for (Eigen::Index k = 0; k < positions.rows(); ++k) {
       Eigen::Vector3d q;
       if (project && projector.project(positions.row(k).transpose(), q)) positions.row(k) = q.transpose();
@@ -125,7 +158,8 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
     }
     const RbfNetwork net = fit_rbf(r.source_landmarks, all, options.rbf);
     net.evaluate(source.mesh.vertices, deformed);
-    return error.evaluate(deformed, source_top);  // fitness = 1/E (thesis §3.6.2)
+    // fitness = 1/E (thesis §3.6.2), E of §3.5 plus the optional prior (beyond the thesis)
+    return error.evaluate(deformed, source_top) + options.prior_weight * (positions - prior).squaredNorm();
   };
   r.target_landmarks = r.initial_landmarks;
   if (!free.empty()) {

@@ -34,6 +34,14 @@ struct RetargetOptions {
   GaOptions ga;
   /// Landmarks found by the §3.2.1 heuristics and kept fixed; every other rig landmark is searched.
   std::vector<std::string> detected = {"top_of_head", "nose_tip", "ear_r", "ear_l"};
+  /// Beyond the thesis: keep the landmarks mirror-symmetric about the plane x = centreline x (pairs
+  /// "<name>_l"/"<name>_r" are averaged with their mirror, others get x = centreline x) before each
+  /// evaluation. Without it the GA trades feature placement for surface fit (docs/retarget.md).
+  bool symmetric = true;
+  /// Beyond the thesis: E + prior_weight·Σ_k |l_k − l_k⁰|² (l⁰ the initial landmarks of §3.3), so
+  /// searched landmarks only leave their initial place when the surface fit pays for it. m⁻²·m² = 1, ≥ 0;
+  /// default 0 (off): on the MakeHuman head a weight of 1 pulled the mouth corners down (docs/retarget.md).
+  double prior_weight = 0.0;
   void validate() const;
 };
 
