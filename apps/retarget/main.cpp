@@ -32,11 +32,13 @@ int main(int argc, char** argv) {
   app.add_option("--population", o.ga.population, "GA population")->check(CLI::Range(4, 10000));
   app.add_option("--bits", o.ga.bits, "Bits per coordinate (thesis: 5-10)")->check(CLI::Range(2, 16));
   app.add_option("--cube", o.ga.cube_size, "Search cube edge around each landmark, m (thesis frame)")->check(CLI::PositiveNumber);
-  app.add_option("--projection", projection, "off, evaluate_only or replace (thesis §3.6.2)");
+  app.add_option("--projection", projection, "off, evaluate_only or replace (thesis §3.6.2)")
+      ->check(CLI::IsMember({"off", "evaluate_only", "replace"}));
   app.add_option("--planes", o.error.planes, "Sampling planes m")->check(CLI::Range(2, 360));
   app.add_option("--samples", o.error.samples, "Samples per curve n")->check(CLI::Range(2, 10000));
-  app.add_option("--up", up, "Input axis pointing to the top of the head (+x,-x,+y,-y,+z,-z)");
-  app.add_option("--front", front, "Input axis the face looks along");
+  const auto axes = CLI::IsMember({"+x", "-x", "+y", "-y", "+z", "-z"});
+  app.add_option("--up", up, "Input axis pointing to the top of the head (+x,-x,+y,-y,+z,-z)")->check(axes);
+  app.add_option("--front", front, "Input axis the face looks along")->check(axes);
   app.add_flag("--no-png", no_png, "Skip the pictures");
   app.add_flag("--quiet", quiet, "No progress on stderr");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
@@ -44,6 +46,8 @@ int main(int argc, char** argv) {
     o.align.up = rt::axis_from_string(up);
     o.align.front = rt::axis_from_string(front);
     o.ga.projection = rt::projection_mode_from_string(projection);
+    if (o.align.up == o.align.front || rt::to_string(o.align.up).substr(1) == rt::to_string(o.align.front).substr(1))
+      throw emoface::cli::UsageError("--up and --front must be perpendicular axes");
     const fm::Face source = source_rig.empty() ? fm::make_default_face() : fm::load_face(source_rig);
     const fm::Mesh target = fm::read_mesh(target_path);
     const auto progress = [&](const rt::GaProgress& p) {
