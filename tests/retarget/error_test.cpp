@@ -51,6 +51,15 @@ TEST(ErrorFunction, MatchesAnalyticValueForTwoSpheroids) {
   const double got = e.evaluate(source.vertices, 0, &br);
   EXPECT_NEAR(got, expected, 0.02 * expected);
   EXPECT_EQ(br.samples, 88u);
+  std::vector<double> res;
+  e.residuals(source.vertices, 0, res);
+  ASSERT_EQ(res.size(), e.residual_count());
+  ASSERT_EQ(res.size(), 8u * 12u);
+  double sum = 0;
+  for (double x : res) sum += x * x;
+  EXPECT_NEAR(sum, got, 1e-15);
+  EXPECT_NEAR(res[0], 0.0, 1e-12);          // at the top both curves meet
+  EXPECT_NEAR(res[5], (r1 - r2) * std::sqrt(1 - 0.0625), 1e-4);  // y_5 = 0.025 = b/4
   // Front only: the default keeps azimuths within ±1.3 rad.
   const rt::ErrorFunction front(target, 0, source.faces, source.vertex_count());
   for (double a : front.azimuths()) EXPECT_LE(std::abs(a), 1.3 + 1e-12);

@@ -45,6 +45,8 @@ struct ErrorFunction::Impl {
   MeshWalker source_walker;
   std::vector<std::vector<Eigen::Vector2d>> target_curves;
   Impl(const facemesh::Faces& faces, std::size_t n) : source_walker(faces, n) {}
+  void compute(const facemesh::Vertices& deformed, int deformed_top, std::vector<double>& res,
+               std::vector<char>* sampled) const;
 };
 
 ErrorFunction::ErrorFunction(const facemesh::Mesh& target, int target_top, const facemesh::Faces& source_faces,
@@ -74,15 +76,42 @@ const Eigen::Vector3d& ErrorFunction::centre() const { return impl_->centre; }
 const std::vector<double>& ErrorFunction::azimuths() const { return impl_->azimuths; }
 const ErrorOptions& ErrorFunction::options() const { return impl_->options; }
 
+std::size_t ErrorFunction::residual_count() const {
+  return impl_->azimuths.size() * (static_cast<std::size_t>(impl_->options.samples) + 1);
+}
+
 double ErrorFunction::evaluate(const facemesh::Vertices& deformed, int deformed_top, ErrorBreakdown* breakdown) const {
-  const auto& m = *impl_;
-  const auto n = static_cast<std::size_t>(m.options.samples);
+  std::vector<double> r;
+  std::vector<char> sampled;
+  impl_->compute(deformed, deformed_top, r, &sampled);
+  const auto n = static_cast<std::size_t>(impl_->options.samples);
   ErrorBreakdown out;
+  out.half_planes = impl_->azimuths.size();
+  for (std::size_t i = 0; i < out.half_planes; ++i) {
+    const double* block = r.data() + i * (n + 1);
+    for (std::size_t j = 0; j < n; ++j) out.distance_term += block[j] * block[j];
+    out.penalty_term += block[n] * block[n];
+    if (sampled[i]) out.samples += n;
+  }
+  if (breakdown) *breakdown = out;
+  return out.distance_term + out.penalty_term;
+}
+
+void ErrorFunction::residuals(const facemesh::Vertices& deformed, int deformed_top, std::vector<double>& res) const {
+  impl_->compute(deformed, deformed_top, res, nullptr);
+}
+
+void ErrorFunction::Impl::compute(const facemesh::Vertices& deformed, int deformed_top, std::vector<double>& res,
+                                  std::vector<char>* sampled) const {
+  const auto& m = *this;
+  const auto n = static_cast<std::size_t>(m.options.samples);
+  res.assign(azimuths.size() * (n + 1), 0.0);
+  if (sampled) sampled->assign(azimuths.size(), 0);
   std::vector<double> heights(n), rm, rt;
   for (std::size_t i = 0; i < m.azimuths.size(); ++i) {
+    double* block = res.data() + i * (n + 1);
     const auto curve_m = m.source_walker.half_plane_curve(deformed, deformed_top, m.centre, m.azimuths[i], m.options.bottom_y);
     const auto& curve_t = m.target_curves[i];
-    ++out.half_planes;
     auto y_range = [&](const std::vector<Eigen::Vector2d>& c, double& hi, double& lo) {
       hi = c.front().y();
       lo = hi;
@@ -95,26 +124,23 @@ double ErrorFunction::evaluate(const facemesh::Vertices& deformed, int deformed_
     y_range(curve_t, ht, lt);
     const double y_start = std::min(hm, ht), y_end = std::max(lm, lt);  // thesis §3.5: common range
     if (!(y_start > y_end)) {
-      out.penalty_term += m.options.penalty * static_cast<double>(n);
+      block[n] = std::sqrt(m.options.penalty * static_cast<double>(n));
       continue;
     }
     const double spacing = (y_start - y_end) / static_cast<double>(n - 1);
     // Δ: the parts of the curves outside the common range, in samples (thesis §3.5).
     const double outside = std::abs(hm - ht) + std::abs(lm - lt);
-    out.penalty_term += m.options.penalty * outside / spacing;
+    double penalty = m.options.penalty * outside / spacing;
     for (std::size_t j = 0; j < n; ++j) heights[j] = y_start - static_cast<double>(j) * spacing;
     heights.back() = y_end;
-    const bool ok_m = sample_curve(curve_m, heights, rm);
-    const bool ok_t = sample_curve(curve_t, heights, rt);
-    if (!ok_m || !ok_t) {
-      out.penalty_term += m.options.penalty * static_cast<double>(n);
-      continue;
+    if (sample_curve(curve_m, heights, rm) && sample_curve(curve_t, heights, rt)) {
+      for (std::size_t j = 0; j < n; ++j) block[j] = rm[j] - rt[j];
+      if (sampled) (*sampled)[i] = 1;
+    } else {
+      penalty += m.options.penalty * static_cast<double>(n);
     }
-    for (std::size_t j = 0; j < n; ++j) out.distance_term += (rm[j] - rt[j]) * (rm[j] - rt[j]);
-    out.samples += n;
+    block[n] = std::sqrt(penalty);
   }
-  if (breakdown) *breakdown = out;
-  return out.distance_term + out.penalty_term;
 }
 
 }  // namespace emoface::retarget

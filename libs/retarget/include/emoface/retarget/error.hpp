@@ -60,6 +60,12 @@ class ErrorFunction {
   /// E for the deformed source vertices (#V by 3, thesis frame), walked from `deformed_top`.
   double evaluate(const facemesh::Vertices& deformed, int deformed_top, ErrorBreakdown* breakdown = nullptr) const;
 
+  /// The same E as a fixed-size residual vector (E = Σ r²) for least-squares refinement:
+  /// per half-plane, n sample differences r_M − r_T (m) then √Δ_i (the half-plane's penalty). A
+  /// half-plane without a common range contributes zeros and √(penalty·n). Size residual_count().
+  void residuals(const facemesh::Vertices& deformed, int deformed_top, std::vector<double>& out) const;
+  std::size_t residual_count() const;
+
   /// The centreline point (x, ·, z) of l: the target's top-of-head vertex.
   const Eigen::Vector3d& centre() const;
   /// Azimuths of the half-planes used, radians.
