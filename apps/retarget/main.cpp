@@ -20,7 +20,7 @@ namespace rt = emoface::retarget;
 
 int main(int argc, char** argv) {
   CLI::App app{"Fit a rigged face to a head mesh (thesis ch. 3: RBF networks + GA) and write its rig.\n"
-               "Example: retarget --target head.obj --out fitted --seed 7 --generations 40"};
+               "Example: retarget --target head.obj --out fitted --seed 7 --generations 40 --refine"};
   std::string target_path, out_dir, source_rig, up = "+y", front = "+z", projection = "evaluate_only";
   rt::RetargetOptions o;
   bool no_png = false, quiet = false;
@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
   const auto axes = CLI::IsMember({"+x", "-x", "+y", "-y", "+z", "-z"});
   app.add_option("--up", up, "Input axis pointing to the top of the head (+x,-x,+y,-y,+z,-z)")->check(axes);
   app.add_option("--front", front, "Input axis the face looks along")->check(axes);
+  app.add_flag("--refine", o.refine.enabled, "Refine the GA result locally (Levenberg-Marquardt, Ceres)");
+  app.add_option("--prior", o.prior_weight, "Weight of the landmark prior (0 = off)")->check(CLI::NonNegativeNumber);
   app.add_flag("--no-png", no_png, "Skip the pictures");
   app.add_flag("--quiet", quiet, "No progress on stderr");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
@@ -92,8 +94,10 @@ int main(int argc, char** argv) {
       }
       fm::write_png((dir / "emotions.png").string(), fm::contact_sheet(tiles, 3));
     }
-    std::fprintf(stderr, "retarget: E %.6g -> %.6g (%d generations, %ld evaluations, %.1f s); wrote %s\n",
-                 r.ga.initial_error, r.ga.best_error, r.ga.generations, r.ga.evaluations, r.ga.seconds, out_dir.c_str());
+    std::fprintf(stderr, "retarget: E %.6g -> %.6g (%d generations, %ld evaluations, %.1f s)", r.ga.initial_error,
+                 r.ga.best_error, r.ga.generations, r.ga.evaluations, r.ga.seconds);
+    if (r.refine.ran) std::fprintf(stderr, " -> refined %.6g (%d iterations, %.1f s)", r.refine.final_error, r.refine.iterations, r.refine.seconds);
+    std::fprintf(stderr, "; wrote %s\n", out_dir.c_str());
     return 0;
   });
 }

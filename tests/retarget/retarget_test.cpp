@@ -89,6 +89,28 @@ TEST(Retarget, WarpedTargetImprovesAndTheRigAnimates) {
   EXPECT_LT(smile, 2.0 * mouth_corner_motion(face()));
 }
 
+TEST(Retarget, RefinementNeverWorsensAndIsReported) {
+  rt::SyntheticWarp w;
+  w.height = 1.06;
+  w.chin = 0.006;
+  fm::Mesh target = face().mesh;
+  target.vertices = w.apply(target.vertices);
+  auto o = quick();
+  o.refine.enabled = true;
+  o.refine.max_iterations = 3;
+  const auto r = rt::retarget_face(face(), target, o);
+  EXPECT_TRUE(r.refine.ran);
+  EXPECT_GE(r.refine.iterations, 1);
+  EXPECT_NEAR(r.refine.initial_error, r.ga.best_error, 1e-12 + 1e-9 * r.ga.best_error);
+  EXPECT_LE(r.refine.final_error, r.refine.initial_error);
+  EXPECT_FALSE(r.refine.status.empty());
+  const auto doc = emoface::core::parse_json(rt::format_report(r, false), "r");
+  EXPECT_EQ(doc["refine"]["iterations"].get<int>(), r.refine.iterations);
+  rt::RefineOptions bad;
+  bad.step = 0;
+  EXPECT_THROW(bad.validate(), emoface::InvalidInput);
+}
+
 TEST(Retarget, ClearErrors) {
   auto o = quick();
   o.detected = {"nose_tip", "ear_l"};

@@ -40,6 +40,14 @@ std::string format_report(const RetargetResult& r, bool include_time) {
   g["error_curve"] = r.ga.error_curve;
   g["mutation_curve"] = r.ga.mutation_curve;
   if (include_time) g["seconds"] = r.ga.seconds;
+  if (r.refine.ran) {
+    auto& f = doc["refine"];
+    f["status"] = r.refine.status;
+    f["iterations"] = r.refine.iterations;
+    f["initial_error"] = r.refine.initial_error;
+    f["final_error"] = r.refine.final_error;
+    if (include_time) f["seconds"] = r.refine.seconds;
+  }
   return doc.dump(2) + "\n";
 }
 

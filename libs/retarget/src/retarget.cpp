@@ -5,6 +5,7 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/retarget/surface.hpp"
+#include "refine.hpp"
 
 namespace emoface::retarget {
 namespace {
@@ -17,7 +18,13 @@ int landmark_vertex(const facemesh::Rig& rig, const std::string& name) {
 }
 }  // namespace
 
+void RefineOptions::validate() const {
+  if (max_iterations < 1 || max_iterations > 1000) throw InvalidInput("RefineOptions::max_iterations must be in [1, 1000]");
+  if (!(step > 0.0 && step <= 0.01)) throw InvalidInput("RefineOptions::step must be in (0, 0.01] m");
+}
+
 void RetargetOptions::validate() const {
+  refine.validate();
   align.validate();
   rbf.validate();
   error.validate();
@@ -161,11 +168,21 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
     // fitness = 1/E (thesis §3.6.2), E of §3.5 plus the optional prior (beyond the thesis)
     return error.evaluate(deformed, source_top) + options.prior_weight * (positions - prior).squaredNorm();
   };
+  // Residual form of the same objective for the optional refinement.
+  const detail::ResidualFunction residuals = [&](Eigen::MatrixX3d& positions, std::vector<double>& out) {
+    evaluate(positions);  // symmetrise, project, deform (fills `deformed`)
+    error.residuals(deformed, source_top, out);
+    const double w = std::sqrt(options.prior_weight);
+    for (Eigen::Index k = 0; k < positions.rows(); ++k)
+      for (int c = 0; c < 3; ++c) out.push_back(w * (positions(k, c) - prior(k, c)));
+  };
   r.target_landmarks = r.initial_landmarks;
   if (!free.empty()) {
     const GaResult ga = run_ga(rows(r.initial_landmarks, free), evaluate, options.ga, progress);
-    for (std::size_t k = 0; k < free.size(); ++k) r.target_landmarks.row(free[k]) = ga.positions.row(static_cast<Eigen::Index>(k));
+    Eigen::MatrixX3d best = ga.positions;
     r.ga = ga.report;
+    if (options.refine.enabled) best = detail::refine_landmarks(best, residuals, options.refine, r.refine);
+    for (std::size_t k = 0; k < free.size(); ++k) r.target_landmarks.row(free[k]) = best.row(static_cast<Eigen::Index>(k));
   }
   const RbfNetwork final_net = fit_rbf(r.source_landmarks, r.target_landmarks, options.rbf);
   // Length scale: RMS spread of the target landmarks over that of the source landmarks.

@@ -26,6 +26,24 @@
 
 namespace emoface::retarget {
 
+/// Beyond the thesis: local least-squares refinement of the searched landmarks after the GA
+/// (Levenberg–Marquardt on the residuals of ErrorFunction, numeric central differences; Ceres).
+struct RefineOptions {
+  bool enabled = false;
+  int max_iterations = 15;      ///< LM iterations, [1, 1000]
+  double step = 2e-4;           ///< finite-difference step, m, (0, 0.01]
+  void validate() const;
+};
+
+struct RefineReport {
+  bool ran = false;
+  std::string status;           ///< Ceres termination type, e.g. "CONVERGENCE", "NO_CONVERGENCE"
+  int iterations = 0;
+  double initial_error = 0.0;   ///< E after the GA (including the prior term)
+  double final_error = 0.0;     ///< E after refinement
+  double seconds = 0.0;         ///< wall time (non-deterministic)
+};
+
 struct RetargetOptions {
   AlignOptions align;
   RbfOptions rbf;
@@ -42,6 +60,7 @@ struct RetargetOptions {
   /// searched landmarks only leave their initial place when the surface fit pays for it. m⁻²·m² = 1, ≥ 0;
   /// default 0 (off): on the MakeHuman head a weight of 1 pulled the mouth corners down (docs/retarget.md).
   double prior_weight = 0.0;
+  RefineOptions refine;
   void validate() const;
 };
 
@@ -56,6 +75,7 @@ struct RetargetResult {
   Eigen::MatrixX3d target_landmarks;       ///< final, #L by 3, m
   double length_scale = 1.0;               ///< factor applied to muscle radii, elasticities, eye radii
   GaReport ga;
+  RefineReport refine;
 };
 
 /// Position of a named rig landmark; throws InvalidInput if the rig lacks it.
