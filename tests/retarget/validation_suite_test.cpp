@@ -118,3 +118,39 @@ TEST(ValidationSuite, DeterministicForASeed) {
   const auto c = rt::retarget_face(face(), target, o);
   EXPECT_NE(rt::format_report(a, false), rt::format_report(c, false));
 }
+
+// GA vs GA + refinement, the two projection variants of thesis §3.6.2 and the symmetry option, on a
+// subset of the suite: prints the table quoted in docs/retarget.md (no thresholds beyond "finite").
+TEST(ValidationSuite, VariantComparison) {
+  struct Variant {
+    const char* name;
+    rt::RetargetOptions options;
+  };
+  std::vector<Variant> variants(5);
+  variants[0].name = "GA (evaluate_only)";
+  variants[1].name = "GA + refine";
+  variants[1].options.refine.enabled = true;
+  variants[2].name = "GA (replace)";
+  variants[2].options.ga.projection = rt::ProjectionMode::Replace;
+  variants[3].name = "GA (no projection)";
+  variants[3].options.ga.projection = rt::ProjectionMode::Off;
+  variants[4].name = "GA, not symmetric";
+  variants[4].options.symmetric = false;
+  const auto cases = suite();
+  for (const auto& v : variants) {
+    double mean = 0, p95 = 0, lm = 0;
+    int n = 0;
+    for (const auto& c : cases) {
+      if (std::string(c.name) != "wide" && std::string(c.name) != "taper" && std::string(c.name) != "long_chin" &&
+          std::string(c.name) != "big_nose")
+        continue;
+      const auto out = run_case(c, v.options);
+      mean += out.mean_pct;
+      p95 += out.p95_pct;
+      lm += out.landmark_pct;
+      ++n;
+    }
+    std::printf("%-22s mean %.3f%%  p95 %.3f%%  landmarks %.3f%%  (average of %d cases)\n", v.name, mean / n, p95 / n, lm / n, n);
+    EXPECT_TRUE(std::isfinite(mean));
+  }
+}
