@@ -121,6 +121,17 @@ TEST(Retarget, ClearErrors) {
   fm::Mesh flat = face().mesh;
   flat.vertices.col(1).setConstant(0.1);
   EXPECT_THROW(rt::retarget_face(face(), flat, quick()), emoface::InvalidInput);
+  // A mask open at the top: clear error, not nonsense.
+  fm::Mesh mask = face().mesh;
+  std::vector<int> keep;
+  const int top = face().rig.retarget_landmarks[0].vertex;
+  for (Eigen::Index f = 0; f < mask.faces.rows(); ++f)
+    if (mask.faces(f, 0) != top && mask.faces(f, 1) != top && mask.faces(f, 2) != top) keep.push_back(static_cast<int>(f));
+  fm::Faces kept(static_cast<Eigen::Index>(keep.size()), 3);
+  for (std::size_t i = 0; i < keep.size(); ++i) kept.row(static_cast<Eigen::Index>(i)) = mask.faces.row(keep[i]);
+  mask.faces = kept;
+  mask.vertices(top, 1) -= 0.05;  // the unused pole must not count as the top
+  EXPECT_THROW(rt::retarget_face(face(), mask, quick()), emoface::InvalidInput);
   o = quick();
   o.prior_weight = -1;
   EXPECT_THROW(o.validate(), emoface::InvalidInput);

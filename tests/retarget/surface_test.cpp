@@ -49,6 +49,9 @@ TEST(MeshWalker, FillsHolesAndStopsAtOpenEnds) {
   for (std::size_t i = 0; i < keep.size(); ++i) faces.row(static_cast<Eigen::Index>(i)) = m.faces.row(keep[i]);
   const rt::MeshWalker walker(faces, m.vertex_count());
   EXPECT_EQ(walker.boundary_loop_count(), 2u);
+  EXPECT_FALSE(walker.on_boundary(0));
+  EXPECT_TRUE(walker.on_boundary(static_cast<int>(m.vertex_count()) - 1));  // the removed bottom pole
+  EXPECT_THROW(walker.on_boundary(-1), emoface::InvalidInput);
   const auto curve = walker.half_plane_curve(m.vertices, 0, Eigen::Vector3d::Zero(), 0.0, -1e300);
   // Crossed the hole (reached below it) and ended at the open neck.
   EXPECT_LT(curve.back().y(), -0.08);

@@ -107,6 +107,9 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
   // thesis §3.3: initial non-detected landmarks from the RBF trained on the detected ones, then put on
   // the target surface by cylindrical projection (§3.2.1).
   const int target_top = found[static_cast<std::size_t>(std::find(options.detected.begin(), options.detected.end(), "top_of_head") - options.detected.begin())].vertex;
+  if (MeshWalker(r.aligned_target.faces, r.aligned_target.vertex_count()).on_boundary(target_top))
+    throw InvalidInput("the target's highest vertex lies on an open boundary: the mesh has no top of head (a face mask "
+                       "or a scan open at the top?); the error function of thesis §3.5 walks down from the top of the head");
   const CylindricalProjector projector(r.aligned_target, r.aligned_target.vertices.row(target_top));
   const RbfNetwork initial_net = fit_rbf(rows(r.source_landmarks, fixed), rows(detected_target, fixed), options.rbf);
   r.initial_landmarks = detected_target;

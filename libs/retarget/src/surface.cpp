@@ -94,6 +94,19 @@ MeshWalker::~MeshWalker() = default;
 MeshWalker::MeshWalker(MeshWalker&&) noexcept = default;
 MeshWalker& MeshWalker::operator=(MeshWalker&&) noexcept = default;
 std::size_t MeshWalker::edge_count() const { return impl_->edges.size(); }
+
+bool MeshWalker::on_boundary(int vertex) const {
+  const auto& m = *impl_;
+  if (vertex < 0 || static_cast<std::size_t>(vertex) + 1 >= m.vertex_face_start.size()) throw InvalidInput("MeshWalker: vertex out of range");
+  const auto v = static_cast<std::size_t>(vertex);
+  if (m.vertex_face_start[v] == m.vertex_face_start[v + 1]) return true;
+  for (int k = m.vertex_face_start[v]; k < m.vertex_face_start[v + 1]; ++k)
+    for (int e : m.face_edges[static_cast<std::size_t>(m.vertex_faces[static_cast<std::size_t>(k)])]) {
+      const auto& edge = m.edges[static_cast<std::size_t>(e)];
+      if ((edge.a == vertex || edge.b == vertex) && edge.faces[1] == -1) return true;
+    }
+  return false;
+}
 std::size_t MeshWalker::boundary_loop_count() const { return impl_->loops.size(); }
 
 std::vector<Eigen::Vector2d> MeshWalker::half_plane_curve(const facemesh::Vertices& v, int start,

@@ -37,6 +37,9 @@ class MeshWalker {
                                                 const Eigen::Vector3d& c, double azimuth,
                                                 double stop_y) const;
 
+  /// True if the vertex lies on an open boundary (a hole's rim) or on no face at all.
+  bool on_boundary(int vertex) const;
+
   std::size_t edge_count() const;
   std::size_t boundary_loop_count() const;
 
