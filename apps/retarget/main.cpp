@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   std::string target_path, out_dir, source_rig, up = "+y", front = "+z", projection = "evaluate_only";
   rt::RetargetOptions o;
   bool no_png = false, quiet = false;
+  int tile = 320;
   app.add_option("--target", target_path, "Target head mesh (OBJ/PLY/OFF)")->required();
   app.add_option("--out", out_dir, "Output directory (face.rig, face.obj, target_aligned.obj, report.json, PNGs)")->required();
   app.add_option("--source", source_rig, "Source rig (default: the built-in face)");
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
   app.add_flag("--refine", o.refine.enabled, "Refine the GA result locally (Levenberg-Marquardt, Ceres)");
   app.add_option("--prior", o.prior_weight, "Weight of the landmark prior (0 = off)")->check(CLI::NonNegativeNumber);
   app.add_flag("--no-png", no_png, "Skip the pictures");
+  app.add_option("--tile-width", tile, "Width of one picture tile in pixels")->check(CLI::Range(64, 2048));
   app.add_flag("--quiet", quiet, "No progress on stderr");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("retarget", [&]() {
@@ -67,8 +69,8 @@ int main(int argc, char** argv) {
     rt::write_report((dir / "report.json").string(), r);
     if (!no_png) {
       fm::RenderOptions ro;
-      ro.width = 320;
-      ro.height = 380;
+      ro.width = tile;
+      ro.height = tile * 19 / 16;
       const auto colors = fm::material_colors(face.rig);
       std::vector<fm::Image> overlay;
       for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
