@@ -79,6 +79,29 @@ TEST(ErrorFunction, PenalisesHeightMismatch) {
   EXPECT_NEAR(br.penalty_term, br.half_planes * o.penalty * 0.01 / spacing, 1e-9);
 }
 
+TEST(ErrorFunction, TopYLimitsTheSampledRange) {
+  // Spheroids as in the analytic test, sampled only in [y_end, top_y]: no penalty (both curves cover it).
+  const double b = 0.1, r1 = 0.09, r2 = 0.08;
+  const auto target = ellipsoid(r2, b, r2, 100, 128);
+  const auto source = ellipsoid(r1, b, r1, 100, 128);
+  rt::ErrorOptions o;
+  o.planes = 2;
+  o.samples = 5;
+  o.front_half_angle = 0.1;  // only azimuth 0
+  o.bottom_y = 0.0;
+  o.top_y = 0.06;
+  const rt::ErrorFunction e(target, 0, source.faces, source.vertex_count(), o);
+  ASSERT_EQ(e.azimuths().size(), 1u);
+  double expected = 0;
+  for (int j = 0; j < 5; ++j) {
+    const double y = 0.06 - j * 0.015;
+    expected += (r1 - r2) * (r1 - r2) * (1 - y * y / (b * b));
+  }
+  rt::ErrorBreakdown br;
+  EXPECT_NEAR(e.evaluate(source.vertices, 0, &br), expected, 0.02 * expected);
+  EXPECT_EQ(br.penalty_term, 0.0);
+}
+
 TEST(ErrorFunction, RejectsBadOptions) {
   const auto m = ellipsoid(0.1, 0.1, 0.1, 8, 8);
   rt::ErrorOptions o;
@@ -86,6 +109,9 @@ TEST(ErrorFunction, RejectsBadOptions) {
   EXPECT_THROW(rt::ErrorFunction(m, 0, m.faces, m.vertex_count(), o), emoface::InvalidInput);
   o = {};
   o.samples = 1;
+  EXPECT_THROW(o.validate(), emoface::InvalidInput);
+  o = {};
+  o.top_y = -2e300;
   EXPECT_THROW(o.validate(), emoface::InvalidInput);
   o = {};
   o.penalty = std::nan("");

@@ -16,7 +16,8 @@ void ErrorOptions::validate() const {
   if (samples < 2 || samples > 10000) throw InvalidInput("ErrorOptions::samples must be in [2, 10000]");
   if (!(front_half_angle > 0.0 && front_half_angle <= kPi))
     throw InvalidInput("ErrorOptions::front_half_angle must be in (0, pi]");
-  if (std::isnan(bottom_y)) throw InvalidInput("ErrorOptions::bottom_y must not be NaN");
+  if (std::isnan(bottom_y) || std::isnan(top_y) || !(top_y > bottom_y))
+    throw InvalidInput("ErrorOptions: bottom_y and top_y must not be NaN and top_y > bottom_y");
   if (!(penalty >= 0.0) || !std::isfinite(penalty)) throw InvalidInput("ErrorOptions::penalty must be finite and >= 0");
 }
 
@@ -117,7 +118,7 @@ void ErrorFunction::Impl::compute(const facemesh::Vertices& deformed, int deform
       lo = hi;
       for (const auto& q : c) lo = std::min(lo, q.y());
       lo = std::max(lo, m.options.bottom_y);
-      hi = std::max(hi, lo);
+      hi = std::max(std::min(hi, m.options.top_y), lo);
     };
     double hm, lm, ht, lt;
     y_range(curve_m, hm, lm);

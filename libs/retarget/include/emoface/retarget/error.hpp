@@ -28,6 +28,8 @@ struct ErrorOptions {
   /// Lowest sampled height, m in the thesis frame (thesis §3.5: "we also ignore the neck"); the
   /// retarget pipeline sets it to the source chin height. −∞ = no limit.
   double bottom_y = -1e300;
+  /// Highest sampled height, m (e.g. to drop the scalp); +∞ = from the top of the head. > bottom_y.
+  double top_y = 1e300;
   /// Penalty per missing sample, m² (Δ of thesis §3.5): the height by which a curve extends beyond
   /// the common range, divided by the sample spacing, times this. ≥ 0.
   double penalty = 4e-4;
