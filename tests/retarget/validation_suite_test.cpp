@@ -4,7 +4,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <set>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "emoface/core/errors.hpp"
@@ -22,10 +25,49 @@ const fm::Face& face() {
   return f;
 }
 
+// Re-tessellation: flips a maximal set of non-adjacent interior edges whose quad is convex (both new
+// triangles keep the orientation of the old ones), so the target has the same vertices but different
+// triangles — about a third of all edges change.
+fm::Mesh flip_edges(const fm::Mesh& m) {
+  std::map<std::pair<int, int>, int> directed;  // (a, b) -> face with edge a->b
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) directed[{m.faces(f, k), m.faces(f, (k + 1) % 3)}] = static_cast<int>(f);
+  std::set<std::pair<int, int>> edges;
+  for (const auto& [e, f] : directed) edges.insert({std::min(e.first, e.second), std::max(e.first, e.second)});
+  std::vector<char> touched(static_cast<std::size_t>(m.faces.rows()), 0);
+  fm::Faces out = m.faces;
+  auto normal = [&](int a, int b, int c) {
+    return Eigen::Vector3d((m.vertices.row(b) - m.vertices.row(a)).cross(m.vertices.row(c) - m.vertices.row(a)));
+  };
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
+    if (touched[static_cast<std::size_t>(f)]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.faces(f, k), b = m.faces(f, (k + 1) % 3), c = m.faces(f, (k + 2) % 3);
+      const auto it = directed.find({b, a});
+      if (it == directed.end() || touched[static_cast<std::size_t>(it->second)]) continue;
+      const int g = it->second;
+      int d = -1;
+      for (int j = 0; j < 3; ++j)
+        if (m.faces(g, j) != a && m.faces(g, j) != b) d = m.faces(g, j);
+      if (edges.count({std::min(c, d), std::max(c, d)})) continue;
+      const Eigen::Vector3d n = normal(a, b, c) + normal(b, a, d);
+      if (normal(a, d, c).dot(n) <= 0 || normal(d, b, c).dot(n) <= 0) continue;
+      if (normal(a, d, c).norm() < 1e-12 || normal(d, b, c).norm() < 1e-12) continue;
+      out.row(f) << a, d, c;
+      out.row(g) << d, b, c;
+      edges.insert({std::min(c, d), std::max(c, d)});
+      touched[static_cast<std::size_t>(f)] = touched[static_cast<std::size_t>(g)] = 1;
+      break;
+    }
+  }
+  return fm::Mesh{m.vertices, out};
+}
+
 struct Case {
   const char* name;
   rt::SyntheticWarp warp;
   bool subdivide = false;
+  bool flip = false;
   rt::Axis up = rt::Axis::PosY, front = rt::Axis::PosZ;
 };
 
@@ -46,6 +88,10 @@ Outcome run_case(const Case& c, const rt::RetargetOptions& options) {
   fm::Mesh target = face().mesh;
   target.vertices = c.warp.apply(target.vertices);
   if (c.subdivide) target = fm::subdivide_midpoint(target);
+  if (c.flip) {
+    target = flip_edges(target);
+    fm::validate_mesh(target, "flipped");
+  }
   rt::RetargetOptions o = options;
   o.align.up = c.up;
   o.align.front = c.front;
@@ -67,7 +113,7 @@ Outcome run_case(const Case& c, const rt::RetargetOptions& options) {
 std::vector<Case> suite() {
   std::vector<Case> cases;
   auto add = [&](const char* name, auto edit, bool subdivide = false, rt::Axis up = rt::Axis::PosY, rt::Axis front = rt::Axis::PosZ) {
-    Case c{name, {}, subdivide, up, front};
+    Case c{name, {}, subdivide, false, up, front};
     edit(c.warp);
     cases.push_back(c);
   };
@@ -79,6 +125,8 @@ std::vector<Case> suite() {
   add("big_nose", [](rt::SyntheticWarp& w) { w.nose = 0.008; });
   add("long_chin", [](rt::SyntheticWarp& w) { w.chin = 0.01; });
   add("subdivided_wide", [](rt::SyntheticWarp& w) { w.width = 1.08; w.nose = 0.005; }, true);
+  add("flipped_long_nose", [](rt::SyntheticWarp& w) { w.height = 1.05; w.nose = 0.006; });
+  cases.back().flip = true;
   add("z_up_scaled_moved", [](rt::SyntheticWarp& w) {
     w.width = 1.05;
     w.rotation = Eigen::Vector3d(0, -1.5707963267948966, 0);  // pitch −90°: top along −z, face along +y
@@ -104,6 +152,14 @@ TEST(ValidationSuite, SyntheticTargets) {
 }
 
 // Same seed, same result (byte-identical report without the wall time).
+TEST(ValidationSuite, EdgeFlipsChangeTheTessellation) {
+  const auto flipped = flip_edges(face().mesh);
+  EXPECT_NO_THROW(fm::validate_mesh(flipped, "flipped"));
+  int changed = 0;
+  for (Eigen::Index f = 0; f < flipped.faces.rows(); ++f) changed += flipped.faces.row(f) != face().mesh.faces.row(f);
+  EXPECT_GT(changed, face().mesh.faces.rows() / 2);
+}
+
 TEST(ValidationSuite, DeterministicForASeed) {
   fm::Mesh target = face().mesh;
   rt::SyntheticWarp w;
