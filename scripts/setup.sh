@@ -12,6 +12,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
   libpng-dev libtinygltf-dev        # facemesh: PNG output of the rasteriser, animated glTF export
+  liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
 )
 
 missing=()
