@@ -82,9 +82,10 @@ struct RetargetResult {
 Eigen::Vector3d landmark_position(const facemesh::Face& face, const std::string& name);
 
 /// Applies `network` to every point of the face (mesh vertices, muscle ends, lip control points and
-/// centre, jaw pivot, eye centres, head pivot) and multiplies lengths (Rs, Rf, k, wrinkle height,
-/// sphincter semi-axes, eye radius, lip funnel extrusion is in SolverOptions and unchanged) by
-/// `length_scale`. Topology, regions, weights and landmark vertex ids are kept.
+/// centre, jaw pivot, eye centres, head pivot) and multiplies the rig's lengths (Rs, Rf, k, wrinkle
+/// height, sphincter semi-axes, eye radius) by `length_scale` (lengths in muscles::SolverOptions, such
+/// as the lip funnel extrusion, are not part of the rig and stay as they are). Topology, regions,
+/// materials, weights and landmark vertex ids are kept. Throws InvalidInput unless length_scale > 0.
 facemesh::Face transfer_face(const facemesh::Face& source, const RbfNetwork& network, double length_scale);
 
 /// The fit. Throws InvalidInput for a rig without the needed landmarks or a degenerate target.
