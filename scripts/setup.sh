@@ -15,6 +15,7 @@ PACKAGES=(
   libtinygltf-dev                   # facemesh: animated glTF export
   libespeak-ng-dev espeak-ng-data libpugixml-dev   # channels / talkinghead: speech, markup
   ffmpeg                            # facerender / talkinghead: MP4 from rendered frames
+  liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
 )
 
 missing=()

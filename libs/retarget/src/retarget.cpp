@@ -1,0 +1,198 @@
+#include "emoface/retarget/retarget.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/retarget/surface.hpp"
+#include "refine.hpp"
+
+namespace emoface::retarget {
+namespace {
+Eigen::Vector3d map_point(const RbfNetwork& net, const Eigen::Vector3d& p) { return net.evaluate(p); }
+
+int landmark_vertex(const facemesh::Rig& rig, const std::string& name) {
+  for (const auto& l : rig.retarget_landmarks)
+    if (l.name == name) return l.vertex;
+  throw InvalidInput("the source rig has no retarget landmark \"" + name + "\"");
+}
+}  // namespace
+
+void RefineOptions::validate() const {
+  if (max_iterations < 1 || max_iterations > 1000) throw InvalidInput("RefineOptions::max_iterations must be in [1, 1000]");
+  if (!(step > 0.0 && step <= 0.01)) throw InvalidInput("RefineOptions::step must be in (0, 0.01] m");
+}
+
+void RetargetOptions::validate() const {
+  refine.validate();
+  align.validate();
+  rbf.validate();
+  error.validate();
+  ga.validate();
+  if (!(prior_weight >= 0.0) || !std::isfinite(prior_weight)) throw InvalidInput("RetargetOptions::prior_weight must be finite and >= 0");
+  if (std::find(detected.begin(), detected.end(), "top_of_head") == detected.end())
+    throw InvalidInput("RetargetOptions::detected must contain top_of_head (it defines the centreline, thesis §3.5)");
+}
+
+Eigen::Vector3d landmark_position(const facemesh::Face& face, const std::string& name) {
+  const int v = landmark_vertex(face.rig, name);
+  if (v < 0 || v >= face.mesh.vertices.rows()) throw InvalidInput("landmark \"" + name + "\" is out of range");
+  return face.mesh.vertices.row(v);
+}
+
+facemesh::Face transfer_face(const facemesh::Face& source, const RbfNetwork& net, double s) {
+  if (!(s > 0.0) || !std::isfinite(s)) throw InvalidInput("transfer_face: length_scale must be finite and > 0");
+  facemesh::Face out = source;
+  net.evaluate(source.mesh.vertices, out.mesh.vertices);
+  auto& rig = out.rig;
+  for (auto& m : rig.muscles) {  // thesis §3.7: the muscles are transferred with the same networks
+    m.head = map_point(net, m.head);
+    m.tail = map_point(net, m.tail);
+    m.rs *= s;
+    m.rf *= s;
+    m.k *= s;
+    m.wrinkle_height *= s;
+    m.semi_axes *= s;
+  }
+  for (auto& c : rig.lips.control_points) c = map_point(net, c);
+  rig.lips.centre = map_point(net, rig.lips.centre);
+  rig.jaw.pivot = map_point(net, rig.jaw.pivot);
+  for (auto& e : rig.eyes) {
+    e.centre = map_point(net, e.centre);
+    e.radius *= s;
+  }
+  rig.head_pivot = map_point(net, rig.head_pivot);
+  return out;
+}
+
+RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh& target,
+                             const RetargetOptions& options, const std::function<void(const GaProgress&)>& progress) {
+  options.validate();
+  RetargetResult r;
+  const auto& rig = source.rig;
+  if (rig.retarget_landmarks.size() < 3) throw InvalidInput("the source rig needs at least three retarget landmarks");
+  const int source_top = landmark_vertex(rig, "top_of_head");
+  const Eigen::Vector3d top = landmark_position(source, "top_of_head"), nose = landmark_position(source, "nose_tip");
+  r.alignment = align_to_frame(target, top, nose, options.align);
+  r.aligned_target = target;
+  r.aligned_target.vertices = r.alignment.apply(target.vertices);
+  const auto found = detect_landmarks(r.aligned_target, options.detected);
+
+  const auto count = static_cast<Eigen::Index>(rig.retarget_landmarks.size());
+  r.source_landmarks.resize(count, 3);
+  r.detected.assign(static_cast<std::size_t>(count), false);
+  Eigen::MatrixX3d detected_target(count, 3);
+  for (Eigen::Index i = 0; i < count; ++i) {
+    const auto& l = rig.retarget_landmarks[static_cast<std::size_t>(i)];
+    r.landmark_names.push_back(l.name);
+    r.source_landmarks.row(i) = landmark_position(source, l.name).transpose();
+    for (const auto& d : found)
+      if (d.name == l.name) {
+        r.detected[static_cast<std::size_t>(i)] = true;
+        detected_target.row(i) = r.aligned_target.vertices.row(d.vertex);
+      }
+  }
+  for (const auto& d : found)
+    if (std::find(r.landmark_names.begin(), r.landmark_names.end(), d.name) == r.landmark_names.end())
+      throw InvalidInput("detected landmark \"" + d.name + "\" is not a retarget landmark of the source rig");
+  std::vector<Eigen::Index> fixed, free;
+  for (Eigen::Index i = 0; i < count; ++i) (r.detected[static_cast<std::size_t>(i)] ? fixed : free).push_back(i);
+  if (fixed.size() < 2) throw InvalidInput("need at least two detected landmarks");
+  auto rows = [](const Eigen::MatrixX3d& m, const std::vector<Eigen::Index>& ids) {
+    Eigen::MatrixX3d out(static_cast<Eigen::Index>(ids.size()), 3);
+    for (std::size_t k = 0; k < ids.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = m.row(ids[k]);
+    return out;
+  };
+
+  // thesis §3.3: initial non-detected landmarks from the RBF trained on the detected ones, then put on
+  // the target surface by cylindrical projection (§3.2.1).
+  const int target_top = found[static_cast<std::size_t>(std::find(options.detected.begin(), options.detected.end(), "top_of_head") - options.detected.begin())].vertex;
+  if (MeshWalker(r.aligned_target.faces, r.aligned_target.vertex_count()).on_boundary(target_top))
+    throw InvalidInput("the target's highest vertex lies on an open boundary: the mesh has no top of head (a face mask "
+                       "or a scan open at the top?); the error function of thesis §3.5 walks down from the top of the head");
+  const CylindricalProjector projector(r.aligned_target, r.aligned_target.vertices.row(target_top));
+  const RbfNetwork initial_net = fit_rbf(rows(r.source_landmarks, fixed), rows(detected_target, fixed), options.rbf);
+  r.initial_landmarks = detected_target;
+  for (auto i : free) {
+    Eigen::Vector3d p = initial_net.evaluate(Eigen::Vector3d(r.source_landmarks.row(i)));
+    Eigen::Vector3d q;
+    if (projector.project(p, q)) p = q;
+    r.initial_landmarks.row(i) = p.transpose();
+  }
+
+  ErrorOptions error_options = options.error;
+  if (error_options.bottom_y <= -1e299 && std::find(r.landmark_names.begin(), r.landmark_names.end(), "chin") != r.landmark_names.end())
+    error_options.bottom_y = landmark_position(source, "chin").y();
+  const ErrorFunction error(r.aligned_target, target_top, source.mesh.faces, source.mesh.vertex_count(), error_options);
+
+  // Mirror partner of every searched landmark (index into `free`, −1 = on the symmetry plane).
+  const double mirror_x = r.aligned_target.vertices(target_top, 0);
+  std::vector<int> partner(free.size(), -1);
+  for (std::size_t k = 0; k < free.size(); ++k) {
+    const std::string& name = r.landmark_names[static_cast<std::size_t>(free[k])];
+    if (name.size() < 2 || (name.compare(name.size() - 2, 2, "_l") != 0 && name.compare(name.size() - 2, 2, "_r") != 0)) continue;
+    const std::string other = name.substr(0, name.size() - 1) + (name.back() == 'l' ? "r" : "l");
+    for (std::size_t j = 0; j < free.size(); ++j)
+      if (r.landmark_names[static_cast<std::size_t>(free[j])] == other) partner[k] = static_cast<int>(j);
+    if (partner[k] < 0) partner[k] = static_cast<int>(k);  // partner is detected: leave it alone
+  }
+  auto symmetrize = [&](Eigen::MatrixX3d& p) {
+    const Eigen::MatrixX3d in = p;
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      const auto i = static_cast<Eigen::Index>(k);
+      if (partner[k] < 0) {
+        p(i, 0) = mirror_x;
+      } else if (partner[k] != static_cast<int>(k)) {
+        const auto j = static_cast<Eigen::Index>(partner[k]);
+        p.row(i) = 0.5 * (in.row(i) + in.row(j));
+        p(i, 0) = 0.5 * (in(i, 0) + 2 * mirror_x - in(j, 0));
+      }
+    }
+  };
+  if (options.symmetric) {
+    Eigen::MatrixX3d initial_free = rows(r.initial_landmarks, free);
+    symmetrize(initial_free);
+    for (std::size_t k = 0; k < free.size(); ++k) r.initial_landmarks.row(free[k]) = initial_free.row(static_cast<Eigen::Index>(k));
+  }
+  const Eigen::MatrixX3d prior = rows(r.initial_landmarks, free);
+
+  Eigen::MatrixX3d all = r.initial_landmarks;
+  facemesh::Vertices deformed;
+  const bool project = options.ga.projection != ProjectionMode::Off;
+  const GaEvaluate evaluate = [&](Eigen::MatrixX3d& positions) {
+    if (options.symmetric) symmetrize(positions);
+    for (Eigen::Index k = 0; k < positions.rows(); ++k) {
+      Eigen::Vector3d q;
+      if (project && projector.project(positions.row(k).transpose(), q)) positions.row(k) = q.transpose();
+      all.row(free[static_cast<std::size_t>(k)]) = positions.row(k);
+    }
+    const RbfNetwork net = fit_rbf(r.source_landmarks, all, options.rbf);
+    net.evaluate(source.mesh.vertices, deformed);
+    // fitness = 1/E (thesis §3.6.2), E of §3.5 plus the optional prior (beyond the thesis)
+    return error.evaluate(deformed, source_top) + options.prior_weight * (positions - prior).squaredNorm();
+  };
+  // Residual form of the same objective for the optional refinement.
+  const detail::ResidualFunction residuals = [&](Eigen::MatrixX3d& positions, std::vector<double>& out) {
+    evaluate(positions);  // symmetrise, project, deform (fills `deformed`)
+    error.residuals(deformed, source_top, out);
+    const double w = std::sqrt(options.prior_weight);
+    for (Eigen::Index k = 0; k < positions.rows(); ++k)
+      for (int c = 0; c < 3; ++c) out.push_back(w * (positions(k, c) - prior(k, c)));
+  };
+  r.target_landmarks = r.initial_landmarks;
+  if (!free.empty()) {
+    const GaResult ga = run_ga(rows(r.initial_landmarks, free), evaluate, options.ga, progress);
+    Eigen::MatrixX3d best = ga.positions;
+    r.ga = ga.report;
+    if (options.refine.enabled) best = detail::refine_landmarks(best, residuals, options.refine, r.refine);
+    for (std::size_t k = 0; k < free.size(); ++k) r.target_landmarks.row(free[k]) = best.row(static_cast<Eigen::Index>(k));
+  }
+  const RbfNetwork final_net = fit_rbf(r.source_landmarks, r.target_landmarks, options.rbf);
+  // Length scale: RMS spread of the target landmarks over that of the source landmarks.
+  auto spread = [](const Eigen::MatrixX3d& m) { return (m.rowwise() - m.colwise().mean()).squaredNorm(); };
+  r.length_scale = std::sqrt(spread(r.target_landmarks) / spread(r.source_landmarks));
+  r.face = transfer_face(source, final_net, r.length_scale);
+  return r;
+}
+
+}  // namespace emoface::retarget
