@@ -1,62 +1,23 @@
 // emo2muscle end to end: every documented flag and every bad-input case of issue 2 §3.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
-#include "emoface/core/io.hpp"
+#include "cli_harness.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
+using Result = emoface::test::CliResult;
 
-class Emo2Muscle : public ::testing::Test {
+class Emo2Muscle : public emoface::test::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("emo2muscle_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& content) const {
-    std::ofstream(path(name), std::ios::binary) << content;
-    return path(name);
-  }
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
-  // Runs emo2muscle with `args` (a shell fragment), optional stdin file.
   Result run(const std::string& args, const std::string& stdin_file = "") const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    std::string cmd = std::string(EMO2MUSCLE_EXE) + " " + args + " >" + out + " 2>" + err;
-    if (!stdin_file.empty()) cmd += " <" + stdin_file;
-    int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
+    return run_tool(EMO2MUSCLE_EXE, args, stdin_file);
   }
-  static std::size_t lines(const std::string& s) {
-    return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
-  }
-  fs::path dir_;
 };
 
 const std::string kExample = std::string(EMOFACE_SOURCE_DIR) + "/data/fuzzyexpr/example_emotions.csv";

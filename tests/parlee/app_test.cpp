@@ -10,48 +10,20 @@
 #include <sstream>
 #include <string>
 
+#include "cli_harness.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 const std::string kData = std::string(EMOFACE_SOURCE_DIR) + "/data/parlee/";
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
+using Result = emoface::test::CliResult;
 
-class ParleeApp : public ::testing::Test {
+class ParleeApp : public emoface::test::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("parlee_app_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& content) const {
-    std::ofstream(path(name), std::ios::binary) << content;
-    return path(name);
-  }
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
   Result run(const std::string& args, const std::string& stdin_file = "") const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    std::string cmd = std::string(PARLEE_EXE) + " " + args + " >" + out + " 2>" + err;
-    if (!stdin_file.empty()) cmd += " <" + stdin_file;
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
+    return run_tool(PARLEE_EXE, args, stdin_file);
   }
-  fs::path dir_;
 };
 
 }  // namespace
