@@ -17,6 +17,5 @@ rm -rf "$OUT" && mkdir -p "$OUT"/frames
   --plot-params zygomatic_major_l,orbicularis_oris_funneler,frontalis_medialis_l,masseter
 "$bin"/faceanim/faceanim --params "$OUT"/tracks.csv --out "$OUT"/meshes --fps "$FPS"
 "$bin"/facerender/facerender "$OUT"/meshes/*.obj --view threequarter --width 480 --height 480 \
-  --out "$OUT"/frames/frame.png --video "$OUT"/silent.mp4 --fps "$FPS"
-ffmpeg -loglevel error -y -i "$OUT"/silent.mp4 -i "$OUT"/speech.wav -c:v copy -c:a aac -shortest "$OUT"/talkinghead.mp4
+  --out "$OUT"/frames/frame.png --video "$OUT"/talkinghead.mp4 --audio "$OUT"/speech.wav --fps "$FPS"
 echo "wrote $OUT/talkinghead.mp4 (video + speech), $OUT/tracks.csv, $OUT/tracks.png"

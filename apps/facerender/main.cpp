@@ -1,14 +1,12 @@
 // facerender: meshes -> PNG (one image, one per mesh, or a contact sheet) and MP4 via ffmpeg.
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/errors.hpp"
+#include "emoface/core/video.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
@@ -20,7 +18,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Render face meshes to PNG with a software rasteriser (Phong shading).\n"
                "Example: facerender out/frame_0000.obj out/frame_0001.obj --sheet 2 --out sheet.png"};
   std::vector<std::string> meshes;
-  std::string out, view = "front", rig_path, video;
+  std::string out, view = "front", rig_path, video, audio;
   int sheet = 0, width = 480, height = 560, fps = 25;
   double yaw = 0.0;
   app.add_option("meshes", meshes, "Mesh files (OBJ/PLY/OFF)")->required();
@@ -31,11 +29,13 @@ int main(int argc, char** argv) {
   app.add_option("--width", width, "Image width in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--height", height, "Image height in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--yaw", yaw, "Extra camera yaw in radians")->check(CLI::Range(-3.14159, 3.14159));
-  app.add_option("--video", video, "Also encode the frames to this MP4 with the ffmpeg binary");
+  app.add_option("--video", video, "Also encode the frames to a video (.mp4/.mov/.mkv/.gif) with the ffmpeg binary");
+  app.add_option("--audio", audio, "Audio file (e.g. WAV) muxed into --video");
   app.add_option("--fps", fps, "Video frame rate")->check(CLI::Range(1, 240));
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("facerender", [&]() {
     if (out.empty() && video.empty()) throw emoface::InvalidInput("give --out FILE.png and/or --video FILE.mp4");
+    if (!audio.empty() && video.empty()) throw emoface::InvalidInput("--audio needs --video");
     const fm::Rig rig = rig_path.empty() ? fm::make_default_face().rig : fm::read_rig(rig_path);
     std::vector<Eigen::Vector3f> colors;  // from the first mesh that fits the rig (same topology)
     fm::RenderOptions options;
@@ -67,19 +67,14 @@ int main(int argc, char** argv) {
       }
     }
     if (!video.empty()) {
-      const auto dir = std::filesystem::temp_directory_path() / ("facerender_" + std::to_string(::getpid()));
-      std::filesystem::create_directories(dir);
-      for (std::size_t i = 0; i < images.size(); ++i) fm::write_png(numbered((dir / "f.png").string(), i), images[i]);
-      const std::string tmp = video + ".part.mp4";
-      const std::string cmd = "ffmpeg -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
-                              (dir / "f_%04d.png").string() + "' -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' '" + tmp + "'";
-      const int rc = std::system(cmd.c_str());
-      std::filesystem::remove_all(dir);
-      if (rc != 0) {
-        std::filesystem::remove(tmp);
-        throw emoface::IoError("ffmpeg failed (is the ffmpeg binary installed?) for " + video);
-      }
-      std::filesystem::rename(tmp, video);
+      emoface::core::VideoOptions vo;
+      vo.width = images.front().width;
+      vo.height = images.front().height;
+      vo.fps = fps;
+      vo.audio_path = audio;
+      emoface::core::VideoWriter writer(video, vo);
+      for (const auto& image : images) writer.add_frame(image.rgb);
+      writer.finish();
     }
     return 0;
   });
