@@ -1,13 +1,12 @@
 #include "plot.hpp"
 
-#include <png.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/png.hpp"
 
 namespace emoface::talkinghead {
 
@@ -36,10 +35,6 @@ struct Image {
   }
 };
 
-void write_fn(png_structp png, png_bytep data, png_size_t n) {
-  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), n);
-}
-void flush_fn(png_structp) {}
 }  // namespace
 
 void plot_png(const std::string& path, const std::vector<std::vector<double>>& series, double fps, int width,
@@ -71,22 +66,7 @@ void plot_png(const std::string& path, const std::vector<std::vector<double>>& s
     for (std::size_t f = 1; f < s.size(); ++f)
       img.line(X((f - 1) / fps), Y(s[f - 1]), X(f / fps), Y(s[f]), kRgb[k % 8], 3);
   }
-  std::string bytes;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info) throw Error("plot: libpng initialisation failed");
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    throw Error("plot: PNG encoding failed");
-  }
-  png_set_write_fn(png, &bytes, write_fn, flush_fn);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < height; ++y) png_write_row(png, img.px.data() + 3 * static_cast<std::size_t>(y) * width);
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  core::write_file_atomic(path, bytes);
+  emoface::core::write_png(path, img.w, img.h, img.px);
 }
 
 }  // namespace emoface::talkinghead

@@ -6,6 +6,7 @@
 
 #include "emoface/channels/talking_head.hpp"
 #include "emoface/core/errors.hpp"
+#include "emoface/core/version.hpp"
 
 namespace emoface::channels {
 namespace {
@@ -43,8 +44,15 @@ TEST(Speech, BadInput) {
 
 TEST(Speech, WavHeader) {
   const std::string w = format_wav({1, -2, 3}, 22050);
-  ASSERT_EQ(w.size(), 44u + 6u);
+  std::string isft(emoface::kGenerator);
+  isft.push_back('\0');
+  if (isft.size() % 2) isft.push_back('\0');
+  ASSERT_EQ(w.size(), 44u + 6u + 8u + 4u + 8u + isft.size());  // header, samples, LIST+size, INFO, ISFT+size, text
   EXPECT_EQ(w.substr(0, 4), "RIFF");
+  EXPECT_EQ(static_cast<std::size_t>(static_cast<unsigned char>(w[4])) + 8u, w.size());  // RIFF size (< 256 here)
+  EXPECT_EQ(w.substr(50, 12), "LIST" + std::string(1, static_cast<char>(4 + 8 + isft.size())) + std::string(3, '\0') + "INFO");
+  EXPECT_EQ(w.substr(62, 4), "ISFT");
+  EXPECT_EQ(w.substr(70), isft);
   EXPECT_EQ(w.substr(8, 8), "WAVEfmt ");
   EXPECT_EQ(static_cast<unsigned char>(w[40]), 6u);  // data bytes
   EXPECT_EQ(static_cast<unsigned char>(w[46]), 0xFEu);  // -2 little-endian

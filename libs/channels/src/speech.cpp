@@ -11,6 +11,7 @@
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/version.hpp"
 
 namespace emoface::channels {
 
@@ -121,13 +122,18 @@ std::vector<std::int16_t> place_utterances(const std::vector<Utterance>& utteran
 
 std::string format_wav(const std::vector<std::int16_t>& samples, int sample_rate) {
   if (sample_rate <= 0) throw InvalidInput("wav: bad sample rate");
+  // RIFF INFO list after the samples (readers that only know "fmt " and "data" skip it): ISFT = software.
+  std::string software(kGenerator);
+  software.push_back('\0');
+  if (software.size() % 2) software.push_back('\0');  // chunks are word-aligned
+  const std::uint64_t list_bytes = 4 + 8 + software.size();  // "INFO" + ISFT header + text
   const std::uint64_t data_bytes = samples.size() * 2;
-  if (data_bytes > 0xFFFFFFF0u - 36) throw InvalidInput("wav: too long");
+  if (data_bytes > 0xFFFFFFF0u - 36 - 8 - list_bytes) throw InvalidInput("wav: too long");
   std::string out;
   const auto u32 = [&](std::uint32_t v) { for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF); };
   const auto u16 = [&](std::uint16_t v) { out += static_cast<char>(v & 0xFF); out += static_cast<char>(v >> 8); };
   out += "RIFF";
-  u32(static_cast<std::uint32_t>(36 + data_bytes));
+  u32(static_cast<std::uint32_t>(36 + data_bytes + 8 + list_bytes));
   out += "WAVEfmt ";
   u32(16);
   u16(1);  // PCM
@@ -139,6 +145,11 @@ std::string format_wav(const std::vector<std::int16_t>& samples, int sample_rate
   out += "data";
   u32(static_cast<std::uint32_t>(data_bytes));
   for (std::int16_t s : samples) u16(static_cast<std::uint16_t>(s));
+  out += "LIST";
+  u32(static_cast<std::uint32_t>(list_bytes));
+  out += "INFOISFT";
+  u32(static_cast<std::uint32_t>(software.size()));
+  out += software;
   return out;
 }
 

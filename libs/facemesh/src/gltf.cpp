@@ -7,6 +7,7 @@
 #include <tiny_gltf.h>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/version.hpp"
 
 namespace emoface::facemesh {
 namespace {
@@ -64,7 +65,7 @@ void write_animated_gltf(const std::string& path, const Mesh& neutral, const std
   const std::size_t nv = neutral.vertex_count();
   tinygltf::Model model;
   model.asset.version = "2.0";
-  model.asset.generator = "emoface";
+  model.asset.generator = emoface::kGenerator;
   model.buffers.resize(1);
   std::vector<float> base(nv * 3);
   for (std::size_t v = 0; v < nv; ++v) {

@@ -14,6 +14,7 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/version.hpp"
 
 namespace emoface::facemesh {
 namespace {
@@ -119,11 +120,11 @@ void write_mesh(const std::string& path, const Mesh& mesh) {
   if (ext == ".off") {
     out += "OFF\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n";
   } else if (ext == ".ply") {
-    out += "ply\nformat ascii 1.0\ncomment emoface\nelement vertex " + std::to_string(nv) +
+    out += "ply\nformat ascii 1.0\ncomment " + std::string(emoface::kGenerator) + "\nelement vertex " + std::to_string(nv) +
            "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string(nf) +
            "\nproperty list uchar int vertex_indices\nend_header\n";
   } else {
-    out += "# emoface mesh\n";
+    out += "# " + std::string(emoface::kGenerator) + "\n";
   }
   for (long v = 0; v < nv; ++v) {
     std::snprintf(buf, sizeof buf, ext == ".obj" ? "v %.9g %.9g %.9g\n" : "%.9g %.9g %.9g\n",

@@ -4,16 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <csetjmp>
 #include <cstring>
 #include <limits>
 
 #include <Eigen/Geometry>
 
-#include <png.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/png.hpp"
 
 namespace emoface::facemesh {
 namespace {
@@ -224,36 +223,11 @@ Image contact_sheet(const std::vector<Image>& images, int columns, int gap) {
   return sheet;
 }
 
-namespace {
-void png_write_to_string(png_structp png, png_bytep data, png_size_t length) {
-  auto* out = static_cast<std::string*>(png_get_io_ptr(png));
-  out->append(reinterpret_cast<const char*>(data), length);
-}
-void png_flush_noop(png_structp) {}
-}  // namespace
-
 std::string encode_png(const Image& image) {
   if (image.width <= 0 || image.height <= 0 || image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3) {
     throw InvalidInput("encode_png: image size and pixel buffer disagree");
   }
-  std::string out;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  if (!png) throw IoError("encode_png: libpng init failed");
-  png_infop info = png_create_info_struct(png);
-  if (!info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    throw IoError("encode_png: libpng failed");
-  }
-  png_set_write_fn(png, &out, png_write_to_string, png_flush_noop);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
-               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < image.height; ++y) {
-    png_write_row(png, const_cast<png_bytep>(&image.rgb[static_cast<std::size_t>(y) * image.width * 3]));
-  }
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return out;
+  return core::encode_png(image.width, image.height, image.rgb);
 }
 
 void write_png(const std::string& path, const Image& image) { core::write_file_atomic(path, encode_png(image)); }
