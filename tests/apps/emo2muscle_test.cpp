@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli_harness.hpp"
+#include "emoface/core/version.hpp"
 
 namespace {
 
@@ -23,10 +24,20 @@ class Emo2Muscle : public emoface::test::CliTest {
 const std::string kExample = std::string(EMOFACE_SOURCE_DIR) + "/data/fuzzyexpr/example_emotions.csv";
 const std::string kHeader = "id,sadness,happiness,anger,fear,disgust,surprise\n";
 
+// Output without its first line, which must be the version stamp ("# emoface x.y.z" in CSV, the stream
+// header {"format": "emoface.fmcv", ...} in NDJSON).
+std::string unstamped(const std::string& out) {
+  const std::string first = out.substr(0, out.find('\n'));
+  const bool csv_stamp = first == std::string("# ") + emoface::kGenerator;
+  const bool nd_header = first.rfind("{\"format\":\"emoface.fmcv\"", 0) == 0 && first.find(emoface::kGenerator) != std::string::npos;
+  EXPECT_TRUE(csv_stamp || nd_header) << first;
+  return out.substr(out.find('\n') + 1);
+}
+
 TEST_F(Emo2Muscle, ConvertsTheExampleFile) {
   auto r = run(kExample + " -o " + path("m.csv") + " --summary");
   ASSERT_EQ(r.code, 0) << r.err;
-  const std::string csv = slurp(path("m.csv"));
+  const std::string csv = unstamped(slurp(path("m.csv")));
   EXPECT_EQ(lines(csv), 14u);  // header + 13 records
   EXPECT_EQ(csv.substr(0, csv.find('\n')).find("id,zygomatic_major,"), 0u);
   EXPECT_NE(r.out.find("line 4: single happiness 0.90"), std::string::npos) << r.out;
@@ -36,8 +47,9 @@ TEST_F(Emo2Muscle, ConvertsTheExampleFile) {
 TEST_F(Emo2Muscle, SidesNdjsonJsonAndStdinStdout) {
   auto r = run("--sides --to ndjson", kExample);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(lines(r.out), 13u);
-  auto first = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
+  const std::string nd_out = unstamped(r.out);
+  EXPECT_EQ(lines(nd_out), 13u);
+  auto first = nlohmann::json::parse(nd_out.substr(0, nd_out.find('\n')));
   EXPECT_EQ(first.size(), 36u);  // id + 35 parameters
   EXPECT_EQ(first["id"], "neutral");
   r = run(kExample + " --to json");
@@ -63,10 +75,11 @@ TEST_F(Emo2Muscle, ModesSeedsAndShards) {
   auto r1 = run(in + " --tie-break random --seed 5"), r2 = run(in + " --tie-break random --seed 5");
   EXPECT_EQ(r1.out, r2.out);
   auto s0 = run(in + " --shard 0/2"), s1 = run(in + " --shard 1/2");
-  EXPECT_EQ(lines(s0.out), 2u);
-  EXPECT_EQ(lines(s1.out), 2u);
-  EXPECT_EQ(s0.out.substr(s0.out.find('\n') + 1, 2), "a,");
-  EXPECT_EQ(s1.out.substr(s1.out.find('\n') + 1, 2), "b,");
+  const std::string o0 = unstamped(s0.out), o1 = unstamped(s1.out);
+  EXPECT_EQ(lines(o0), 2u);
+  EXPECT_EQ(lines(o1), 2u);
+  EXPECT_EQ(o0.substr(o0.find('\n') + 1, 2), "a,");
+  EXPECT_EQ(o1.substr(o1.find('\n') + 1, 2), "b,");
   EXPECT_EQ(run(in + " --transition smooth --missing-rule no_contraction").code, 0);
 }
 
@@ -109,7 +122,7 @@ TEST_F(Emo2Muscle, SkipWritesGoodRowsAndCountsBadOnes) {
   const std::string in = write("t.csv", kHeader + "a,0,0,0,0,0,0\nb,0,2,0,0,0,0\nc,0,0.5,0,0,0,0\nd,x,0,0,0,0,0\n");
   auto r = run(in + " --on-error skip -o " + path("o.csv"));
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(lines(slurp(path("o.csv"))), 3u);
+  EXPECT_EQ(lines(unstamped(slurp(path("o.csv")))), 3u);
   EXPECT_NE(r.err.find("skipped 2 bad record(s), wrote 2"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("t.csv:3:3"), std::string::npos) << r.err;
   r = run(in + " --clamp --on-error skip");

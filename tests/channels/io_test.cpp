@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "emoface/core/csv.hpp"
+
 #include <cmath>
 #include <filesystem>
 
@@ -46,7 +48,17 @@ TEST(Io, TracksJsonAndCsvRoundTripExactly) {
     EXPECT_EQ(back.values, t.values);
   }
   const std::string csv = format_tracks_csv(t);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "time,masseter,head_yaw,\"odd,name\"");
+  ASSERT_EQ(csv.rfind(emoface::core::csv_stamp(), 0), 0u);  // version stamp, then the header
+  const std::string body = csv.substr(emoface::core::csv_stamp().size());
+  EXPECT_EQ(body.substr(0, body.find('\n')), "time,masseter,head_yaw,\"odd,name\"");
+  // Without the stamp (hand-written files) it reads the same; error lines count the stamp line.
+  EXPECT_EQ(parse_tracks_csv(body, "x.csv").values, t.values);
+  try {
+    parse_tracks_csv(emoface::core::csv_stamp() + "time,a\n0,0\n0.5,0\n0.75,0\n", "bad.csv");
+    FAIL() << "non-uniform time accepted";
+  } catch (const emoface::FormatError& e) {
+    EXPECT_EQ(e.where().line, 4u) << e.what();  // stamp, header, frame 0, frame 1
+  }
 }
 
 TEST(Io, TracksFilesByExtension) {

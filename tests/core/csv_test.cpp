@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "emoface/core/version.hpp"
+
 namespace emoface::core {
 namespace {
 
@@ -53,5 +55,19 @@ TEST(Utf8, AcceptsValidRejectsInvalid) {
   EXPECT_FALSE(is_valid_utf8("\xF4\x90\x80\x80"));  // > U+10FFFF
 }
 
+}  // namespace
+}  // namespace emoface::core
+
+namespace emoface::core {
+namespace {
+TEST(CsvStamp, IsACommentLineWithTheVersion) {
+  const std::string s = csv_stamp();
+  EXPECT_EQ(s, std::string("# ") + kGenerator + "\n");
+  EXPECT_TRUE(is_csv_comment(s));
+  EXPECT_TRUE(is_csv_comment("\xEF\xBB\xBF# bom"));
+  EXPECT_FALSE(is_csv_comment(""));
+  EXPECT_FALSE(is_csv_comment("a,#b"));
+  EXPECT_FALSE(is_csv_comment(" #indented"));
+}
 }  // namespace
 }  // namespace emoface::core

@@ -146,3 +146,24 @@ TEST(JsonPointer, EscapesTokens) { EXPECT_EQ(json_pointer_token("a/b~c"), "a~1b~
 
 }  // namespace
 }  // namespace emoface::core
+
+namespace emoface::core {
+namespace {
+TEST(StreamHeader, WrittenAndRecognised) {
+  const std::string line = ndjson_header("tracks", {1, 2});
+  ASSERT_EQ(line.back(), '\n');
+  const auto j = nlohmann::json::parse(line);
+  EXPECT_EQ(j["format"], "emoface.tracks");
+  EXPECT_EQ(j["version"], "1.2");
+  EXPECT_EQ(j["generator"], kGenerator);
+  EXPECT_TRUE(is_stream_header(j));
+  EXPECT_TRUE(is_stream_header(nlohmann::ordered_json::parse(line)));
+  EXPECT_TRUE(is_stream_header(nlohmann::json{{"format", "emoface.x"}}));
+  EXPECT_FALSE(is_stream_header(nlohmann::json{{"format", "other.x"}, {"version", "1.0"}}));
+  EXPECT_FALSE(is_stream_header(nlohmann::json{{"format", "emoface.x"}, {"happiness", 1.0}}));  // a record
+  EXPECT_FALSE(is_stream_header(nlohmann::json{{"format", 3}}));
+  EXPECT_FALSE(is_stream_header(nlohmann::json::array()));
+  EXPECT_FALSE(is_stream_header(nlohmann::json{{"time", 0.0}}));
+}
+}  // namespace
+}  // namespace emoface::core

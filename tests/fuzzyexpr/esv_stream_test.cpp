@@ -5,7 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
+#include "emoface/core/io.hpp"
 
 namespace emoface::fuzzyexpr {
 namespace {
@@ -134,6 +136,8 @@ TEST(FmcvWriter, CsvNdjsonJsonAndSides) {
   FmcvWriter csv(o, {"id"});
   std::string out = csv.begin();
   csv.append(out, rec, f);
+  ASSERT_EQ(out.rfind(emoface::core::csv_stamp(), 0), 0u);  // version stamp first
+  out.erase(0, emoface::core::csv_stamp().size());
   EXPECT_EQ(out.substr(0, 19), "id,zygomatic_major,");
   EXPECT_NE(out.find("\n\"x,y\",0.500000,0.000000,"), std::string::npos);
   EXPECT_NE(out.find(",0.333333\n"), std::string::npos);
@@ -165,6 +169,38 @@ TEST(FmcvWriter, CsvNdjsonJsonAndSides) {
   EXPECT_THROW(FmcvWriter(o, {}), InvalidInput);
 }
 
+TEST(FmcvWriter, NdjsonStartsWithAStreamHeader) {
+  FmcvWriterOptions o;
+  o.format = StreamFormat::Ndjson;
+  const FmcvWriter nd(o, {});
+  const std::string head = nd.begin();
+  EXPECT_EQ(head, emoface::core::ndjson_header("fmcv", {1, 0}));
+  EXPECT_TRUE(emoface::core::is_stream_header(nlohmann::json::parse(head)));
+}
+
+TEST(EsvReader, SkipsVersionStampsAndStreamHeaders) {
+  std::istringstream csv(emoface::core::csv_stamp() + "# another comment\n" + std::string(kHeader) + "a,1,0,0,0,0,0\n");
+  EsvReader r(csv, "stamped.csv");
+  EsvRecord rec;
+  ASSERT_TRUE(r.next(rec));
+  EXPECT_EQ(rec.line, 4u);  // line numbers still count the stamp lines
+  EXPECT_FALSE(r.next(rec));
+  const std::string row = R"({"sadness":0,"happiness":1,"anger":0,"fear":0,"disgust":0,"surprise":0})";
+  std::istringstream nd(emoface::core::ndjson_header("esv", {1, 0}) + row + "\n" +
+                        emoface::core::ndjson_header("esv", {1, 0}) + row + "\n");  // two concatenated shards
+  EsvReaderOptions ro;
+  ro.format = StreamFormat::Ndjson;
+  EsvReader rn(nd, "stamped.ndjson", ro);
+  ASSERT_TRUE(rn.next(rec));
+  EXPECT_EQ(rec.line, 2u);
+  ASSERT_TRUE(rn.next(rec));
+  EXPECT_EQ(rec.line, 4u);
+  EXPECT_EQ(rec.esv[index(Emotion::Happiness)], 1.0);
+  EXPECT_FALSE(rn.next(rec));
+  std::istringstream only_stamp(emoface::core::csv_stamp());
+  EXPECT_THROW(EsvReader(only_stamp, "x.csv"), FormatError);
+}
+
 TEST(ConvertStream, ShardsPartitionTheRowsAndAgreeWithOneRun) {
   std::string text = kHeader;
   for (int i = 0; i < 50; ++i)
@@ -189,7 +225,8 @@ TEST(ConvertStream, ShardsPartitionTheRowsAndAgreeWithOneRun) {
   std::string lines_of_shards;
   for (std::size_t i = 0; i < 3; ++i) {
     std::string part = run(i, 3);
-    lines_of_shards += part.substr(part.find('\n') + 1);  // drop the header
+    part.erase(0, emoface::core::csv_stamp().size());    // drop the stamp
+    lines_of_shards += part.substr(part.find('\n') + 1);  // and the header
   }
   // Same set of lines (shards interleave rows; sort to compare).
   auto sorted_lines = [](const std::string& s) {
@@ -199,7 +236,8 @@ TEST(ConvertStream, ShardsPartitionTheRowsAndAgreeWithOneRun) {
     std::sort(v.begin(), v.end());
     return v;
   };
-  EXPECT_EQ(sorted_lines(whole.substr(whole.find('\n') + 1)), sorted_lines(lines_of_shards));
+  const std::string body = whole.substr(emoface::core::csv_stamp().size());
+  EXPECT_EQ(sorted_lines(body.substr(body.find('\n') + 1)), sorted_lines(lines_of_shards));
   EXPECT_EQ(whole, run(0, 1));  // deterministic
 }
 

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 #include "fixtures.hpp"
@@ -214,6 +215,7 @@ TEST(ActionsIo, NdjsonRoundTripAndCsv) {
       {1.5, "alice", "wave, big", "happiness", "happiness", 0.325, mm::Cause::Chain, "gift", 1},
       {2.0, "bob", "frown", "anger", "anger", 0.1 + 0.2, mm::Cause::Decay, "", 0}};
   const std::string nd = mm::actions_to_ndjson(actions);
+  EXPECT_EQ(nd.rfind(emoface::core::ndjson_header("mindmap_actions", {1, 0}), 0), 0u);  // stream header first
   const auto back = mm::parse_actions(nd, "a.ndjson");
   ASSERT_EQ(back.size(), 3u);
   EXPECT_EQ(back[2].mood, 0.1 + 0.2);
@@ -221,7 +223,9 @@ TEST(ActionsIo, NdjsonRoundTripAndCsv) {
   EXPECT_EQ(mm::actions_to_ndjson(back), nd);
   EXPECT_THROW(mm::parse_actions("{\"time\": 1}\n", "a"), emoface::FormatError);
   const std::string csv = mm::actions_to_csv(actions);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "time,character,action,label,emotion,mood,cause,stimulus,depth");
+  ASSERT_EQ(csv.rfind(emoface::core::csv_stamp(), 0), 0u);
+  EXPECT_EQ(csv.substr(emoface::core::csv_stamp().size(), csv.find('\n', emoface::core::csv_stamp().size()) - emoface::core::csv_stamp().size()),
+            "time,character,action,label,emotion,mood,cause,stimulus,depth");
   EXPECT_NE(csv.find("1.500000,alice,\"wave, big\",happiness,happiness,0.325000,chain,gift,1\n"), std::string::npos);
 }
 
@@ -231,7 +235,7 @@ TEST(Timeline, CsvHasAHeaderAndOneRowPerSample) {
   o.duration = 1.0;
   const auto r = mm::simulate({make_alice()}, {}, o);
   EXPECT_EQ(mm::mood_timeline_csv(r, make_alice(), 0),
-            "time,happiness,sadness\n0.000000,0.200000,0.400000\n0.500000,0.187500,0.387500\n"
+            emoface::core::csv_stamp() + "time,happiness,sadness\n0.000000,0.200000,0.400000\n0.500000,0.187500,0.387500\n"
             "1.000000,0.175000,0.375000\n");
   EXPECT_THROW(mm::mood_timeline_csv(r, make_bob(), 1), emoface::InvalidInput);
 }

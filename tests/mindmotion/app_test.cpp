@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "emoface/core/csv.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/mindmap/io.hpp"
 #include "emoface/motiongraph/io.hpp"
@@ -74,7 +75,7 @@ TEST(MindmapApp, SynthesizesMotionWithAGraph) {
                 "--duration 2 --graph " + (dir / "graph.json").string() + " --out " + (dir / "m").string()),
             0);
   const std::string tracks = emoface::core::read_file((dir / "m" / "ana_muscles.csv").string());
-  EXPECT_EQ(tracks.substr(0, 22), "time,zygomatic_major_l");
+  EXPECT_EQ(tracks.substr(emoface::core::csv_stamp().size(), 22), "time,zygomatic_major_l");
   EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --muscles --out " +
                 (dir / "x").string()),
             1);  // --muscles needs --graph

@@ -235,7 +235,7 @@ std::string format_tracks_json(const Tracks& tracks) {
 Tracks parse_tracks_csv(std::string_view text, const std::string& file) {
   Tracks t;
   std::vector<std::string> fields;
-  std::size_t line_no = 0, pos = 0;
+  std::size_t line_no = 0, pos = 0, header_line = 0;
   const auto fail_at = [&](std::size_t col, const std::string& msg) {
     SourceLocation where;
     where.file = file;
@@ -251,12 +251,14 @@ Tracks parse_tracks_csv(std::string_view text, const std::string& file) {
     pos = eol + 1;
     ++line_no;
     if (line.empty() || line == "\r") {
-      if (line_no == 1) fail_at(1, "empty header");
+      if (header_line == 0) fail_at(1, "empty header");
       continue;
     }
+    if (header_line == 0 && core::is_csv_comment(line)) continue;  // "# emoface x.y.z" stamp
     std::string err;
     if (const std::size_t col = core::split_csv_line(line, fields, &err)) fail_at(col, err);
-    if (line_no == 1) {
+    if (header_line == 0) {
+      header_line = line_no;
       if (fields.empty() || fields[0] != "time") fail_at(1, "the first column must be \"time\"");
       std::set<std::string> seen;
       for (std::size_t c = 1; c < fields.size(); ++c) {
@@ -278,11 +280,11 @@ Tracks parse_tracks_csv(std::string_view text, const std::string& file) {
     }
     if (t.values.size() > (std::size_t{1} << 28)) fail_at(0, "too many values");
   }
-  if (line_no == 0) fail_at(1, "empty file");
+  if (header_line == 0) fail_at(1, "empty file");
   if (times.size() >= 2) {
     t.fps = 1.0 / (times[1] - times[0]);
     if (!(std::isfinite(t.fps) && t.fps > 0)) {
-      line_no = 3;
+      line_no = header_line + 2;
       fail_at(1, "time must increase");
     }
     const double period = (times.back() - times.front()) / static_cast<double>(times.size() - 1);
@@ -290,12 +292,12 @@ Tracks parse_tracks_csv(std::string_view text, const std::string& file) {
     if (std::abs(t.fps - std::round(t.fps)) < 1e-6 * t.fps) t.fps = std::round(t.fps);
     for (std::size_t f = 0; f < times.size(); ++f) {
       if (std::abs(times[f] - static_cast<double>(f) * period) > 1e-6 + 1e-9 * times[f]) {
-        line_no = f + 2;
+        line_no = header_line + 1 + f;
         fail_at(1, "time column is not uniform from 0 (frame " + std::to_string(f) + ")");
       }
     }
   } else if (times.size() == 1 && times[0] != 0.0) {
-    line_no = 2;
+    line_no = header_line + 1;
     fail_at(1, "the first frame must be at time 0");
   }
   return t;
@@ -303,7 +305,7 @@ Tracks parse_tracks_csv(std::string_view text, const std::string& file) {
 
 std::string format_tracks_csv(const Tracks& tracks) {
   tracks.validate();
-  std::string out = "time";
+  std::string out = core::csv_stamp() + "time";
   for (const auto& n : tracks.names) {
     out += ',';
     core::append_csv_field(out, n);

@@ -1,5 +1,7 @@
 #include "emoface/core/csv.hpp"
 
+#include "emoface/core/version.hpp"
+
 namespace emoface::core {
 
 std::size_t split_csv_line(std::string_view line, std::vector<std::string>& fields,
@@ -101,6 +103,13 @@ bool is_valid_utf8(std::string_view text, std::size_t* bad_offset) {
     i += len;
   }
   return true;
+}
+
+std::string csv_stamp() { return std::string("# ") + kGenerator + "\n"; }
+
+bool is_csv_comment(std::string_view line) noexcept {
+  if (line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
+  return !line.empty() && line.front() == '#';
 }
 
 }  // namespace emoface::core

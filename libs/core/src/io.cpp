@@ -42,6 +42,26 @@ nlohmann::ordered_json make_envelope(std::string_view kind, FormatVersion versio
   return doc;
 }
 
+std::string ndjson_header(std::string_view kind, FormatVersion version) {
+  return make_envelope(kind, version).dump() + "\n";
+}
+
+namespace {
+template <class J>
+bool stream_header(const J& record) {
+  if (!record.is_object() || record.size() > 3) return false;
+  const auto format = record.find("format");
+  if (format == record.end() || !format->is_string() || format->template get_ref<const std::string&>().rfind("emoface.", 0) != 0)
+    return false;
+  for (auto it = record.begin(); it != record.end(); ++it)
+    if (it.key() != "format" && it.key() != "version" && it.key() != "generator") return false;
+  return true;
+}
+}  // namespace
+
+bool is_stream_header(const nlohmann::json& record) { return stream_header(record); }
+bool is_stream_header(const nlohmann::ordered_json& record) { return stream_header(record); }
+
 std::string read_file(const std::string& path, std::size_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open for reading: " + std::strerror(errno));

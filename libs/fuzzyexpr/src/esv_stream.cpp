@@ -152,8 +152,10 @@ struct EsvReader::Impl {
   }
 
   void read_header() {
-    if (!read_line()) {
-      line_no = 1;
+    bool got = read_line();
+    while (got && core::is_csv_comment(line)) got = read_line();  // e.g. the "# emoface x.y.z" stamp
+    if (!got) {
+      line_no = std::max<std::size_t>(line_no, 1);
       fail(0, "empty input: expected a CSV header naming the six emotions");
     }
     std::string why;
@@ -295,6 +297,13 @@ EsvReader::~EsvReader() = default;
 bool EsvReader::next(EsvRecord& record) {
   Impl& m = *impl_;
   if (!m.read_line()) return false;
+  // Stream headers ({"format": "emoface.…", …}: the first line of our NDJSON, repeated in concatenated
+  // shards) are skipped.
+  while (m.options.format == StreamFormat::Ndjson && m.line.find("\"format\"") != std::string::npos) {
+    const auto doc = nlohmann::json::parse(m.line, nullptr, false);
+    if (doc.is_discarded() || !core::is_stream_header(doc)) break;
+    if (!m.read_line()) return false;
+  }
   record.line = m.line_no;
   record.index = m.records++;
   if (m.line.empty()) m.fail(0, "empty line");
@@ -328,7 +337,9 @@ FmcvWriter::FmcvWriter(FmcvWriterOptions options, std::vector<std::string> extra
 
 std::string FmcvWriter::begin() const {
   std::string out;
+  if (options_.format == StreamFormat::Ndjson) out = core::ndjson_header("fmcv", {1, 0});
   if (options_.format == StreamFormat::Csv) {
+    out = core::csv_stamp();
     bool first = true;
     for (const auto& e : extra_) {
       if (!first) out += ',';

@@ -113,6 +113,7 @@ void for_each_ndjson(std::string_view text, const std::string& file, Fn fn) {
     } catch (const FormatError& e) {
       throw FormatError(SourceLocation{file, "", line_no, e.where().column}, e.message());
     }
+    if (core::is_stream_header(j)) continue;  // {"format": "emoface.…", …}: the stream's version stamp
     const Parser p(file, line_no, true);
     p.object(j, "");
     fn(j, p, line_no);
@@ -377,7 +378,7 @@ std::vector<Event> parse_events(std::string_view text, const std::string& file) 
 std::vector<Event> read_events(const std::string& path) { return parse_events(core::read_file(path), path); }
 
 std::string events_to_ndjson(const std::vector<Event>& events) {
-  std::string out;
+  std::string out = core::ndjson_header("mindmap_events", {1, 0});
   for (const auto& e : events) {
     Json j;
     j["time"] = e.time;
@@ -398,7 +399,7 @@ std::string mood_timeline_csv(const SimulationResult& r, const MindMap& map, std
   const std::size_t n = map.emotion_count();
   if (c >= r.mood.size() || r.mood[c].size() != r.times.size() * n)
     throw InvalidInput("mood_timeline_csv: character index or emotion count does not match the result");
-  std::string out = "time";
+  std::string out = core::csv_stamp() + "time";
   for (const auto& e : map.emotions) {
     out += ',';
     core::append_csv_field(out, e);
@@ -418,7 +419,7 @@ std::string mood_timeline_csv(const SimulationResult& r, const MindMap& map, std
 }
 
 std::string actions_to_ndjson(const std::vector<TriggeredAction>& actions) {
-  std::string out;
+  std::string out = core::ndjson_header("mindmap_actions", {1, 0});
   for (const auto& a : actions) {
     Json j;
     j["time"] = a.time;
@@ -460,7 +461,7 @@ std::vector<TriggeredAction> parse_actions(std::string_view text, const std::str
 }
 
 std::string actions_to_csv(const std::vector<TriggeredAction>& actions) {
-  std::string out = "time,character,action,label,emotion,mood,cause,stimulus,depth\n";
+  std::string out = core::csv_stamp() + "time,character,action,label,emotion,mood,cause,stimulus,depth\n";
   char buf[64];
   for (const auto& a : actions) {
     std::snprintf(buf, sizeof buf, "%.6f,", a.time);

@@ -155,6 +155,7 @@ std::vector<ParameterFrame> parse_parameter_frames(std::string_view text, FrameF
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
+    if (format == FrameFormat::Csv && header.empty() && core::is_csv_comment(line)) continue;  // "# emoface x.y.z"
     if (format == FrameFormat::Ndjson) {
       const Json obj = [&]() {
         try {
@@ -163,6 +164,7 @@ std::vector<ParameterFrame> parse_parameter_frames(std::string_view text, FrameF
           fail_at(source, line_no, e.where().column, e.message());
         }
       }();
+      if (core::is_stream_header(obj)) continue;  // {"format": "emoface.…", …}: the stream's version stamp
       ParameterFrame f = new_frame();
       if (obj.is_object() && obj.contains("parameters")) {
         if (obj.contains("time")) {
@@ -233,7 +235,7 @@ std::vector<ParameterFrame> read_parameter_frames(const std::string& path, const
 }
 
 std::string format_parameter_frames_csv(const std::vector<ParameterFrame>& frames) {
-  std::string out = "time";
+  std::string out = core::csv_stamp() + "time";
   for (const auto& n : parameter_names()) out += "," + n;
   out += "\n";
   char buf[32];

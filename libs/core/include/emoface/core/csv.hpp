@@ -17,6 +17,13 @@ std::size_t split_csv_line(std::string_view line, std::vector<std::string>& fiel
 /// Appends `field` to `out`, quoted if it contains a comma, quote, CR or LF.
 void append_csv_field(std::string& out, std::string_view field);
 
+/// The version stamp every CSV file emoface writes starts with: "# emoface x.y.z\n". CSV readers skip
+/// leading lines for which is_csv_comment() holds (before the header row), so stamped files read back and
+/// hand-written files without the stamp read as before.
+std::string csv_stamp();
+/// True if `line` (after an optional UTF-8 byte-order mark) starts with '#'.
+bool is_csv_comment(std::string_view line) noexcept;
+
 /// True if `text` is well-formed UTF-8 (no overlong forms, surrogates or code points past U+10FFFF).
 /// On failure `bad_offset` (if given) receives the 0-based offset of the first bad byte.
 bool is_valid_utf8(std::string_view text, std::size_t* bad_offset = nullptr);

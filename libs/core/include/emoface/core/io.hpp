@@ -28,6 +28,14 @@ FormatVersion parse_format_version(std::string_view text);
 /// {"format": "emoface.<kind>", "version": "M.m", "generator": "emoface x.y.z"}.
 nlohmann::ordered_json make_envelope(std::string_view kind, FormatVersion version);
 
+/// The first line of every NDJSON stream emoface writes: the envelope alone, as one JSON object and '\n'
+/// (the stream's version stamp). Readers skip it (is_stream_header) and accept streams without it.
+std::string ndjson_header(std::string_view kind, FormatVersion version);
+/// True if `record` is a stream header: an object whose only members are "format" (a string starting
+/// with "emoface."), "version" and "generator".
+bool is_stream_header(const nlohmann::json& record);
+bool is_stream_header(const nlohmann::ordered_json& record);
+
 /// Checks that `doc` is an object with format "emoface.<kind>" and a version whose major equals
 /// `supported.major` (newer minors are fine, an older or newer major is not). Returns the version found.
 /// Throws FormatError naming `file` and the offending field.
