@@ -6,6 +6,7 @@
 
 #include "cli_harness.hpp"
 #include "emoface/core/version.hpp"
+#include "emoface/facemesh/default_face.hpp"
 #include "test_match.hpp"
 
 namespace {
@@ -129,6 +130,20 @@ TEST_F(ObieApp, ConvertWritesAMatchScriptThatRuns) {
                      "--key-moment '80:against 2-2' --out -");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out, slurp(kSrc + "/data/obie/match_7_4.json"));
+}
+
+TEST_F(ObieApp, RunsOnARigDirectory) {
+  // a rig directory as `retarget --out DIR` leaves it: DIR/face.rig + the mesh it names
+  std::filesystem::create_directories(path("rig"));
+  emoface::facemesh::save_face(path("rig/face.rig"), emoface::facemesh::make_default_face());
+  auto r = run_tool(kExe, "--match " + match() + " --agent " + agent() + " --out " + path("o") + kSmall +
+                              " --no-video -q --rig " + path("rig"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(path("o/key_moments.png")));
+  r = run_tool(kExe, "--match " + match() + " --agent " + agent() + " --out " + path("o2") + kSmall +
+                         " --no-video -q --rig " + path("rig/face.rig"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(path("o/tracks.csv")), slurp(path("o2/tracks.csv")));
 }
 
 TEST_F(ObieApp, Help) {

@@ -142,6 +142,14 @@ TEST(Match, BadInputsNameTheirPlace) {
             std::string::npos);
 }
 
+TEST(Match, HugeScriptsAreRefused) {
+  std::string events;
+  for (std::size_t i = 0; i <= kMaxMatchEvents; ++i) events += R"J({"minute": 1, "action": ""},)J";
+  events.pop_back();
+  EXPECT_NE(error_of(minimal(R"("events": [)" + events + "]")).find("/events: too many entries"), std::string::npos);
+  EXPECT_NE(error_of(minimal(R"("duration": 1e308, "events": [])")).find("/duration"), std::string::npos);
+}
+
 TEST(Match, ValidateCatchesWhatTheReaderCatches) {
   MatchScript m = parse_match(test::short_match_json(), "s.json");
   m.validate();
