@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -11,8 +13,8 @@
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/parlee/agent.hpp"
+#include "emoface/parlee/chart.hpp"
 #include "emoface/parlee/io.hpp"
-#include "plot.hpp"
 
 namespace emoface::parlee_app {
 using namespace emoface::parlee;
@@ -75,37 +77,21 @@ namespace {
 void plot_runs(const std::string& dir, const std::vector<std::string>& names,
                const std::vector<std::vector<StepRecord>>& runs) {
   std::filesystem::create_directories(dir);
-  struct Channel {
-    const char* name;
-    std::size_t basic;
-    std::array<std::uint8_t, 3> rgb;
-  };
-  const Channel channels[] = {{"fear", 3, {130, 40, 160}},
-                              {"happiness", 1, {230, 140, 0}},
-                              {"surprise", 5, {0, 140, 200}},
-                              {"sadness", 0, {30, 60, 200}}};
-  double x_max = 10;
+  ChartOptions options;  // x_max: every chart of the run shares the longest run's axis
+  options.x_max = 10;
   for (const auto& run : runs)
-    for (const auto& r : run) x_max = std::max(x_max, r.time);
-  x_max = std::ceil(x_max / 10) * 10;
-  auto series = [&](const std::vector<StepRecord>& run, std::size_t basic, std::array<std::uint8_t, 3> rgb) {
-    Series s;
-    s.rgb = rgb;
-    for (const auto& r : run) {
-      s.x.push_back(r.time);
-      s.y.push_back(r.basic[basic]);
-    }
-    return s;
-  };
+    for (const auto& r : run) options.x_max = std::max(options.x_max, r.time);
+  options.x_max = std::ceil(options.x_max / 10) * 10;
+  std::vector<std::vector<ChartPanel>> per_run;
   for (std::size_t k = 0; k < runs.size(); ++k) {  // per personality: Figs. 7.4, 7.5, 7.7, 7.8
-    std::vector<Panel> panels;
-    for (const auto& c : channels) panels.push_back({names[k] + " " + c.name, {series(runs[k], c.basic, c.rgb)}, 1.0});
-    core::write_file_atomic(dir + "/" + names[k] + ".png", render_chart(panels, x_max));
+    per_run.push_back(emotion_panels(names[k], runs[k]));
+    core::write_file_atomic(dir + "/" + names[k] + ".png", render_chart(per_run.back(), options));
   }
-  for (const auto& c : channels) {  // per emotion, one panel per personality: Figs. 7.10, 7.11
-    std::vector<Panel> panels;
-    for (std::size_t k = 0; k < runs.size(); ++k) panels.push_back({names[k] + " " + c.name, {series(runs[k], c.basic, c.rgb)}, 1.0});
-    core::write_file_atomic(dir + "/" + std::string(c.name) + ".png", render_chart(panels, x_max));
+  const auto& emotions = chart_emotions();
+  for (std::size_t c = 0; c < emotions.size(); ++c) {  // per emotion, one panel per personality: Figs. 7.10, 7.11
+    std::vector<ChartPanel> panels;
+    for (const auto& run_panels : per_run) panels.push_back(run_panels[c]);
+    core::write_file_atomic(dir + "/" + std::string(emotions[c].name) + ".png", render_chart(panels, options));
   }
 }
 

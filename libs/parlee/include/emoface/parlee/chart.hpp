@@ -1,0 +1,78 @@
+#pragma once
+// Emotion charts (thesis Figs. 7.4–7.11): stacked line-chart panels sharing the x axis (match
+// minutes), a grid every 10 x-units with digit labels, optional vertical markers, encoded as PNG
+// (libpng, private) with a tEXt "Software" chunk carrying emoface::kGenerator.
+// Used by `parlee run --plot` and by the obie pipeline (libs/obie), so both draw the same charts.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "emoface/parlee/agent.hpp"
+
+namespace emoface::parlee {
+
+/// 8-bit RGB pixels, row 0 at the top: rgb.size() == width·height·3.
+struct RgbImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+struct ChartSeries {
+  std::vector<double> x, y;  ///< same length; x in chart units (e.g. match minutes)
+  std::array<std::uint8_t, 3> rgb{0, 0, 0};
+};
+
+struct ChartPanel {
+  std::string title;  ///< drawn in the top-left corner (a–z, 0–9, space, '-', '_', '.', ':', '\'')
+  std::vector<ChartSeries> series;
+  double y_max = 1.0;  ///< y range is [0, y_max], > 0
+};
+
+/// A vertical line across every panel at `x` (e.g. a goal), labelled under the x axis.
+struct ChartMarker {
+  double x = 0.0;
+  std::string label;
+  std::array<std::uint8_t, 3> rgb{200, 60, 60};
+};
+
+struct ChartOptions {
+  int width = 960;         ///< pixels, [200, 8192]
+  int panel_height = 150;  ///< pixels per panel, [40, 2048]
+  double x_max = 0.0;      ///< x range [0, x_max]; 0 = the largest x of any series rounded up to 10
+  std::vector<ChartMarker> markers;
+  void validate() const;   ///< throws InvalidInput
+};
+
+/// Draws the panels. Throws InvalidInput for no panels or bad options.
+RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options);
+/// PNG bytes (with the tEXt "Software" stamp). Throws InvalidInput for a malformed image, Error if
+/// libpng fails.
+std::string encode_png(const RgbImage& image);
+/// draw_chart + encode_png.
+std::string render_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options);
+
+/// Draws `text` with the chart's 3×5 pixel font scaled by `scale` (≥ 1), top-left corner at (x, y);
+/// characters the font lacks are skipped, pixels outside the image clipped.
+void draw_text(RgbImage& image, int x, int y, std::string_view text, std::array<std::uint8_t, 3> rgb,
+               int scale = 2);
+/// Width in pixels of draw_text(text, scale).
+int text_width(std::string_view text, int scale = 2) noexcept;
+
+/// The four emotions of the thesis' charts, with their basic-emotion index (ESV order) and colour:
+/// fear, happiness, surprise, sadness (Figs. 7.4, 7.5, 7.7, 7.8).
+struct ChartEmotion {
+  const char* name;
+  std::size_t basic;  ///< index into StepRecord::basic (sadness, happiness, anger, fear, disgust, surprise)
+  std::array<std::uint8_t, 3> rgb;
+};
+const std::vector<ChartEmotion>& chart_emotions();
+
+/// One panel per chart_emotions() entry for one run: "<name> <emotion>", the basic intensity over
+/// StepRecord::time.
+std::vector<ChartPanel> emotion_panels(const std::string& name, const std::vector<StepRecord>& run);
+
+}  // namespace emoface::parlee

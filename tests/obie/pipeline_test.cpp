@@ -1,0 +1,337 @@
+#include "emoface/obie/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "emoface/channels/parameters.hpp"
+#include "emoface/core/errors.hpp"
+#include "emoface/core/io.hpp"
+#include "emoface/core/video.hpp"
+#include "emoface/facemesh/default_face.hpp"
+#include "emoface/muscles/parameters.hpp"
+#include "emoface/parlee/io.hpp"
+#include "test_match.hpp"
+
+namespace emoface::obie {
+namespace {
+
+const std::string kAgent = std::string(EMOFACE_SOURCE_DIR) + "/data/parlee/agents/neutral.json";
+
+ObieOptions small_options() {
+  ObieOptions o;
+  o.fps = 10;
+  o.width = 48;
+  o.height = 56;
+  o.gltf_fps = 2;
+  o.threads = 2;
+  return o;
+}
+
+const facemesh::Face& face() {
+  static const facemesh::Face f = facemesh::make_default_face();
+  return f;
+}
+
+struct Collect : FrameSink {
+  int width = 0, height = 0, begun = 0, finished = 0;
+  double fps = 0;
+  std::size_t audio = 0;
+  std::vector<facemesh::Image> frames;
+  void begin(const ObieResult& r, int w, int h, double f) override {
+    ++begun;
+    width = w;
+    height = h;
+    fps = f;
+    audio = r.head.audio.size();
+  }
+  void frame(const facemesh::Image& image) override { frames.push_back(image); }
+  void finish() override { ++finished; }
+};
+
+// One run with speech, shared by the invariant tests (espeak-ng is process-global state).
+struct SpeechRun {
+  MatchScript match;
+  ObieResult result;
+  Collect sink;
+  std::vector<Progress> progress;
+};
+const SpeechRun& speech_run() {
+  static const SpeechRun* run = [] {
+    auto* r = new SpeechRun;
+    r->match = parse_match(test::short_match_json(), "short.json");
+    r->result = run_obie(r->match, parlee::read_agent_file(kAgent), face(), small_options(),
+                         [r](const Progress& p) { r->progress.push_back(p); }, &r->sink, "short.json");
+    return r;
+  }();
+  return *run;
+}
+
+TEST(Pipeline, EveryStageInRange) {
+  const SpeechRun& run = speech_run();
+  const ObieResult& r = run.result;
+  ASSERT_EQ(r.timeline.size(), run.match.events.size() + 1);
+  for (const auto& rec : r.timeline)
+    for (double v : rec.basic) {
+      EXPECT_GE(v, 0.0);
+      EXPECT_LE(v, 1.0);
+    }
+  // displays: ordered as the channels require (§4.5.2), intensities in [0,1]
+  ASSERT_FALSE(r.script.emotions.empty());
+  for (std::size_t i = 0; i < r.script.emotions.size(); ++i) {
+    const auto& e = r.script.emotions[i];
+    e.timing.validate();
+    for (double v : e.intensities) EXPECT_TRUE(v >= 0 && v <= 1);
+    if (i > 0) {
+      EXPECT_GT(e.timing.start, r.script.emotions[i - 1].timing.start);
+      EXPECT_GT(e.timing.end, r.script.emotions[i - 1].timing.end);
+    }
+  }
+  // tracks: 40 named parameters, contractions in [0,1], angles within ±π
+  const auto& tracks = r.head.tracks;
+  tracks.validate();
+  EXPECT_EQ(tracks.names, channels::default_parameter_names());
+  for (std::size_t f = 0; f < tracks.frames(); ++f)
+    for (std::size_t c = 0; c < tracks.names.size(); ++c) {
+      const double v = tracks.at(f, c);
+      if (channels::is_signed_parameter(tracks.names[c])) {
+        EXPECT_LE(std::abs(v), M_PI);
+      } else {
+        EXPECT_GE(v, -1e-12) << tracks.names[c] << " frame " << f;
+        EXPECT_LE(v, 1 + 1e-12) << tracks.names[c] << " frame " << f;
+      }
+    }
+  // meshes finite, glTF frames at 2 fps with increasing times
+  ASSERT_FALSE(r.gltf_frames.empty());
+  EXPECT_EQ(r.gltf_frames.size(), r.gltf_times.size());
+  for (std::size_t i = 0; i < r.gltf_frames.size(); ++i) {
+    EXPECT_TRUE(r.gltf_frames[i].allFinite());
+    EXPECT_EQ(r.gltf_frames[i].rows(), face().mesh.vertices.rows());
+    EXPECT_NEAR(r.gltf_times[i], 0.5 * static_cast<double>(i), 1e-9);
+  }
+  // the face moves: some frame differs from the neutral mesh by more than a millimetre
+  double moved = 0;
+  for (const auto& v : r.gltf_frames) moved = std::max(moved, (v - face().mesh.vertices).cwiseAbs().maxCoeff());
+  EXPECT_GT(moved, 1e-3);
+}
+
+TEST(Pipeline, DurationsAgree) {
+  const SpeechRun& run = speech_run();
+  const ObieResult& r = run.result;
+  // 1 s lead-in + 14 minutes at 1 s/min + 3.5 s tail = 18.5 s → 186 frames at 10 fps
+  EXPECT_DOUBLE_EQ(r.time_map.duration(), 18.5);
+  EXPECT_EQ(r.frames, 186u);
+  EXPECT_EQ(r.head.tracks.frames(), r.frames);
+  EXPECT_DOUBLE_EQ(r.seconds(), 18.5);
+  // audio and tracks end together (within one frame)
+  const double audio_seconds = static_cast<double>(r.head.audio.size()) / r.head.sample_rate;
+  EXPECT_NEAR(audio_seconds, r.seconds(), 1.0 / r.head.tracks.fps);
+  // every frame went to the sink, in the right size, after begin() saw the final audio
+  EXPECT_EQ(run.sink.begun, 1);
+  EXPECT_EQ(run.sink.finished, 1);
+  EXPECT_EQ(run.sink.frames.size(), r.frames);
+  EXPECT_EQ(r.frames_rendered, r.frames);
+  EXPECT_EQ(run.sink.width, 48);
+  EXPECT_EQ(run.sink.height, 56);
+  EXPECT_EQ(run.sink.audio, r.head.audio.size());
+  for (const auto& im : run.sink.frames) EXPECT_EQ(im.rgb.size(), 48u * 56u * 3u);
+  // step times follow the time map
+  for (std::size_t k = 0; k < r.timeline.size(); ++k)
+    EXPECT_DOUBLE_EQ(r.step_seconds[k], r.time_map.seconds(r.timeline[k].time));
+  // progress reached the end of each stage
+  ASSERT_FALSE(run.progress.empty());
+  EXPECT_EQ(run.progress.back().stage, "frames");
+  EXPECT_EQ(run.progress.back().done, r.frames);
+}
+
+TEST(Pipeline, UtterancesAreSpokenInTheLipChannel) {
+  const ObieResult& r = speech_run().result;
+  // fear crosses its threshold right after kick-off and sadness at 12' (the goal against)
+  ASSERT_GE(r.utterances.size(), 2u);
+  EXPECT_EQ(r.utterances.front().emotion, "fear");
+  bool sad_at_12 = false;
+  for (const auto& u : r.utterances) sad_at_12 = sad_at_12 || (u.emotion == "sadness" && u.minute == 12);
+  EXPECT_TRUE(sad_at_12);
+  const auto& set = default_utterances();
+  for (const auto& u : r.utterances) {
+    // the rule really fired: the emotion is at or above its threshold at that step
+    for (const auto& rule : set.rules)
+      if (rule.emotion == u.emotion) EXPECT_GE(r.timeline[u.step].basic[esv_index(u.emotion)], rule.threshold);
+    // lip segments (not silence) start within the utterance's first second …
+    bool lip = false;
+    for (const auto& seg : r.head.timeline.lip)
+      lip = lip || (seg.start >= u.time - 1e-9 && seg.start < u.time + 1.0 && seg.viseme != "sil");
+    EXPECT_TRUE(lip) << u.text;
+    // … the audio is not silent there …
+    const auto s0 = static_cast<std::size_t>(u.time * r.head.sample_rate);
+    int loud = 0;
+    for (std::size_t i = s0; i < s0 + static_cast<std::size_t>(r.head.sample_rate) && i < r.head.audio.size(); ++i)
+      loud = std::max(loud, std::abs(static_cast<int>(r.head.audio[i])));
+    EXPECT_GT(loud, 1000) << u.text;
+    // … and the jaw/lip parameters move while he speaks
+    double open = 0;
+    for (const char* p : {"masseter", "orbicularis_oris_funneler", "orbicularis_oris_pressor", "mentalis_l"}) {
+      const auto track = r.head.tracks.series(p);
+      const auto f0 = static_cast<std::size_t>(u.time * 10);
+      for (std::size_t f = f0; f < f0 + 10 && f < track.size(); ++f) open = std::max(open, track[f]);
+    }
+    EXPECT_GT(open, 0.05) << u.text;
+  }
+  // nothing is said before the first event
+  EXPECT_GT(r.utterances.front().time, r.time_map.seconds(1));
+}
+
+TEST(Pipeline, KeyMomentsMapToTheirFrames) {
+  const ObieResult& r = speech_run().result;
+  ASSERT_EQ(r.key_frames.size(), 2u);
+  const auto o = small_options();
+  // 12' → 1 + 12 = 13 s, + 1.2 s delay → frame round(14.2·10) = 142
+  EXPECT_EQ(r.key_frames[1].frame, 142u);
+  EXPECT_EQ(key_moment_frame(r.time_map, 12, o.key_moment_delay, o.fps, r.frames), 142u);
+  EXPECT_EQ(r.key_frames[0].frame, 22u);  // 0' → 1 s + 1.2 s
+  EXPECT_EQ(key_moment_frame(r.time_map, 1000, 0, 10, r.frames), r.frames - 1);
+  // the rendered key frame is the frame the sink got
+  EXPECT_EQ(r.key_frames[1].image.rgb, speech_run().sink.frames[142].rgb);
+  // at 12' the goal against shows: sadness/anger up, no happiness
+  EXPECT_GT(std::max(r.key_frames[1].shown[0], r.key_frames[1].shown[2]), 0.3);
+  EXPECT_EQ(r.key_frames[1].shown[1], 0.0);
+  EXPECT_GT(r.key_frames[1].esv[3], 0.5);  // felt: fear of losing
+  // the face differs from the start frame
+  EXPECT_NE(r.key_frames[0].image.rgb, r.key_frames[1].image.rgb);
+}
+
+TEST(Pipeline, GoalsAndPeaks) {
+  const ObieResult& r = speech_run().result;
+  ASSERT_EQ(r.goals.size(), 1u);
+  EXPECT_EQ(r.goals[0].minute, 12);
+  EXPECT_EQ(r.goals[0].team, "Against");
+  EXPECT_EQ(r.goals[0].against_score, 1);
+  EXPECT_EQ(r.peaks[3].emotion, "fear");
+  EXPECT_GT(r.peaks[3].value, 0.9);
+  for (const auto& p : r.peaks) {
+    double m = 0;
+    for (const auto& rec : r.timeline) m = std::max(m, rec.basic[esv_index(p.emotion)]);
+    EXPECT_DOUBLE_EQ(p.value, m);
+  }
+  const auto summary = nlohmann::json::parse(format_summary(r, speech_run().match));
+  EXPECT_EQ(summary["format"], "emoface.obie.summary");
+  EXPECT_EQ(summary["frames"], r.frames);
+  EXPECT_EQ(summary["final_score"], "0-1");
+  EXPECT_TRUE(summary.contains("timings_s"));
+  // timeline NDJSON: one line per record, each with the animation time
+  const std::string tl = format_timeline(r);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(tl.begin(), tl.end(), '\n')), r.timeline.size());
+  EXPECT_NE(tl.find("{\"agent\":\"neutral\",\"anim_time\":13.0,"), std::string::npos);  // 12' → 1 + 12 s
+}
+
+TEST(Pipeline, DeterministicWithASeed) {
+  // Without speech (espeak-ng keeps process-global state; the app test checks speech across processes).
+  const MatchScript match = parse_match(test::short_match_json(), "short.json");
+  const auto agent = parlee::read_agent_file(kAgent);
+  ObieOptions o = small_options();
+  o.speech = false;
+  o.render_frames = false;
+  const ObieResult a = run_obie(match, agent, face(), o);
+  const ObieResult b = run_obie(match, agent, face(), o);
+  o.threads = 1;
+  const ObieResult c = run_obie(match, agent, face(), o);
+  o.seed = 99;
+  const ObieResult d = run_obie(match, agent, face(), o);
+  EXPECT_EQ(a.head.tracks.values, b.head.tracks.values);
+  EXPECT_EQ(a.head.tracks.values, c.head.tracks.values);
+  EXPECT_NE(a.head.tracks.values, d.head.tracks.values);  // blinks and gaze/head noise follow the seed
+  ASSERT_EQ(a.gltf_frames.size(), c.gltf_frames.size());
+  for (std::size_t i = 0; i < a.gltf_frames.size(); ++i) EXPECT_TRUE(a.gltf_frames[i] == c.gltf_frames[i]);
+  EXPECT_EQ(format_summary(a, match, false), format_summary(b, match, false));
+  EXPECT_EQ(format_timeline(a), format_timeline(c));
+  EXPECT_EQ(parlee::encode_png(key_moment_sheet(a)), parlee::encode_png(key_moment_sheet(c)));
+  EXPECT_EQ(parlee::encode_png(emotion_chart(a)), parlee::encode_png(emotion_chart(b)));
+  EXPECT_EQ(a.frames_rendered, 0u);
+  EXPECT_TRUE(a.utterances.empty());
+  for (auto s : a.head.audio) ASSERT_EQ(s, 0);
+  EXPECT_NEAR(static_cast<double>(a.head.audio.size()) / a.head.sample_rate, a.seconds(), 0.1);
+}
+
+TEST(Pipeline, ScriptsThatDoNotFitTheDomainAreLocated) {
+  const auto agent = parlee::read_agent_file(kAgent);
+  ObieOptions o = small_options();
+  o.speech = false;
+  // a shot by the side not on the ball at minute 14 (index 13)
+  const MatchScript bad = parse_match(test::short_match_json(R"J(, {"minute": 14, "action": "(shot oteam)", "outcome": "goal"})J"),
+                                      "short.json");
+  try {
+    run_obie(bad, agent, face(), o, {}, nullptr, "short.json");
+    FAIL() << "no error";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("short.json: at /events/13"), std::string::npos) << e.what();
+  }
+  const MatchScript unknown = parse_match(test::short_match_json(R"J(, {"minute": 14, "action": "(fly team)"})J"), "s.json");
+  EXPECT_THROW(run_match(unknown, agent, "s.json"), FormatError);
+  MatchScript missing = parse_match(test::short_match_json(), "s.json");
+  missing.domain = {"/nonexistent/football.domain"};
+  EXPECT_THROW(run_match(missing, agent), Error);
+}
+
+TEST(Pipeline, RejectsBadOptions) {
+  const MatchScript match = parse_match(test::short_match_json(), "short.json");
+  const auto agent = parlee::read_agent_file(kAgent);
+  auto bad = [&](auto change) {
+    ObieOptions o = small_options();
+    change(o);
+    EXPECT_THROW(run_obie(match, agent, face(), o), InvalidInput);
+  };
+  bad([](ObieOptions& o) { o.fps = 0; });
+  bad([](ObieOptions& o) { o.fps = std::nan(""); });
+  bad([](ObieOptions& o) { o.width = 8; });
+  bad([](ObieOptions& o) { o.gltf_fps = 50; });
+  bad([](ObieOptions& o) { o.threads = -1; });
+  bad([](ObieOptions& o) { o.display.onset = 0; });
+  bad([](ObieOptions& o) { o.display.reaction_gain = 0.5; });
+  bad([](ObieOptions& o) { o.time.seconds_per_minute = -1; });
+  bad([](ObieOptions& o) { o.utterances.refractory = 0; });
+  bad([](ObieOptions& o) { o.voice.rate = 10; });
+}
+
+TEST(Displays, HandBuiltTimeline) {
+  std::vector<parlee::StepRecord> rec(5);
+  rec[1].basic[3] = 1.0;  // fear
+  rec[2].basic[3] = 1.0;
+  rec[3].basic[3] = 1.0;
+  rec[3].basic[1] = 0.4;  // happiness rises by 0.4 ≥ 0.15: a reaction
+  rec[4].basic[3] = 1.0;
+  rec[4].basic[1] = 0.39;
+  const std::vector<double> t = {1, 2, 3, 4, 10};
+  DisplayOptions o;
+  const auto d = emotion_displays(rec, t, o);
+  // t + 0.15 s delay: 1.15 neutral (no display); 2.15 fear rises (reaction: fear alone, until 5.15),
+  // 3.15 the same (merged); 4.15 happiness rises by 0.4: reaction until 7.15 shows happiness 0.4·1.5
+  // with fear ×0; 7.15 the full ESV returns; 10.15 differs by 0.01 < 0.02: merged, held 2 s.
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_DOUBLE_EQ(d[0].timing.start, 2.15);
+  EXPECT_DOUBLE_EQ(d[0].timing.end, 4.15 + 0.8);
+  EXPECT_DOUBLE_EQ(d[0].intensities[3], 1.0);
+  EXPECT_DOUBLE_EQ(d[1].timing.start, 4.15);
+  EXPECT_NEAR(d[1].intensities[1], 0.6, 1e-12);
+  EXPECT_DOUBLE_EQ(d[1].intensities[3], 0.0);
+  EXPECT_DOUBLE_EQ(d[1].timing.end, 7.15 + 0.8);
+  EXPECT_DOUBLE_EQ(d[2].timing.start, 7.15);
+  EXPECT_DOUBLE_EQ(d[2].intensities[1], 0.4);
+  EXPECT_DOUBLE_EQ(d[2].intensities[3], 1.0);
+  EXPECT_DOUBLE_EQ(d[2].timing.end, 12.15 + 0.8);
+  EXPECT_DOUBLE_EQ(d[2].timing.onset, 0.4);
+  o.reactions = false;
+  const auto plain = emotion_displays(rec, t, o);
+  ASSERT_EQ(plain.size(), 2u);  // fear, then fear + happiness
+  EXPECT_DOUBLE_EQ(plain[1].timing.start, 4.15);
+  EXPECT_DOUBLE_EQ(plain[1].intensities[1], 0.4);
+  // a short gap shrinks the onset so that Do + Dr fits (thesis §4.4)
+  const auto tight = emotion_displays(rec, {1, 2, 2.1, 2.2, 2.3}, o);
+  for (const auto& item : tight) item.timing.validate();
+  EXPECT_THROW(emotion_displays(rec, {1, 2, 3}, o), InvalidInput);
+  EXPECT_THROW(emotion_displays(rec, {1, 2, 1, 4, 5}, o), InvalidInput);
+  for (const auto& item : d) item.timing.validate();
+}
+
+}  // namespace
+}  // namespace emoface::obie
