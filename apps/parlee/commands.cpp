@@ -100,10 +100,8 @@ void plot_runs(const std::string& dir, const std::vector<std::string>& names,
 int run_command(const RunArgs& a) {
   const Domain domain(read_domain_files(a.files));
   const std::vector<Event> events = read_events_file(a.events);
-  // cli::Output renames a temporary file over the target: never do that to a device or FIFO.
-  if (a.out != "-" && std::filesystem::exists(a.out) && !std::filesystem::is_regular_file(a.out))
-    throw InvalidInput("--out " + a.out + " is not a regular file (use '-' for stdout)");
-  cli::Output out(a.out);
+  cli::Output out(a.out);  // writes devices and FIFOs directly, regular files atomically
+  out.write(core::ndjson_header("parlee.timeline", {1, 0}));
   std::vector<std::string> names;
   std::vector<std::vector<StepRecord>> runs;
   for (const auto& file : a.agents) {

@@ -49,8 +49,12 @@ TEST_F(ObieApp, WritesEveryOutputWithTheVersionStamp) {
   EXPECT_EQ(summary["final_score"], "0-1");
   // audio samples == frames' duration (18.5 s at 22050 Hz)
   EXPECT_EQ(summary["audio_samples"], 407925);
-  EXPECT_EQ(lines(slurp(path("out/tracks.csv"))), 187u);  // header + 186 frames
-  EXPECT_EQ(lines(slurp(path("out/timeline.ndjson"))), 14u);
+  EXPECT_EQ(lines(slurp(path("out/tracks.csv"))), 188u);  // "# emoface x.y.z" + header + 186 frames
+  EXPECT_EQ(slurp(path("out/tracks.csv")).rfind(std::string("# ") + emoface::kGenerator + "\n", 0), 0u);
+  EXPECT_EQ(lines(slurp(path("out/timeline.ndjson"))), 15u);  // stream header + 14 records
+  EXPECT_NE(slurp(path("out/timeline.ndjson")).find(emoface::kGenerator), std::string::npos);
+  EXPECT_NE(slurp(path("out/face.glb")).find(emoface::kGenerator), std::string::npos);  // asset.generator
+  EXPECT_NE(slurp(path("out/speech.wav")).find(emoface::kGenerator), std::string::npos);  // LIST/INFO/ISFT
   EXPECT_NE(slurp(path("out/charts.png")).find(emoface::kGenerator), std::string::npos);  // PNG tEXt
   EXPECT_NE(slurp(path("out/key_moments.png")).find(emoface::kGenerator), std::string::npos);
   // the one-screen summary names the goal, peaks, frames, stages and where the files are

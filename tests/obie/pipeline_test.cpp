@@ -219,9 +219,10 @@ TEST(Pipeline, GoalsAndPeaks) {
   EXPECT_EQ(summary["frames"], r.frames);
   EXPECT_EQ(summary["final_score"], "0-1");
   EXPECT_TRUE(summary.contains("timings_s"));
-  // timeline NDJSON: one line per record, each with the animation time
+  // timeline NDJSON: the stream header, then one line per record, each with the animation time
   const std::string tl = format_timeline(r);
-  EXPECT_EQ(static_cast<std::size_t>(std::count(tl.begin(), tl.end(), '\n')), r.timeline.size());
+  EXPECT_EQ(tl.rfind(core::ndjson_header("obie.timeline", {1, 0}), 0), 0u);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(tl.begin(), tl.end(), '\n')), r.timeline.size() + 1);
   EXPECT_NE(tl.find("{\"agent\":\"neutral\",\"anim_time\":13.0,"), std::string::npos);  // 12' → 1 + 12 s
 }
 

@@ -1,5 +1,7 @@
 // `parlee` CLI end to end: plan / run / interact, outputs, exit codes, atomic outputs.
 #include <gtest/gtest.h>
+
+#include "emoface/core/io.hpp"
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -60,6 +62,8 @@ TEST_F(ParleeApp, RunWritesTimelineAndCharts) {
   std::istringstream lines(slurp(path("t.ndjson")));
   std::string line;
   std::size_t n = 0;
+  ASSERT_TRUE(std::getline(lines, line));
+  EXPECT_EQ(nlohmann::json::parse(line), nlohmann::json::parse(emoface::core::ndjson_header("parlee.timeline", {1, 0})));
   while (std::getline(lines, line)) {
     const auto j = nlohmann::json::parse(line);
     EXPECT_EQ(j["agent"], "neutral");

@@ -69,7 +69,7 @@ parlee::RgbImage key_moment_sheet(const ObieResult& result) {
 }
 
 std::string format_timeline(const ObieResult& result) {
-  std::string out;
+  std::string out = core::ndjson_header("obie.timeline", {1, 0});
   const std::string agent = nlohmann::json(result.agent_name).dump();
   for (std::size_t k = 0; k < result.timeline.size(); ++k) {
     const std::string line = parlee::timeline_line(result.timeline[k]);

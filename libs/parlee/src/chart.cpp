@@ -1,14 +1,11 @@
 #include "emoface/parlee/chart.hpp"
 
-#include <png.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <csetjmp>
 
 #include "emoface/core/errors.hpp"
-#include "emoface/core/version.hpp"
+#include "emoface/core/png.hpp"
 
 namespace emoface::parlee {
 namespace {
@@ -66,11 +63,6 @@ void line(RgbImage& im, int x0, int y0, int x1, int y1, std::array<std::uint8_t,
       y0 += sy;
     }
   }
-}
-
-void write_cb(png_structp png, png_bytep data, png_size_t len) {
-  auto* out = static_cast<std::string*>(png_get_io_ptr(png));
-  out->append(reinterpret_cast<const char*>(data), len);
 }
 
 }  // namespace
@@ -156,34 +148,7 @@ std::string encode_png(const RgbImage& image) {
   if (image.width < 1 || image.height < 1 ||
       image.rgb.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3)
     throw InvalidInput("encode_png: image size does not match its pixels");
-  std::string out;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info) {
-    png_destroy_write_struct(&png, &info);
-    throw Error("libpng: cannot create a writer");
-  }
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    throw Error("libpng: encoding failed");
-  }
-  png_set_write_fn(png, &out, write_cb, nullptr);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
-               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  char key[] = "Software";
-  std::string value = kGenerator;
-  png_text text{};
-  text.compression = PNG_TEXT_COMPRESSION_NONE;
-  text.key = key;
-  text.text = value.data();
-  text.text_length = value.size();
-  png_set_text(png, info, &text, 1);
-  png_write_info(png, info);
-  for (int y = 0; y < image.height; ++y)
-    png_write_row(png, const_cast<png_bytep>(&image.rgb[static_cast<std::size_t>(y) * image.width * 3]));
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return out;
+  return core::encode_png(image.width, image.height, image.rgb);  // with the tEXt "Software" stamp
 }
 
 std::string render_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options) {
