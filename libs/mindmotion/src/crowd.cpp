@@ -132,7 +132,9 @@ Crowd animate_crowd(std::vector<mindmap::MindMap> maps, std::vector<mindmap::Eve
     ch.name = crowd.maps[c].character;
     ch.rig = rigs.size() == 1 ? 0 : c;
     t0 = Clock::now();
-    ch.motion = synthesize_behaviour(graph, crowd.simulation.actions, ch.name, c, crowd.simulation.duration, mo);
+    // One graph frame past the duration, so that the last output frame (at `duration`) has motion.
+    ch.motion = synthesize_behaviour(graph, crowd.simulation.actions, ch.name, c,
+                                     crowd.simulation.duration + 1.0 / graph.frame_rate, mo);
     t.synthesis += seconds_since(t0);
     t0 = Clock::now();
     const auto fitted = fit_muscle_tracks(*rigs[ch.rig].fitter, graph, ch.motion, &ch.fit);
