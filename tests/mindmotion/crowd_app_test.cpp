@@ -50,7 +50,7 @@ TEST_F(MindmapCrowdApp, WritesTracksMoodChartsAndTheKeyMomentSheet) {
   const auto r = mindmap(crowd_args(path("out")) + (video ? " --video" : ""));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("4 characters, 81 frames at 10 fps"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("time: simulation"), std::string::npos);
+  EXPECT_NE(r.out.find("time (wall / CPU): simulation"), std::string::npos);
   for (const char* name : {"ana", "ben", "rex", "tess"}) {
     const std::string stem = path("out/") + name;
     // faceanim-ready tracks: one row per frame, 40 named parameters.

@@ -314,6 +314,11 @@ TEST(Crowd, DeterministicWithASeed) {
   EXPECT_EQ(mo::key_moments_csv(a), mo::key_moments_csv(b));
   const mo::CrowdRenderer ra(a, rigs(), tiny()), rb(b, rigs(), tiny());
   for (std::size_t k : {std::size_t{3}, std::size_t{20}}) EXPECT_EQ(ra.frame(k).rgb, rb.frame(k).rgb);
+  // The number of render threads does not change a pixel.
+  auto one = tiny(), three = tiny();
+  one.threads = 1;
+  three.threads = 3;
+  EXPECT_EQ(mo::CrowdRenderer(b, rigs(), one).frame(20).rgb, mo::CrowdRenderer(b, rigs(), three).frame(20).rgb);
   // Another seed changes the idle movements.
   auto o = short_options();
   o.seed = 8;
@@ -368,7 +373,7 @@ TEST(Crowd, BadOptionsAndInputsAreClearErrors) {
   // Renderer options and misuse.
   const mo::Crowd& c = trio_crowd();
   for (auto bad : {&mo::CrowdRenderOptions::face_width, &mo::CrowdRenderOptions::strip_height,
-                   &mo::CrowdRenderOptions::columns, &mo::CrowdRenderOptions::gap}) {
+                   &mo::CrowdRenderOptions::columns, &mo::CrowdRenderOptions::gap, &mo::CrowdRenderOptions::threads}) {
     auto r = tiny();
     r.*bad = 5000;
     EXPECT_THROW(mo::CrowdRenderer(c, rigs(), r), emoface::InvalidInput);
@@ -382,6 +387,7 @@ TEST(Crowd, BadOptionsAndInputsAreClearErrors) {
   expect_error([&] { mo::CrowdRenderer(c, rigs(), r); }, "face_height");
   const mo::CrowdRenderer renderer(c, rigs(), tiny());
   expect_error([&] { renderer.compose({0, 0}); }, "one frame per character");
+  expect_error([&] { renderer.compose({0, 0, c.frame_count()}); }, "out of range");
   expect_error([&] { renderer.cell(0, c.frame_count()); }, "out of range");
   expect_error([&] { mo::CrowdRenderer(c, {rigs()[0], rigs()[0]}, tiny()); }, "one per character");
   mo::Crowd broken = c;

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
+#include <exception>
 #include <limits>
+#include <thread>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
@@ -42,6 +45,7 @@ void CrowdRenderOptions::validate() const {
   if (columns < 0 || columns > 16) throw InvalidInput("CrowdRenderOptions: columns must be 0 (auto) or in [1, 16]");
   if (gap < 0 || gap > 64) throw InvalidInput("CrowdRenderOptions: gap must be in [0, 64]");
   if (!(zoom >= 0.5 && zoom <= 4.0)) throw InvalidInput("CrowdRenderOptions: zoom must be in [0.5, 4]");
+  if (threads < 0 || threads > 64) throw InvalidInput("CrowdRenderOptions: threads must be in [0, 64]");
 }
 
 std::vector<double> Crowd::strip_values(std::size_t c, std::size_t k) const {
@@ -57,7 +61,23 @@ std::vector<double> Crowd::strip_values(std::size_t c, std::size_t k) const {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Adds the wall and CPU time since construction to a StageTime when destroyed.
+class StageTimer {
+ public:
+  explicit StageTimer(StageTime& into) : into_(into), wall_(Clock::now()), cpu_(std::clock()) {}
+  ~StageTimer() {
+    into_.wall += std::chrono::duration<double>(Clock::now() - wall_).count();
+    into_.cpu += static_cast<double>(std::clock() - cpu_) / CLOCKS_PER_SEC;
+  }
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
+
+ private:
+  StageTime& into_;
+  Clock::time_point wall_;
+  std::clock_t cpu_;
+};
 
 // Parameter frames at the graph's rate → `count` frames at `fps` (linear interpolation, clamped at the
 // last fitted frame; contraction levels stay in [0, 1] because interpolation is convex).
@@ -117,12 +137,13 @@ Crowd animate_crowd(std::vector<mindmap::MindMap> maps, std::vector<mindmap::Eve
     if (std::find(names.begin(), names.end(), e.stimulus) == names.end()) names.push_back(e.stimulus);
   }
 
-  auto t0 = Clock::now();
   mindmap::SimulationOptions so = options.simulation;
   so.frame_rate = crowd.fps;  // one mood row per output frame
   so.seed = options.seed;
-  crowd.simulation = mindmap::simulate(std::move(maps), std::move(events), so);
-  t.simulation = seconds_since(t0);
+  {
+    StageTimer timer(t.simulation);
+    crowd.simulation = mindmap::simulate(std::move(maps), std::move(events), so);
+  }
 
   const std::size_t frames = crowd.frame_count();
   BehaviourMotionOptions mo = options.motion;
@@ -131,15 +152,17 @@ Crowd animate_crowd(std::vector<mindmap::MindMap> maps, std::vector<mindmap::Eve
     CrowdCharacter ch;
     ch.name = crowd.maps[c].character;
     ch.rig = rigs.size() == 1 ? 0 : c;
-    t0 = Clock::now();
-    // One graph frame past the duration, so that the last output frame (at `duration`) has motion.
-    ch.motion = synthesize_behaviour(graph, crowd.simulation.actions, ch.name, c,
-                                     crowd.simulation.duration + 1.0 / graph.frame_rate, mo);
-    t.synthesis += seconds_since(t0);
-    t0 = Clock::now();
-    const auto fitted = fit_muscle_tracks(*rigs[ch.rig].fitter, graph, ch.motion, &ch.fit);
-    ch.tracks = resample(fitted, ch.motion.frame_rate, crowd.fps, frames);
-    t.fitting += seconds_since(t0);
+    {
+      StageTimer timer(t.synthesis);
+      // One graph frame past the duration, so that the last output frame (at `duration`) has motion.
+      ch.motion = synthesize_behaviour(graph, crowd.simulation.actions, ch.name, c,
+                                       crowd.simulation.duration + 1.0 / graph.frame_rate, mo);
+    }
+    {
+      StageTimer timer(t.fitting);
+      const auto fitted = fit_muscle_tracks(*rigs[ch.rig].fitter, graph, ch.motion, &ch.fit);
+      ch.tracks = resample(fitted, ch.motion.frame_rate, crowd.fps, frames);
+    }
     crowd.characters.push_back(std::move(ch));
   }
 
@@ -299,14 +322,36 @@ fm::Image CrowdRenderer::cell(std::size_t c, std::size_t k) const {
 }
 
 fm::Image CrowdRenderer::compose(const std::vector<std::size_t>& frames) const {
-  if (frames.size() != crowd_.characters.size()) throw InvalidInput("CrowdRenderer::compose: one frame per character is needed");
+  const std::size_t n = crowd_.characters.size();
+  if (frames.size() != n) throw InvalidInput("CrowdRenderer::compose: one frame per character is needed");
+  for (std::size_t c = 0; c < n; ++c)
+    if (frames[c] >= crowd_.frame_count()) throw InvalidInput("CrowdRenderer::compose: frame out of range");
+  // Cells are independent: render them on up to `threads` threads (character c on thread c mod T).
+  std::size_t workers = options_.threads > 0 ? static_cast<std::size_t>(options_.threads)
+                                             : std::max(1u, std::thread::hardware_concurrency());
+  workers = std::min(workers, n);
+  std::vector<fm::Image> cells(n);
+  std::vector<std::exception_ptr> errors(workers);
+  auto work = [&](std::size_t t) {
+    try {
+      for (std::size_t c = t; c < n; c += workers) cells[c] = cell(c, frames[c]);
+    } catch (...) {
+      errors[t] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& th : pool) th.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
   fm::Image out;
   out.width = width();
   out.height = height();
   out.rgb.assign(static_cast<std::size_t>(out.width) * out.height * 3, 255);
-  for (std::size_t c = 0; c < frames.size(); ++c) {
+  for (std::size_t c = 0; c < n; ++c) {
     const int col = static_cast<int>(c) % columns_, row = static_cast<int>(c) / columns_;
-    blit(out, cell(c, frames[c]), options_.gap + col * (cell_width() + options_.gap),
+    blit(out, cells[c], options_.gap + col * (cell_width() + options_.gap),
          options_.gap + row * (cell_height() + options_.gap));
   }
   return out;

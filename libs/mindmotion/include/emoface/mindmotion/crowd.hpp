@@ -93,11 +93,18 @@ struct Crowd {
   std::vector<double> strip_values(std::size_t c, std::size_t k) const;
 };
 
-/// Wall-clock seconds spent per stage (for the docs and the CLI's summary; never written to files).
+/// Time spent in one stage: wall-clock seconds and the process' CPU seconds (std::clock; the stages of
+/// animate_crowd run on one thread, so on a loaded machine `cpu` is the better measure of their cost).
+struct StageTime {
+  double wall = 0.0;
+  double cpu = 0.0;
+};
+
+/// Time per stage (for the docs and the CLI's summary; never written to files).
 struct CrowdTimings {
-  double simulation = 0.0;  ///< mind-map simulation (all characters)
-  double synthesis = 0.0;   ///< motion-graph synthesis (all characters)
-  double fitting = 0.0;     ///< bridge fit + resampling (all characters)
+  StageTime simulation;  ///< mind-map simulation (all characters)
+  StageTime synthesis;   ///< motion-graph synthesis (all characters)
+  StageTime fitting;     ///< bridge fit + resampling (all characters)
 };
 
 /// Runs the stimuli through the characters' mind maps (mindmap::simulate), synthesizes each character's
@@ -119,6 +126,9 @@ struct CrowdRenderOptions {
   /// cell with the face, so small expressions stay visible at small sizes), [0.5, 4].
   double zoom = 1.3;
   facemesh::View view = facemesh::View::Front;
+  /// Threads that render the cells of one frame, [0, 64]; 0 = the hardware's, at most one per character.
+  /// The pictures do not depend on it (each cell is rendered alone).
+  int threads = 0;
   void validate() const;   ///< throws InvalidInput
 };
 
@@ -146,7 +156,7 @@ class CrowdRenderer {
 
   /// Character c at frame k: the deformed face rendered over its mood strip (cell_width × cell_height).
   facemesh::Image cell(std::size_t c, std::size_t k) const;
-  /// Every character at frame k, in grid order (row-major, character order).
+  /// Every character at frame k, in grid order (row-major, character order); cells render in parallel.
   facemesh::Image frame(std::size_t k) const;
   /// Character c at frames[c] (a frame of mixed times, e.g. key moments); frames.size() = characters.
   facemesh::Image compose(const std::vector<std::size_t>& frames) const;
