@@ -319,6 +319,15 @@ TEST(Crowd, DeterministicWithASeed) {
   one.threads = 1;
   three.threads = 3;
   EXPECT_EQ(mo::CrowdRenderer(b, rigs(), one).frame(20).rgb, mo::CrowdRenderer(b, rigs(), three).frame(20).rgb);
+  // One rig per character (here all the default face): each character uses its own, same pictures.
+  const std::vector<mo::CrowdRig> own = {rigs()[0], rigs()[0], rigs()[0]};
+  const mo::Crowd e = mo::animate_crowd(trio(), events(), small_graph(), own, short_options());
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(e.characters[i].rig, i);
+    EXPECT_EQ(b.characters[i].rig, 0u);
+    EXPECT_EQ(tracks_csv(e, i), tracks_csv(b, i));
+  }
+  EXPECT_EQ(mo::CrowdRenderer(e, own, tiny()).frame(20).rgb, rb.frame(20).rgb);
   // Another seed changes the idle movements.
   auto o = short_options();
   o.seed = 8;

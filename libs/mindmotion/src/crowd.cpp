@@ -180,15 +180,13 @@ Crowd animate_crowd(std::vector<mindmap::MindMap> maps, std::vector<mindmap::Eve
       // The key pose of a reaction: the last frame of the first action segment requested inside the
       // window — synthesis ends at the peak node of its label (paper §5) — before chained actions and
       // the idle around the peak move on. A character that did not react shows the window's middle.
-      std::size_t key = frames;
+      double key_time = 0.5 * (start + end);
       for (const auto& s : ch.motion.segments) {
         if (s.kind != SegmentKind::Action || s.requested_time < start - 1e-9 || s.requested_time >= end - 1e-9) continue;
-        const double last = static_cast<double>(s.first_frame + s.frame_count - 1) / ch.motion.frame_rate;
-        key = static_cast<std::size_t>(std::floor(last * crowd.fps + 1e-9));
+        key_time = static_cast<double>(s.first_frame + s.frame_count - 1) / ch.motion.frame_rate;
         break;
       }
-      if (key >= frames) key = static_cast<std::size_t>(std::floor(0.5 * (start + end) * crowd.fps + 1e-9));
-      km.frames.push_back(std::min(key, frames - 1));
+      km.frames.push_back(std::min(static_cast<std::size_t>(std::floor(key_time * crowd.fps + 1e-9)), frames - 1));
     }
     crowd.key_moments.push_back(std::move(km));
   }
