@@ -1,16 +1,23 @@
 // mindmap: behaviour of characters driven by mind maps (paper §6–6.1). `simulate` runs stimuli
 // through the characters' mind maps and writes mood timelines, triggered actions, mood charts and,
-// with a motion graph, the synthesized landmark motion. Thin: parse, call mindmap/mindmotion, write.
+// with a motion graph, the synthesized landmark motion. `crowd` animates and renders the characters
+// side by side (issue #9 §2). Thin: parse, call mindmap/mindmotion, write.
+#include <chrono>
+#include <ctime>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/version.hpp"
+#include "emoface/core/video.hpp"
 #include "emoface/mindmap/chart.hpp"
 #include "emoface/mindmap/io.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmotion/behaviour.hpp"
+#include "emoface/mindmotion/crowd.hpp"
 #include "emoface/mindmotion/muscle_tracks.hpp"
 #include "emoface/motiongraph/io.hpp"
 #include "emoface/motiongraph/render.hpp"
@@ -27,6 +34,12 @@ struct Args {
   mm::ChartOptions chart;
   emoface::mindmotion::BehaviourMotionOptions motion;
   bool no_charts = false, muscles = false;
+  // crowd
+  std::vector<std::string> rigs;
+  emoface::mindmotion::CrowdRenderOptions render;
+  std::string view = "front";
+  double fps = 0.0;
+  bool video = false;
 };
 
 std::string file_stem(const std::string& name) {  // character names become file names: keep them portable
@@ -99,6 +112,152 @@ int simulate(Args& a) {
   return cli::kExitOk;
 }
 
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double cpu_since(std::clock_t c0) { return static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC; }
+
+std::string png(const emoface::facemesh::Image& image) { return emoface::facemesh::encode_png(image); }
+
+int crowd(Args& a) {
+  namespace mo = emoface::mindmotion;
+  namespace fm = emoface::facemesh;
+  a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
+  a.render.view = cli::parse_enum<fm::View>(
+      a.view, [](const std::string& v) -> std::optional<fm::View> {
+        if (v == "front") return fm::View::Front;
+        if (v == "threequarter") return fm::View::ThreeQuarter;
+        return std::nullopt;
+      },
+      "--view", "front|threequarter");
+  mo::CrowdOptions co;
+  co.simulation = a.sim;
+  co.motion = a.motion;
+  co.fps = a.fps;
+  co.seed = a.sim.seed;
+  try {
+    co.validate();
+    a.render.validate();
+  } catch (const emoface::InvalidInput& e) {
+    throw cli::UsageError(e.what());
+  }
+  auto t0 = Clock::now();
+  const mg::MotionGraph graph = a.graph.empty() ? mo::default_motion_graph() : mg::read_graph(a.graph);
+  if (a.graph.empty()) std::cout << "built the default synthetic motion graph in " << since(t0) << " s\n";
+  const std::vector<mm::MindMap> maps = mm::read_mind_map_dir(a.maps, mo::graph_labels(graph));
+  for (const auto& m : maps) file_stem(m.character);
+  const std::vector<mm::Event> events = mm::read_events(a.events);
+
+  // Faces: --rig FILE for everyone, --rig NAME=FILE for one character; the default face otherwise.
+  std::map<std::string, std::string> rig_of;  // character -> rig file ("" = default face)
+  std::string everyone;
+  for (const auto& r : a.rigs) {
+    const auto eq = r.find('=');
+    const std::string name = eq == std::string::npos ? "" : r.substr(0, eq);
+    const bool named = std::any_of(maps.begin(), maps.end(), [&](const mm::MindMap& m) { return m.character == name; });
+    if (named) rig_of[name] = r.substr(eq + 1);
+    else if (everyone.empty()) everyone = r;
+    else throw cli::UsageError("--rig: only one rig may be given for everyone (use NAME=FILE for one character)");
+  }
+  std::vector<std::string> files_of;  // per character
+  for (const auto& m : maps) files_of.push_back(rig_of.count(m.character) ? rig_of[m.character] : everyone);
+  std::vector<std::string> distinct;
+  for (const auto& f : files_of)
+    if (std::find(distinct.begin(), distinct.end(), f) == distinct.end()) distinct.push_back(f);
+  std::vector<std::unique_ptr<emoface::muscles::FaceSolver>> solvers;
+  std::vector<std::unique_ptr<emoface::bridge::LandmarkFitter>> fitters;
+  std::map<std::string, mo::CrowdRig> by_file;
+  for (const auto& f : distinct) {
+    auto face = f.empty() ? fm::make_default_face() : fm::load_face(f);
+    solvers.push_back(std::make_unique<emoface::muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig)));
+    fitters.push_back(std::make_unique<emoface::bridge::LandmarkFitter>(*solvers.back()));
+    by_file[f] = {solvers.back().get(), fitters.back().get()};
+  }
+  std::vector<mo::CrowdRig> rigs;
+  if (distinct.size() == 1) rigs.push_back(by_file[distinct[0]]);
+  else for (const auto& f : files_of) rigs.push_back(by_file[f]);
+
+  mo::CrowdTimings timings;
+  const mo::Crowd crowd = mo::animate_crowd(maps, events, graph, rigs, co, &timings);
+  const mo::CrowdRenderer renderer(crowd, rigs, a.render);
+
+  // Everything but the video is computed before anything is written; the video is written first
+  // (atomically, by VideoWriter), so a failing run leaves no output file.
+  std::vector<std::pair<std::string, std::string>> files;
+  const std::string dir = a.out + "/";
+  files.emplace_back(dir + "actions.ndjson", mm::actions_to_ndjson(crowd.simulation.actions));
+  files.emplace_back(dir + "actions.csv", mm::actions_to_csv(crowd.simulation.actions));
+  for (std::size_t c = 0; c < maps.size(); ++c) {
+    const auto& ch = crowd.characters[c];
+    const std::string stem = dir + ch.name;
+    files.emplace_back(stem + "_muscles.csv", emoface::muscles::format_parameter_frames_csv(ch.tracks));
+    files.emplace_back(stem + "_mood.csv", mm::mood_timeline_csv(crowd.simulation, crowd.maps[c], c));
+    files.emplace_back(stem + "_segments.csv", mo::segments_csv(ch.motion));
+    if (!a.no_charts) {
+      const mm::Raster chart = mm::mood_chart(crowd.simulation, crowd.maps[c], c, a.chart);
+      mg::Image img(chart.width, chart.height);
+      img.rgb = chart.rgb;
+      files.emplace_back(stem + "_mood.png", mg::encode_png(img));
+    }
+  }
+  files.emplace_back(dir + "key_moments.csv", mo::key_moments_csv(crowd));
+  t0 = Clock::now();
+  std::clock_t c0 = std::clock();
+  const fm::Image sheet = renderer.key_moment_sheet();
+  std::size_t rendered = 0;
+  for (const auto& km : crowd.key_moments) rendered += km.frames.size();
+  files.emplace_back(dir + "key_moments.png", png(sheet));
+  double render_seconds = since(t0), render_cpu = cpu_since(c0);
+
+  std::filesystem::create_directories(a.out);
+  if (a.video) {
+    emoface::core::VideoOptions vo;
+    vo.width = renderer.width();
+    vo.height = renderer.height();
+    vo.fps = crowd.fps;
+    vo.comment = emoface::kGenerator;
+    t0 = Clock::now();
+    c0 = std::clock();
+    emoface::core::VideoWriter writer(dir + "crowd.mp4", vo);
+    for (std::size_t k = 0; k < crowd.frame_count(); ++k) {
+      writer.add_frame(renderer.frame(k).rgb);
+      if (k % 30 == 0 || k + 1 == crowd.frame_count()) {
+        std::fprintf(stderr, "\rrendering %zu/%zu frames", k + 1, crowd.frame_count());
+        std::fflush(stderr);
+      }
+    }
+    writer.finish();
+    std::fprintf(stderr, "\n");
+    render_seconds += since(t0);
+    render_cpu += cpu_since(c0);  // this process only (ffmpeg's encoding is not counted)
+    rendered += crowd.frame_count() * maps.size();
+  }
+  for (const auto& [path, content] : files) emoface::core::write_file_atomic(path, content);
+
+  for (const auto& ch : crowd.characters) {
+    std::size_t actions = 0;
+    for (const auto& x : crowd.simulation.actions) actions += x.character == ch.name ? 1 : 0;
+    std::cout << ch.name << ": " << actions << " action(s), " << ch.motion.segments.size() << " segments, fit RMS mean "
+              << ch.fit.mean_rms * 1e3 << " mm (max " << ch.fit.max_rms * 1e3 << " mm)\n";
+  }
+  for (const auto& s : crowd.simulation.copied)
+    std::cout << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time << " s\n";
+  const double frames = static_cast<double>(crowd.frame_count());
+  std::printf("%zu characters, %zu frames at %g fps (%g s), %zu key moments, frame %dx%d\n", maps.size(),
+              crowd.frame_count(), crowd.fps, crowd.simulation.duration, crowd.key_moments.size(), renderer.width(),
+              renderer.height());
+  const double faces = frames * static_cast<double>(maps.size());
+  std::printf("time (wall / CPU): simulation %.3f / %.3f s; synthesis %.3f / %.3f s (%.3f ms CPU per frame and "
+              "character); fitting %.3f / %.3f s (%.3f ms CPU per frame and character); deformation+render %.3f / "
+              "%.3f s for %zu faces (%.2f ms CPU per face)\n",
+              timings.simulation.wall, timings.simulation.cpu, timings.synthesis.wall, timings.synthesis.cpu,
+              1e3 * timings.synthesis.cpu / faces, timings.fitting.wall, timings.fitting.cpu,
+              1e3 * timings.fitting.cpu / faces, render_seconds, render_cpu, rendered,
+              rendered ? 1e3 * render_cpu / static_cast<double>(rendered) : 0.0);
+  std::cout << "wrote " << files.size() + (a.video ? 1 : 0) << " file(s) to " << a.out << "\n";
+  return cli::kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -106,7 +265,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", emoface::kGenerator);
   app.footer("Example:\n  mindmap simulate --maps data/mindmap/characters --events data/mindmap/events.ndjson "
-             "--out sim --seed 1\n  mindmap check --maps data/mindmap/characters\n"
+             "--out sim --seed 1\n  mindmap crowd --maps data/mindmap/crowd --events data/mindmap/crowd_events.ndjson "
+             "--out crowd --video\n  mindmap check --maps data/mindmap/characters\n"
              "Exit codes: 0 ok, 1 usage, 2 bad input, 3 numerical, 4 internal.");
   Args a;
   auto* sim = app.add_subcommand("simulate", "run stimuli through the characters' mind maps");
@@ -130,6 +290,24 @@ int main(int argc, char** argv) {
   sim->add_option("--chart-width", a.chart.width, "chart pixels")->capture_default_str();
   sim->add_option("--chart-height", a.chart.height, "chart pixels")->capture_default_str();
   sim->add_flag("--no-charts", a.no_charts, "do not write PNG mood charts");
+  auto* cr = app.add_subcommand("crowd", "animate several characters reacting to the same stimuli, side by side");
+  cr->add_option("--maps", a.maps, "directory of mind maps (*.json, 2 to 16 characters)")->required();
+  cr->add_option("--events", a.events, "shared stimuli (NDJSON, see docs/mindmap.md)")->required();
+  cr->add_option("--out", a.out, "output directory")->required();
+  cr->add_option("--graph", a.graph, "motion graph (mgraph build); default: built from the synthetic database (~6 s)");
+  cr->add_option("--rig", a.rigs, "rig for everyone (FILE) or for one character (NAME=FILE); default: the built-in face");
+  cr->add_option("--seed", a.sim.seed, "random seed (near-tie choices, motion variation)")->capture_default_str();
+  cr->add_option("--fps", a.fps, "frames per second of tracks, mood rows and video (0 = the graph's)")->capture_default_str();
+  cr->add_option("--width", a.render.face_width, "pixels per face (height = 7/6 of it)")->capture_default_str();
+  cr->add_option("--strip-height", a.render.strip_height, "pixels of the mood strip under each face")->capture_default_str();
+  cr->add_option("--columns", a.render.columns, "grid columns (0 = one row up to 4 characters)")->capture_default_str();
+  cr->add_option("--view", a.view, "front|threequarter")->capture_default_str();
+  cr->add_flag("--video", a.video, "also write crowd.mp4 (needs the ffmpeg binary)");
+  cr->add_option("--mood-form", a.mood_form, "sum|printed reading of eq. 4")->capture_default_str();
+  cr->add_option("--duration", a.sim.duration, "seconds (0 = until the last decay ends)")->capture_default_str();
+  cr->add_option("--propagate", a.sim.propagation_depth, "hops a performed stimulus travels to the others (0 = off)")
+      ->capture_default_str();
+  cr->add_flag("--no-charts", a.no_charts, "do not write PNG mood charts");
   auto* check = app.add_subcommand("check", "validate mind maps (and their labels against a graph)");
   check->add_option("--maps", a.maps, "directory of mind maps")->required();
   check->add_option("--graph", a.graph, "motion graph whose labels the actions must use");
@@ -137,6 +315,7 @@ int main(int argc, char** argv) {
 
   return cli::run("mindmap", [&]() -> int {
     if (*sim) return simulate(a);
+    if (*cr) return crowd(a);
     std::vector<std::string> labels;
     if (!a.graph.empty()) labels = emoface::mindmotion::graph_labels(mg::read_graph(a.graph));
     const auto maps = mm::read_mind_map_dir(a.maps, labels);
