@@ -1,5 +1,6 @@
 #include "emoface/mindmotion/behaviour.hpp"
 #include "emoface/mindmotion/muscle_tracks.hpp"
+#include "emoface/core/csv.hpp"
 
 #include <algorithm>
 
@@ -73,7 +74,7 @@ TEST(Behaviour, SegmentsCoverTheTimelineWithIdleBetweenActions) {
   const auto db = mo::to_database(small_graph(), m);
   EXPECT_NO_THROW(mg::validate(db, 1));
   EXPECT_EQ(db.sequences.size(), m.segments.size());
-  EXPECT_EQ(mo::segments_csv(m).substr(0, 20), "kind,action,label,re");
+  EXPECT_EQ(mo::segments_csv(m).substr(emoface::core::csv_stamp().size(), 20), "kind,action,label,re");
 }
 
 TEST(Behaviour, HintsUseOnlyTheInitialNodesAndAreDroppedWhenBusy) {

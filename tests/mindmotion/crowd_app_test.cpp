@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_harness.hpp"
+#include "emoface/core/csv.hpp"
 #include "emoface/core/video.hpp"
 #include "emoface/mindmap/io.hpp"
 #include "emoface/mindmotion/crowd.hpp"
@@ -56,14 +57,16 @@ TEST_F(MindmapCrowdApp, WritesTracksMoodChartsAndTheKeyMomentSheet) {
     // faceanim-ready tracks: one row per frame, 40 named parameters.
     const auto frames = emoface::muscles::read_parameter_frames(stem + "_muscles.csv");
     EXPECT_EQ(frames.size(), 81u) << name;
-    EXPECT_EQ(lines(slurp(stem + "_mood.csv")), 82u) << name;  // header + 81 rows
+    EXPECT_EQ(lines(slurp(stem + "_mood.csv")), 83u) << name;  // "# emoface x.y.z" + header + 81 rows
     EXPECT_EQ(slurp(stem + "_mood.png").substr(1, 3), "PNG");
     EXPECT_TRUE(fs::exists(stem + "_segments.csv"));
   }
   const auto actions = emoface::mindmap::parse_actions(slurp(path("out/actions.ndjson")));
   EXPECT_GE(actions.size(), 4u);  // everyone reacts to the bang
   // Key moments: the bang at 1 s and the gift at 7 s fall inside the 8 s.
-  const std::string km = slurp(path("out/key_moments.csv"));
+  const std::string stamped = slurp(path("out/key_moments.csv"));
+  ASSERT_EQ(stamped.rfind(emoface::core::csv_stamp(), 0), 0u);
+  const std::string km = stamped.substr(emoface::core::csv_stamp().size());
   EXPECT_EQ(lines(km), 3u) << km;
   EXPECT_EQ(km.substr(0, km.find('\n')),
             "time,stimuli,ana_frame,ben_frame,rex_frame,tess_frame,ana_time,ben_time,rex_time,tess_time");

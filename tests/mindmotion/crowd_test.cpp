@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmap/chart.hpp"
@@ -213,7 +214,9 @@ TEST(Crowd, KeyMomentsOnePerStimulusTimeAtTheReactionPeak) {
     }
   // zen never reacts: the middle of the window [0.5, 2.0).
   EXPECT_EQ(c.key_moments[0].frames[2], 12u);
-  const std::string csv = mo::key_moments_csv(c);
+  const std::string stamped = mo::key_moments_csv(c);
+  ASSERT_EQ(stamped.rfind(emoface::core::csv_stamp(), 0), 0u);
+  const std::string csv = stamped.substr(emoface::core::csv_stamp().size());
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "time,stimuli,hot_frame,tim_frame,zen_frame,hot_time,tim_time,zen_time");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
 }

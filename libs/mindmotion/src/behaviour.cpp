@@ -158,7 +158,7 @@ mg::Database to_database(const mg::MotionGraph& graph, const CharacterMotion& mo
 }
 
 std::string segments_csv(const CharacterMotion& motion) {
-  std::string out = "kind,action,label,requested_time,start,first_frame,frame_count\n";
+  std::string out = core::csv_stamp() + "kind,action,label,requested_time,start,first_frame,frame_count\n";
   char buf[96];
   for (const auto& s : motion.segments) {
     out += to_string(s.kind);

@@ -375,7 +375,7 @@ fm::Image CrowdRenderer::key_moment_sheet() const {
 }
 
 std::string key_moments_csv(const Crowd& crowd) {
-  std::string out = "time,stimuli";
+  std::string out = core::csv_stamp() + "time,stimuli";
   for (const auto& ch : crowd.characters) {
     out += ',';
     core::append_csv_field(out, ch.name + "_frame");
