@@ -1,0 +1,47 @@
+// The software rasteriser (facemesh::render) on the default face: the cost behind every video the apps
+// make (docs/facemesh.md, "Performance"). Reproduce: build/tests/bench/facemesh_bench --benchmark_min_time=1
+#include <benchmark/benchmark.h>
+
+#include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/render.hpp"
+
+namespace {
+
+namespace fm = emoface::facemesh;
+
+const fm::Face& face() {
+  static const fm::Face f = fm::make_default_face();
+  return f;
+}
+
+void BM_Render(benchmark::State& state) {
+  const auto& f = face();
+  const auto colors = fm::material_colors(f.rig, f.mesh);
+  fm::RenderOptions ro;
+  ro.width = static_cast<int>(state.range(0));
+  ro.height = static_cast<int>(state.range(1));
+  ro.view = state.range(2) ? fm::View::ThreeQuarter : fm::View::Front;
+  for (auto _ : state) benchmark::DoNotOptimize(fm::render(f.mesh, colors, {}, ro).rgb.data());
+  state.SetItemsProcessed(state.iterations());
+  state.counters["pixels"] = static_cast<double>(ro.width) * ro.height;
+}
+BENCHMARK(BM_Render)
+    ->Args({160, 192, 0})
+    ->Args({320, 384, 0})
+    ->Args({480, 560, 0})
+    ->Args({480, 560, 1})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_EncodePng(benchmark::State& state) {
+  const auto& f = face();
+  fm::RenderOptions ro;
+  ro.width = 480;
+  ro.height = 560;
+  const fm::Image image = fm::render(f.mesh, fm::material_colors(f.rig, f.mesh), {}, ro);
+  for (auto _ : state) benchmark::DoNotOptimize(fm::encode_png(image).data());
+}
+BENCHMARK(BM_EncodePng)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
