@@ -25,6 +25,26 @@ inline Eigen::Vector3d rotate_x(const Eigen::Vector3d& p, const Eigen::Vector3d&
 
 }  // namespace
 
+// Distance from p to a muscle's zone of influence (0 inside): the vector muscle's zone is the cone of
+// half-angle Ω about the axis at v1 capped at Rf (a 2-D sector in axial/radial coordinates); for the
+// sphincter (x/y only) min(semi-axes)·(e − 1), e the elliptic radius, is a lower bound (enough here).
+double FaceSolver::zone_distance(const Muscle& m, const Eigen::Vector3d& p) {
+  if (m.kind != facemesh::MuscleKind::Vector) {
+    const double dx = (p.x() - m.geometry.head.x()) / m.semi_axes.x(), dy = (p.y() - m.geometry.head.y()) / m.semi_axes.y();
+    const double e = std::sqrt(dx * dx + dy * dy);
+    return e <= 1.0 ? 0.0 : (e - 1.0) * std::min(m.semi_axes.x(), m.semi_axes.y());
+  }
+  const Eigen::Vector3d b = p - m.geometry.head;
+  const double along = b.dot(m.axis);
+  const double across = (b - along * m.axis).norm();
+  const double d = b.norm();
+  const double omega = m.geometry.omega;
+  if (std::atan2(across, along) <= omega) return std::max(0.0, d - m.geometry.rf);
+  // outside the cone: nearest point of the boundary ray segment (length Rf) at angle Ω
+  const double t = std::min(m.geometry.rf, std::max(0.0, along * std::cos(omega) + across * std::sin(omega)));
+  return std::hypot(along - t * std::cos(omega), across - t * std::sin(omega));
+}
+
 std::string to_string(EyelidCoupling coupling) {
   switch (coupling) {
     case EyelidCoupling::OneEye: return "one_eye";
@@ -83,11 +103,7 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
       for (int k = 0; k < 3; ++k) vertex_faces_[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh_.faces(f, k))]++)] = static_cast<int>(f);
     }
   }
-  const auto regions = facemesh::region_vertices(rig_);
   const auto& cps = rig_.lips.control_points;
-  // Region cut-off (thesis §2.4.1): a muscle visits only vertices of its regions; we further keep those
-  // whose neutral position is near the zone (distance Rf·(1 + margin), angle Ω·(1 + margin)), so
-  // vertices can still move in and out of it.
   for (const auto& spec : rig_.muscles) {
     Muscle m;
     m.kind = spec.kind;
@@ -101,30 +117,6 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
     }
     m.wrinkle_count = spec.wrinkle_count;
     m.wrinkle_height = spec.wrinkle_height;
-    auto near = [&](const Eigen::Vector3d& p) {
-      if (spec.kind == facemesh::MuscleKind::Vector) {
-        const Eigen::Vector3d b = p - spec.head;
-        const double d = b.norm();
-        if (d > spec.rf * (1.0 + options_.zone_margin)) return false;
-        if (d <= 1e-12) return true;
-        const double alpha = std::acos(std::min(1.0, std::max(-1.0, b.dot(m.axis) / d)));
-        return alpha <= std::min(kPi, spec.omega * (1.0 + options_.zone_margin));
-      }
-      const double dx = (p.x() - spec.head.x()) / spec.semi_axes.x(), dy = (p.y() - spec.head.y()) / spec.semi_axes.y();
-      return std::sqrt(dx * dx + dy * dy) <= 1.0 + options_.zone_margin;
-    };
-    for (auto region : spec.regions) {
-      for (int v : regions[static_cast<std::size_t>(region)]) {
-        if (near(mesh_.vertices.row(v).transpose())) m.vertices.push_back(v);
-      }
-    }
-    std::sort(m.vertices.begin(), m.vertices.end());
-    m.vertices.erase(std::unique(m.vertices.begin(), m.vertices.end()), m.vertices.end());
-    if (spec.moves_lips) {
-      for (std::size_t i = 0; i < cps.size(); ++i) {
-        if (near(cps[i])) m.control_points.push_back(static_cast<int>(i));
-      }
-    }
     muscles_.push_back(std::move(m));
   }
   for (int e = 0; e < 2; ++e) {
@@ -147,7 +139,10 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
   lip_jaw_weight_.assign(cps.size(), 0.0);
   const Eigen::Vector3d& centre = rig_.lips.centre;
   // contact line height: mean y of the middle row's corners
-  if (cps.empty()) return;  // a face without the lip model
+  if (cps.empty()) {  // a face without the lip model
+    build_fast_path();
+    return;
+  }
   const double contact_y = 0.5 * (cps[static_cast<std::size_t>((nr - 2) * na)].y() + cps[static_cast<std::size_t>((nr - 2) * na + na / 2)].y());
   // jaw weight of the skin next to each border control point (nearest jaw vertex, else 0)
   std::vector<double> border_jaw(na, 0.0);
@@ -186,19 +181,226 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
       lip_jaw_weight_[i] = (1.0 - wr) * border_jaw[static_cast<std::size_t>(c)] + wr * thesis;
     }
   }
+  build_fast_path();
 }
 
-void FaceSolver::deform(const std::vector<double>& values, Deformation& out) const {
-  validate_parameter_vector(values);
-  const long nv = mesh_.vertices.rows();
-  out.vertices = mesh_.vertices;
-  out.crease.assign(static_cast<std::size_t>(nv), 0);
-  out.lip_control_points = rig_.lips.control_points;
-  auto& X = out.vertices;
-  auto& C = out.lip_control_points;
+void FaceSolver::build_fast_path() {
+  // Region cut-off (thesis §2.4.1, performance): a muscle visits only vertices of its regions, and of
+  // those only the ones that can ever enter its zone of influence. A muscle moves a point by at most
+  // its k over the whole deformation (|c·k·A·R| <= δ·k per step, Σδ <= 1; sphincter likewise), so a
+  // point whose muscles (those it can reach) sum to K never gets further than K (+ the lip funneler
+  // and pressor motion for control points) from its neutral position. Per point, the smallest set S
+  // of its region's muscles that contains every muscle whose zone lies within Σ_S k of the neutral
+  // position is a proof that no other muscle can ever move it: the first step in which another
+  // muscle moved it would find it within Σ_S k of its start and inside that muscle's zone. S is found
+  // by walking the muscles by increasing distance. Membership itself is re-tested exactly every step.
+  const auto regions = facemesh::region_vertices(rig_);
+  const auto& lip_cps = rig_.lips.control_points;
+  auto select = [&](const Eigen::Vector3d& p, std::vector<std::pair<double, int>>& reach, double extra_motion) {
+    std::sort(reach.begin(), reach.end());
+    double bound = extra_motion;
+    std::size_t n = 0;
+    for (; n < reach.size(); ++n) {
+      const Muscle& m = muscles_[static_cast<std::size_t>(reach[n].second)];
+      // slack: polynomial factors may exceed 1 by ~1e-9; rounding of the distances
+      if (reach[n].first > bound * (1.0 + 1e-6) + 1e-9 + options_.zone_margin * m.geometry.rf) break;
+      bound += m.geometry.k;
+    }
+    (void)p;
+    reach.resize(n);
+  };
+  std::vector<std::pair<double, int>> reach;
+  for (auto& m : muscles_) m.vertices.clear(), m.control_points.clear();
+  std::vector<std::vector<int>> reached_by(mesh_.vertex_count());
+  for (std::size_t i = 0; i < muscles_.size(); ++i) {
+    for (auto region : rig_.muscles[i].regions) {
+      for (int v : regions[static_cast<std::size_t>(region)]) {
+        auto& list = reached_by[static_cast<std::size_t>(v)];
+        if (list.empty() || list.back() != static_cast<int>(i)) list.push_back(static_cast<int>(i));
+      }
+    }
+  }
+  for (std::size_t v = 0; v < reached_by.size(); ++v) {
+    if (reached_by[v].empty()) continue;
+    const Eigen::Vector3d p = mesh_.vertices.row(static_cast<long>(v)).transpose();
+    reach.clear();
+    for (int i : reached_by[v]) reach.push_back({zone_distance(muscles_[static_cast<std::size_t>(i)], p), i});
+    select(p, reach, 0.0);
+    for (const auto& r : reach) muscles_[static_cast<std::size_t>(r.second)].vertices.push_back(static_cast<int>(v));
+  }
+  for (std::size_t c = 0; c < lip_cps.size(); ++c) {
+    reach.clear();
+    for (std::size_t i = 0; i < muscles_.size(); ++i) {
+      if (rig_.muscles[i].moves_lips) reach.push_back({zone_distance(muscles_[i], lip_cps[c]), static_cast<int>(i)});
+    }
+    const double lips = funnel_delta_.empty() ? 0.0 : funnel_delta_[c].norm() + press_delta_[c].norm();
+    select(lip_cps[c], reach, lips);
+    for (const auto& r : reach) muscles_[static_cast<std::size_t>(r.second)].control_points.push_back(static_cast<int>(c));
+  }
 
+  // Hot-loop plans (fast_math.hpp): per muscle its constants and the polynomial Waters factors.
+  muscle_plans_.clear();
+  for (const Muscle& m : muscles_) {
+    MusclePlan q{};
+    const VectorMuscle& g = m.geometry;
+    q.sphincter = m.kind != facemesh::MuscleKind::Vector;
+    q.hx = g.head.x(), q.hy = g.head.y(), q.hz = g.head.z();
+    q.ax = m.axis.x(), q.ay = m.axis.y(), q.az = m.axis.z();
+    q.rf2 = g.rf * g.rf, q.cos_omega = std::cos(g.omega), q.rs = g.rs, q.rf = g.rf, q.omega = g.omega, q.k = g.k;
+    double worst = 0.0;
+    if (q.sphincter) {
+      q.inv_a2 = 1.0 / (m.semi_axes.x() * m.semi_axes.x());
+      q.inv_b2 = 1.0 / (m.semi_axes.y() * m.semi_axes.y());
+      auto s = [](double e) { return std::sin(kPi * e); };  // Waters sphincter fall-off (waters.hpp)
+      const auto ps = detail::fit_chebyshev<kSphincterDegree>(s, 0.0, 1.0);
+      worst = detail::max_fit_error(ps, s, 0.0, 1.0);
+      q.sphincter_falloff = detail::pack(ps);
+    } else {
+      // A(cos α) on [cos Ω, 1]; R(D) on [0, Rs] and [Rs, Rf] (thesis §2.2.3, seeds/README.md)
+      const double omega = g.omega, rs = g.rs, rf = g.rf;
+      auto a = [omega](double x) { return detail::angular_of_cos(x, omega); };
+      auto inner = [rs](double d) { return std::cos((1.0 - d / rs) * kHalfPi); };
+      auto outer = [rs, rf](double d) { return std::cos((d - rs) / (rf - rs) * kHalfPi); };
+      const auto pa = detail::fit_chebyshev<kAngularDegree>(a, q.cos_omega, 1.0);
+      const auto pi = detail::fit_chebyshev<kRadialDegree>(inner, 0.0, rs);
+      const auto po = detail::fit_chebyshev<kRadialDegree>(outer, rs, rf);
+      worst = std::max({detail::max_fit_error(pa, a, q.cos_omega, 1.0), detail::max_fit_error(pi, inner, 0.0, rs),
+                        detail::max_fit_error(po, outer, rs, rf)});
+      q.angular = detail::pack(pa);
+      q.inner = detail::pack(pi);
+      q.outer = detail::pack(po);
+    }
+    q.exact = !(worst <= detail::kFitTolerance);
+    muscle_plans_.push_back(q);
+  }
+
+  // Vertex-major candidate lists. The lip samples are skipped: LipSampler::evaluate overwrites them
+  // from the control points after the contraction (and the jaw), so moving them would be dead work.
+  const std::size_t nv = mesh_.vertex_count();
+  const auto& cps = rig_.lips.control_points;
+  const long lip_begin = cps.empty() ? 0 : rig_.lips.first_vertex;
+  const long lip_end = cps.empty() ? 0 : lip_begin + lip_sampler_.sample_count();
+  auto build = [&](std::size_t points, auto&& ids_of, auto&& neutral, bool skip_lips, CandidateLists& lists, bool keep_empty) {
+    std::vector<std::vector<int>> per(points);
+    for (std::size_t i = 0; i < muscles_.size(); ++i) {
+      for (int v : ids_of(muscles_[i])) {
+        if (skip_lips && v >= lip_begin && v < lip_end) continue;
+        per[static_cast<std::size_t>(v)].push_back(static_cast<int>(i));
+      }
+    }
+    lists = {};
+    lists.start.push_back(0);
+    for (std::size_t v = 0; v < points; ++v) {
+      if (per[v].empty() && !keep_empty) continue;
+      lists.point.push_back(static_cast<int>(v));
+      std::vector<std::pair<double, int>> entries;
+      for (int i : per[v]) {
+        const double dist = std::max(0.0, zone_distance(muscles_[static_cast<std::size_t>(i)], neutral(v)) - 1e-9);
+        entries.push_back({dist * dist, i});
+      }
+      std::sort(entries.begin(), entries.end());  // nearest zones first (ties: muscle order)
+      for (const auto& [r2, i] : entries) {
+        lists.muscle.push_back(i);
+        lists.reach2.push_back(r2);
+      }
+      lists.start.push_back(static_cast<int>(lists.muscle.size()));
+    }
+  };
+  build(nv, [](const Muscle& m) -> const std::vector<int>& { return m.vertices; },
+        [&](std::size_t v) -> Eigen::Vector3d { return mesh_.vertices.row(static_cast<long>(v)).transpose(); }, true, vertex_lists_, false);
+  build(cps.size(), [](const Muscle& m) -> const std::vector<int>& { return m.control_points; },
+        [&](std::size_t c) -> Eigen::Vector3d { return cps[c]; }, false, control_point_lists_, true);
+
+  // Wrinkles (thesis §2.4.1): the amplitude A·f(l) of a vertex depends only on its original position
+  // in the band, so it is tabulated once per muscle (exact cos/acos); deform() scales it by the level.
+  wrinkles_.assign(muscles_.size(), {});
+  std::vector<int> slot(nv, -1);
+  std::vector<std::vector<std::pair<int, WrinkleEntry>>> raw(muscles_.size());
+  for (std::size_t i = 0; i < muscles_.size(); ++i) {
+    const Muscle& m = muscles_[i];
+    if (m.kind != facemesh::MuscleKind::Vector || m.wrinkle_count <= 0 || m.wrinkle_height <= 0.0) continue;
+    const double length = wrinkle_band_length(m.geometry);
+    if (!(length > 0.0)) continue;
+    const double b = length / (2.0 * m.wrinkle_count);
+    for (int v : m.vertices) {
+      const Eigen::Vector3d p0 = mesh_.vertices.row(v).transpose();
+      const double l = wrinkle_coordinate(m.geometry, p0);
+      if (l < 0.0 || l > length) continue;
+      const Eigen::Vector3d to_p = p0 - m.geometry.head;
+      const double d = to_p.norm();
+      if (d <= 0.0 || d > m.geometry.rf) continue;
+      const double cos_alpha = std::min(1.0, std::max(-1.0, to_p.dot(m.axis) / d));
+      if (cos_alpha <= std::cos(m.geometry.omega)) continue;
+      const double a = angular_factor(std::acos(cos_alpha), m.geometry.omega);
+      const double u = l - 2.0 * b * std::floor(l / (2.0 * b));
+      const bool crease = (u < 0.15 * b || u > 1.85 * b) && l > b && l < length - b;
+      raw[i].push_back({v, WrinkleEntry{0, a * wrinkle_function(l, length, m.wrinkle_count, m.wrinkle_height), crease}});
+      slot[static_cast<std::size_t>(v)] = 0;
+    }
+  }
+  wrinkle_vertices_.clear();
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (slot[v] < 0) continue;
+    slot[v] = static_cast<int>(wrinkle_vertices_.size());
+    wrinkle_vertices_.push_back(static_cast<int>(v));
+  }
+  for (std::size_t i = 0; i < muscles_.size(); ++i) {
+    for (auto& [v, e] : raw[i]) {
+      e.slot = slot[static_cast<std::size_t>(v)];
+      wrinkles_[i].push_back(e);
+    }
+  }
+}
+
+namespace {
+
+// Displacement of a point at (px, py, pz) by one muscle for contraction·elasticity ck, added to
+// (dx, dy, dz): Waters vector muscle p' = p + c·k·A·R·(v1 − p)/|v1 − p| (thesis §2.2.3, seeds/README.md)
+// or the elliptical sphincter of waters.hpp. Zone membership is tested at the given (current) position.
+template <class Plan>
+inline void accumulate(const Plan& q, double ck, double px, double py, double pz, double& dx, double& dy, double& dz) {
+  if (!q.sphincter) {
+    const double tx = q.hx - px, ty = q.hy - py, tz = q.hz - pz;  // v1 − p
+    const double d2 = tx * tx + ty * ty + tz * tz;
+    if (d2 > q.rf2 || d2 <= 0.0) return;
+    const double inv_d = 1.0 / std::sqrt(d2);
+    const double cos_alpha = -(tx * q.ax + ty * q.ay + tz * q.az) * inv_d;
+    if (cos_alpha <= q.cos_omega) return;
+    const double d = d2 * inv_d;
+    double a, r;
+    if (!q.exact) {
+      a = detail::eval_packed(q.angular, std::min(1.0, cos_alpha));
+      r = detail::eval_packed(d <= q.rs ? q.inner : q.outer, d);
+    } else {
+      a = detail::angular_of_cos(cos_alpha, q.omega);
+      r = radial_factor(d, q.rs, q.rf);
+    }
+    const double f = ck * a * r * inv_d;
+    dx += f * tx;
+    dy += f * ty;
+    dz += f * tz;
+  } else {
+    const double ex = px - q.hx, ey = py - q.hy;
+    const double e2 = ex * ex * q.inv_a2 + ey * ey * q.inv_b2;
+    const double r2 = ex * ex + ey * ey;
+    if (e2 >= 1.0 || r2 <= 0.0) return;
+    const double e = std::sqrt(e2);
+    const double s = q.exact ? std::sin(kPi * e) : detail::eval_packed(q.sphincter_falloff, e);
+    const double f = ck * s / std::sqrt(r2);
+    dx -= f * ex;
+    dy -= f * ey;
+  }
+}
+
+}  // namespace
+
+int FaceSolver::prepare(const std::vector<double>& values, Deformation& out, std::array<EyelidLevels, 2>& lids,
+                        std::vector<double>& level) const {
+  validate_parameter_vector(values);
+  out.vertices = mesh_.vertices;
+  out.crease.assign(mesh_.vertex_count(), 0);
+  out.lip_control_points = rig_.lips.control_points;
   // Orbicularis Oculi coupling per eye (thesis §2.4.3).
-  std::array<EyelidLevels, 2> lids;
   for (std::size_t e = 0; e < 2; ++e) {
     const double closing = values[closing_param_[e]], squeezing = values[squeezing_param_[e]];
     const double other = values[closing_param_[1 - e]];
@@ -210,103 +412,139 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
       case EyelidCoupling::Off: lids[e] = {closing, squeezing}; break;
     }
   }
-  std::vector<double> level(muscles_.size());
+  level.resize(muscles_.size());
   double max_level = 0.0;
   for (std::size_t i = 0; i < muscles_.size(); ++i) {
     const std::size_t p = muscles_[i].parameter;
     level[i] = p == squeezing_param_[0] ? lids[0].squeezing : p == squeezing_param_[1] ? lids[1].squeezing : values[p];
     max_level = std::max(max_level, level[i]);
   }
-  const double funnel = values[funneler_param_], press = values[pressor_param_];
-  max_level = std::max({max_level, funnel, press});
-
-  // Parallel contraction (thesis §2.4.1, seeds/README.md): in steps δc every muscle with contraction
-  // left displaces each vertex at its *current* position; displacements are summed, then applied.
+  max_level = std::max({max_level, values[funneler_param_], values[pressor_param_]});
   const double dc = options_.delta_c;
   const int steps = max_level <= 0.0 ? 0 : options_.parallel ? static_cast<int>(std::ceil(max_level / dc - 1e-9)) : 1;
   out.steps = steps;
-  std::vector<Eigen::Vector3d> disp(static_cast<std::size_t>(nv), Eigen::Vector3d::Zero());
-  std::vector<Eigen::Vector3d> disp_c(C.size(), Eigen::Vector3d::Zero());
-  std::vector<int> touched;
-  std::vector<std::uint8_t> mark(static_cast<std::size_t>(nv), 0);
+  return steps;
+}
+
+void FaceSolver::deform(const std::vector<double>& values, Deformation& out, DeformWorkspace& ws) const {
+  std::array<EyelidLevels, 2> lids;
+  const int steps = prepare(values, out, lids, ws.level);
+  const std::size_t nm = muscles_.size();
+  auto& X = out.vertices;
+  auto& C = out.lip_control_points;
+
+  // Parallel contraction (thesis §2.4.1, seeds/README.md): in steps δc every muscle with contraction
+  // left displaces each vertex at its *current* position; displacements are summed, then applied.
+  // A vertex's displacement depends only on its own position, so each step updates the candidate
+  // points in place, summing their candidate muscles in muscle order (CSR lists built once): the same
+  // sums as accumulating the step over the whole mesh first, without per-step buffers.
+  const double dc = options_.delta_c;
+  auto amount = [&](double lvl, int s) {
+    const double c = options_.parallel ? std::min(dc, lvl - s * dc) : lvl;
+    return c > 0.0 ? c : 0.0;
+  };
+  ws.step_amount.resize(static_cast<std::size_t>(steps) * (nm + 2));
   for (int s = 0; s < steps; ++s) {
-    const double done = s * dc;
-    auto amount = [&](double lvl) { return options_.parallel ? std::min(dc, lvl - done) : lvl; };
-    touched.clear();
-    for (std::size_t i = 0; i < muscles_.size(); ++i) {
-      const double c = amount(level[i]);
-      if (c <= 0.0) continue;
-      const Muscle& m = muscles_[i];
-      if (m.kind == facemesh::MuscleKind::Vector) {
-        const VectorMuscle& g = m.geometry;
-        const double rf2 = g.rf * g.rf, cos_omega = std::cos(g.omega);
-        const double angle_scale = kHalfPi / g.omega, inv_rs = 1.0 / g.rs, inv_span = 1.0 / (g.rf - g.rs);
-        const double hx = g.head.x(), hy = g.head.y(), hz = g.head.z();
-        const double ax = m.axis.x(), ay = m.axis.y(), az = m.axis.z();
-        const double ck = c * g.k;
-        auto displace = [&](const double* p, Eigen::Vector3d& acc) {
-          const double tx = hx - p[0], ty = hy - p[1], tz = hz - p[2];  // v1 − p
-          const double d2 = tx * tx + ty * ty + tz * tz;
-          if (d2 > rf2 || d2 <= 0.0) return false;
-          const double inv_d = 1.0 / std::sqrt(d2);
-          const double cos_alpha = -(tx * ax + ty * ay + tz * az) * inv_d;
-          if (cos_alpha <= cos_omega) return false;
-          const double d = d2 * inv_d;
-          // A = cos((α/Ω)·π/2), R = Waters radial fall-off; arguments stay in [0, π/2] so the
-          // polynomial cos/acos of fast_math.hpp apply (error < 2e-8)
-          const double a = detail::cos_quadrant(detail::acos_fast(std::min(1.0, cos_alpha)) * angle_scale);
-          const double r = d <= g.rs ? detail::cos_quadrant((1.0 - d * inv_rs) * kHalfPi)
-                                     : detail::cos_quadrant((d - g.rs) * inv_span * kHalfPi);
-          const double f = ck * a * r * inv_d;  // c·k·A·R·(v1 − p)/|v1 − p|
-          acc.x() += f * tx;
-          acc.y() += f * ty;
-          acc.z() += f * tz;
-          return true;
-        };
-        for (int v : m.vertices) {
-          if (displace(X.data() + 3 * static_cast<long>(v), disp[static_cast<std::size_t>(v)]) && !mark[static_cast<std::size_t>(v)]) {
-            mark[static_cast<std::size_t>(v)] = 1;
-            touched.push_back(v);
-          }
-        }
-        for (int cp : m.control_points) displace(C[static_cast<std::size_t>(cp)].data(), disp_c[static_cast<std::size_t>(cp)]);
-      } else {
-        // Waters sphincter (waters.hpp), sin(π·e) = cos(|π·e − π/2|) through the polynomial cos
-        const Eigen::Vector3d& centre = m.geometry.head;
-        const double ia = 1.0 / m.semi_axes.x(), ib = 1.0 / m.semi_axes.y(), ck = c * m.geometry.k;
-        auto squeeze = [&](const Eigen::Vector3d& p, Eigen::Vector3d& acc) {
-          const double dx = p.x() - centre.x(), dy = p.y() - centre.y();
-          const double e2 = dx * dx * ia * ia + dy * dy * ib * ib;
-          const double r2 = dx * dx + dy * dy;
-          if (e2 >= 1.0 || r2 <= 0.0) return false;
-          const double f = ck * detail::cos_quadrant(std::abs(kPi * std::sqrt(e2) - kHalfPi)) / std::sqrt(r2);
-          acc.x() -= f * dx;
-          acc.y() -= f * dy;
-          return true;
-        };
-        for (int v : m.vertices) {
-          if (squeeze(X.row(v).transpose(), disp[static_cast<std::size_t>(v)]) && !mark[static_cast<std::size_t>(v)]) {
-            mark[static_cast<std::size_t>(v)] = 1;
-            touched.push_back(v);
-          }
-        }
-        for (int cp : m.control_points) squeeze(C[static_cast<std::size_t>(cp)], disp_c[static_cast<std::size_t>(cp)]);
+    double* row = ws.step_amount.data() + static_cast<std::size_t>(s) * (nm + 2);
+    for (std::size_t i = 0; i < nm; ++i) row[i] = amount(ws.level[i], s) * muscle_plans_[i].k;
+    row[nm] = amount(values[funneler_param_], s);
+    row[nm + 1] = amount(values[pressor_param_], s);
+  }
+  const MusclePlan* plans = muscle_plans_.data();
+  // One step over all candidate points. Points are independent, so updating them in place is the same
+  // as summing all displacements first; running the step over all points (rather than all steps per
+  // point) lets the CPU overlap the long sqrt/polynomial dependency chains of different points.
+  auto run = [&](const CandidateLists& lists, const double* neutral, double* positions, int s, bool lips) {
+    const double* ck = ws.step_amount.data() + static_cast<std::size_t>(s) * (nm + 2);
+    const std::size_t n = lists.point.size();
+    const int* muscle = lists.muscle.data();
+    const double* reach2 = lists.reach2.data();
+    const int* start = lists.start.data();
+    for (std::size_t j = 0; j < n; ++j) {
+      const int id = lists.point[j];
+      double* p = positions + 3 * static_cast<std::ptrdiff_t>(id);
+      const double* p0 = neutral + 3 * static_cast<std::ptrdiff_t>(id);
+      const double px = p[0], py = p[1], pz = p[2];
+      const double mx = px - p0[0], my = py - p0[1], mz = pz - p0[2];
+      const double moved2 = mx * mx + my * my + mz * mz;
+      double dx = 0.0, dy = 0.0, dz = 0.0;
+      // entries are sorted by reach: zones further than the point has moved cannot contain it yet
+      // (their membership test would fail), so the walk stops at the first of them
+      for (int e = start[j]; e != start[j + 1] && reach2[e] <= moved2; ++e) {
+        const double c = ck[muscle[e]];
+        if (c != 0.0) accumulate(plans[muscle[e]], c, px, py, pz, dx, dy, dz);
       }
+      if (lips) {
+        // Orbicularis Oris (thesis §2.4.2): precomputed per-unit displacements, same steps
+        const std::size_t i = static_cast<std::size_t>(id);
+        if (ck[nm] > 0.0) dx += ck[nm] * funnel_delta_[i].x(), dy += ck[nm] * funnel_delta_[i].y(), dz += ck[nm] * funnel_delta_[i].z();
+        if (ck[nm + 1] > 0.0) dx += ck[nm + 1] * press_delta_[i].x(), dy += ck[nm + 1] * press_delta_[i].y(), dz += ck[nm + 1] * press_delta_[i].z();
+      }
+      p[0] = px + dx, p[1] = py + dy, p[2] = pz + dz;
     }
-    const double f = amount(funnel), p = amount(press);
-    for (std::size_t i = 0; i < C.size(); ++i) {
-      if (f > 0.0) disp_c[i] += f * funnel_delta_[i];
-      if (p > 0.0) disp_c[i] += p * press_delta_[i];
-      C[i] += disp_c[i];
-      disp_c[i].setZero();
-    }
-    for (int v : touched) {
-      X.row(v) += disp[static_cast<std::size_t>(v)].transpose();
-      disp[static_cast<std::size_t>(v)].setZero();
-      mark[static_cast<std::size_t>(v)] = 0;
-    }
+  };
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "control points are read as packed xyz triples");
+  for (int s = 0; s < steps; ++s) {
+    run(vertex_lists_, mesh_.vertices.data(), X.data(), s, false);
+    if (!C.empty()) run(control_point_lists_, rig_.lips.control_points.front().data(), C.front().data(), s, true);
   }
 
+  apply_lids_jaw_lips(values, lids, out);
+
+  // Bulges and wrinkles (thesis §2.4.1): tabulated amplitudes (build_fast_path) × level, largest
+  // amplitude where muscles overlap, applied along the area-weighted normal of the displaced mesh;
+  // wrinkle feet are flagged so renderers use the face normal there ("unrepresentative vertex normal").
+  if (options_.wrinkles && !wrinkle_vertices_.empty()) {
+    const std::size_t nw = wrinkle_vertices_.size();
+    auto& amp = ws.wrinkle_amplitude;
+    amp.assign(nw, 0.0);
+    bool any = false;
+    for (std::size_t i = 0; i < nm; ++i) {
+      if (wrinkles_[i].empty() || ws.level[i] <= 0.0) continue;
+      any = true;
+      for (const WrinkleEntry& w : wrinkles_[i]) {
+        const double h = ws.level[i] * w.height;
+        double& slot = amp[static_cast<std::size_t>(w.slot)];
+        if (h > slot) slot = h;
+        if (w.crease) out.crease[static_cast<std::size_t>(wrinkle_vertices_[static_cast<std::size_t>(w.slot)])] = 1;
+      }
+    }
+    if (any) {
+      auto& normal = ws.wrinkle_normal;
+      normal.assign(3 * nw, 0.0);
+      for (std::size_t k = 0; k < nw; ++k) {
+        if (amp[k] <= 0.0) continue;
+        const int v = wrinkle_vertices_[k];
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        for (int q = vertex_face_start_[static_cast<std::size_t>(v)]; q < vertex_face_start_[static_cast<std::size_t>(v) + 1]; ++q) {
+          const int f = vertex_faces_[static_cast<std::size_t>(q)];
+          const Eigen::Vector3d a = X.row(mesh_.faces(f, 0)).transpose();
+          n += (Eigen::Vector3d(X.row(mesh_.faces(f, 1)).transpose()) - a).cross(Eigen::Vector3d(X.row(mesh_.faces(f, 2)).transpose()) - a);
+        }
+        const double len = n.norm();
+        if (len > 0.0) n /= len;
+        else amp[k] = 0.0;
+        normal[3 * k] = n.x(), normal[3 * k + 1] = n.y(), normal[3 * k + 2] = n.z();
+      }
+      for (std::size_t k = 0; k < nw; ++k) {
+        if (amp[k] <= 0.0) continue;
+        double* p = X.data() + 3 * static_cast<std::ptrdiff_t>(wrinkle_vertices_[k]);
+        p[0] += amp[k] * normal[3 * k], p[1] += amp[k] * normal[3 * k + 1], p[2] += amp[k] * normal[3 * k + 2];
+      }
+    }
+  }
+  apply_gaze_and_pose(values, out);
+}
+
+void FaceSolver::deform(const std::vector<double>& values, Deformation& out) const {
+  DeformWorkspace workspace;
+  deform(values, out, workspace);
+}
+
+void FaceSolver::apply_lids_jaw_lips(const std::vector<double>& values, const std::array<EyelidLevels, 2>& lids,
+                                     Deformation& out) const {
+  auto& X = out.vertices;
+  auto& C = out.lip_control_points;
   // Eyelids (thesis §2.4.3, after Parke 1974): rotation of the lid about the eye's horizontal axis,
   // weighted from the lid margin outwards; closing lowers the upper lid, the levator raises it.
   for (std::size_t e = 0; e < 2; ++e) {
@@ -327,7 +565,6 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
       }
     }
   }
-
   // Jaw rotation about the pivot axis (thesis §2.4.4).
   const double jaw = values[masseter_param_] * rig_.jaw.max_angle;
   if (jaw != 0.0) {
@@ -337,63 +574,13 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
     }
     for (std::size_t i = 0; i < C.size(); ++i) C[i] = rotate_x(C[i], rig_.jaw.pivot, jaw * lip_jaw_weight_[i]);
   }
-
   // Lips: re-polygonise the B-spline on its fixed sampling grid (thesis §2.3.2).
   if (!C.empty()) lip_sampler_.evaluate(C, X, rig_.lips.first_vertex);
+}
 
-  // Bulges and wrinkles (thesis §2.4.1): amplitude from the vertex's original position in the band,
-  // largest amplitude where muscles overlap, applied along the normal after displacement; wrinkle feet
-  // are flagged so renderers use the face normal there ("unrepresentative vertex normal").
-  if (options_.wrinkles) {
-    std::vector<double> amp;
-    for (std::size_t i = 0; i < muscles_.size(); ++i) {
-      const Muscle& m = muscles_[i];
-      if (m.kind != facemesh::MuscleKind::Vector || m.wrinkle_count <= 0 || m.wrinkle_height <= 0.0 || level[i] <= 0.0) continue;
-      if (amp.empty()) amp.assign(static_cast<std::size_t>(nv), 0.0);
-      const double length = wrinkle_band_length(m.geometry);
-      if (!(length > 0.0)) continue;
-      const double b = length / (2.0 * m.wrinkle_count);
-      for (int v : m.vertices) {
-        const Eigen::Vector3d p0 = mesh_.vertices.row(v).transpose();
-        const double l = wrinkle_coordinate(m.geometry, p0);
-        if (l < 0.0 || l > length) continue;
-        const Eigen::Vector3d to_p = p0 - m.geometry.head;
-        const double d = to_p.norm();
-        if (d <= 0.0 || d > m.geometry.rf) continue;
-        const double cos_alpha = std::min(1.0, std::max(-1.0, to_p.dot(m.axis) / d));
-        if (cos_alpha <= std::cos(m.geometry.omega)) continue;
-        const double a = detail::cos_quadrant(detail::acos_fast(cos_alpha) / m.geometry.omega * kHalfPi);
-        const double h = level[i] * a * wrinkle_function(l, length, m.wrinkle_count, m.wrinkle_height);
-        auto& slot = amp[static_cast<std::size_t>(v)];
-        if (h > slot) slot = h;
-        const double u = l - 2.0 * b * std::floor(l / (2.0 * b));
-        if ((u < 0.15 * b || u > 1.85 * b) && l > b && l < length - b) out.crease[static_cast<std::size_t>(v)] = 1;
-      }
-    }
-    if (!amp.empty()) {
-      // area-weighted vertex normals of the displaced mesh, only where there is a wrinkle
-      std::vector<Eigen::Vector3d> normal;
-      std::vector<int> lifted;
-      for (long v = 0; v < nv; ++v) {
-        if (amp[static_cast<std::size_t>(v)] <= 0.0) continue;
-        Eigen::Vector3d n = Eigen::Vector3d::Zero();
-        for (int k = vertex_face_start_[static_cast<std::size_t>(v)]; k < vertex_face_start_[static_cast<std::size_t>(v) + 1]; ++k) {
-          const int f = vertex_faces_[static_cast<std::size_t>(k)];
-          const Eigen::Vector3d a = X.row(mesh_.faces(f, 0)).transpose();
-          n += (Eigen::Vector3d(X.row(mesh_.faces(f, 1)).transpose()) - a).cross(Eigen::Vector3d(X.row(mesh_.faces(f, 2)).transpose()) - a);
-        }
-        const double len = n.norm();
-        if (len > 0.0) {
-          normal.push_back(n / len);
-          lifted.push_back(static_cast<int>(v));
-        }
-      }
-      for (std::size_t i = 0; i < lifted.size(); ++i) {
-        X.row(lifted[i]) += amp[static_cast<std::size_t>(lifted[i])] * normal[i].transpose();
-      }
-    }
-  }
-
+void FaceSolver::apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const {
+  auto& X = out.vertices;
+  const long nv = X.rows();
   // Eyeballs (thesis §2.4.5): rotate about the eye centre, limited by the elliptical eye hole.
   const double gaze_yaw = values[kSideParameterCount + 0], gaze_pitch = values[kSideParameterCount + 1];
   if (gaze_yaw != 0.0 || gaze_pitch != 0.0) {
@@ -415,6 +602,88 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
   if (!X.allFinite()) throw NumericalError("FaceSolver: deformation produced a non-finite vertex");
 }
 
+void FaceSolver::deform_reference(const std::vector<double>& values, Deformation& out) const {
+  std::array<EyelidLevels, 2> lids;
+  std::vector<double> level;
+  const int steps = prepare(values, out, lids, level);
+  const long nv = mesh_.vertices.rows();
+  auto& X = out.vertices;
+  auto& C = out.lip_control_points;
+  const auto regions = facemesh::region_vertices(rig_);
+  // Parallel contraction (thesis §2.4.1): per step, every muscle displaces every vertex of its regions
+  // (and, if it moves the lips, every lip control point) at the current position; sum, then apply.
+  const double dc = options_.delta_c;
+  std::vector<Eigen::Vector3d> disp(static_cast<std::size_t>(nv)), disp_c(C.size());
+  for (int s = 0; s < steps; ++s) {
+    auto amount = [&](double lvl) { return options_.parallel ? std::min(dc, lvl - s * dc) : lvl; };
+    std::fill(disp.begin(), disp.end(), Eigen::Vector3d::Zero());
+    std::fill(disp_c.begin(), disp_c.end(), Eigen::Vector3d::Zero());
+    for (std::size_t i = 0; i < muscles_.size(); ++i) {
+      const double c = amount(level[i]);
+      if (c <= 0.0) continue;
+      const Muscle& m = muscles_[i];
+      auto displacement = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+        if (m.kind == facemesh::MuscleKind::Vector) return vector_muscle_displacement(m.geometry, p, c);
+        return sphincter_displacement(m.geometry.head, m.semi_axes, m.geometry.k, p, c);
+      };
+      const auto& spec = rig_.muscles[i];
+      for (auto region : spec.regions) {
+        for (int v : regions[static_cast<std::size_t>(region)]) disp[static_cast<std::size_t>(v)] += displacement(X.row(v).transpose());
+      }
+      if (spec.moves_lips) {
+        for (std::size_t k = 0; k < C.size(); ++k) disp_c[k] += displacement(C[k]);
+      }
+    }
+    const double f = amount(values[funneler_param_]), p = amount(values[pressor_param_]);
+    for (std::size_t k = 0; k < C.size(); ++k) {
+      if (f > 0.0) disp_c[k] += f * funnel_delta_[k];
+      if (p > 0.0) disp_c[k] += p * press_delta_[k];
+      C[k] += disp_c[k];
+    }
+    for (long v = 0; v < nv; ++v) X.row(v) += disp[static_cast<std::size_t>(v)].transpose();
+  }
+
+  apply_lids_jaw_lips(values, lids, out);
+
+  // Bulges and wrinkles (thesis §2.4.1), straight from the band geometry of waters.hpp.
+  if (options_.wrinkles) {
+    std::vector<double> amp(static_cast<std::size_t>(nv), 0.0);
+    for (std::size_t i = 0; i < muscles_.size(); ++i) {
+      const Muscle& m = muscles_[i];
+      if (m.kind != facemesh::MuscleKind::Vector || m.wrinkle_count <= 0 || m.wrinkle_height <= 0.0 || level[i] <= 0.0) continue;
+      const double length = wrinkle_band_length(m.geometry);
+      if (!(length > 0.0)) continue;
+      const double b = length / (2.0 * m.wrinkle_count);
+      for (auto region : rig_.muscles[i].regions) {
+        for (int v : regions[static_cast<std::size_t>(region)]) {
+          const Eigen::Vector3d p0 = mesh_.vertices.row(v).transpose();
+          const double l = wrinkle_coordinate(m.geometry, p0);
+          const Eigen::Vector3d to_p = p0 - m.geometry.head;
+          const double d = to_p.norm();
+          if (l < 0.0 || l > length || d <= 0.0 || d > m.geometry.rf) continue;
+          const double a = angular_factor(std::acos(std::min(1.0, std::max(-1.0, to_p.dot(m.axis) / d))), m.geometry.omega);
+          if (a <= 0.0) continue;
+          const double h = level[i] * a * wrinkle_function(l, length, m.wrinkle_count, m.wrinkle_height);
+          amp[static_cast<std::size_t>(v)] = std::max(amp[static_cast<std::size_t>(v)], h);
+          const double u = l - 2.0 * b * std::floor(l / (2.0 * b));
+          if ((u < 0.15 * b || u > 1.85 * b) && l > b && l < length - b) out.crease[static_cast<std::size_t>(v)] = 1;
+        }
+      }
+    }
+    const facemesh::Vertices displaced = X;
+    for (long v = 0; v < nv; ++v) {
+      if (amp[static_cast<std::size_t>(v)] <= 0.0) continue;
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      for (long f = 0; f < mesh_.faces.rows(); ++f) {
+        if (mesh_.faces(f, 0) != v && mesh_.faces(f, 1) != v && mesh_.faces(f, 2) != v) continue;
+        const Eigen::Vector3d a = displaced.row(mesh_.faces(f, 0)).transpose();
+        n += (Eigen::Vector3d(displaced.row(mesh_.faces(f, 1)).transpose()) - a).cross(Eigen::Vector3d(displaced.row(mesh_.faces(f, 2)).transpose()) - a);
+      }
+      if (n.norm() > 0.0) X.row(v) += amp[static_cast<std::size_t>(v)] * n.normalized().transpose();
+    }
+  }
+  apply_gaze_and_pose(values, out);
+}
 Deformation FaceSolver::deform(const std::vector<double>& values) const {
   Deformation out;
   deform(values, out);
