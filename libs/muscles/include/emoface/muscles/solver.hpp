@@ -117,8 +117,7 @@ class FaceSolver {
   };
   // Hot-loop form of one muscle (see solver.cpp, FaceSolver::FaceSolver): constants and the fitted
   // polynomial factors of fast_math.hpp ({centre, 1/half-width, c0..cN} each), contiguous in muscle_plans_.
-  static constexpr int kAngularDegree = 5;   // A(cos α)
-  static constexpr int kRadialDegree = 7;    // R(D) on [0, Rs] and on [Rs, Rf]
+  static constexpr int kFactorDegree = 7;     // A(cos α), and R(D) on [0, Rs] and on [Rs, Rf]
   static constexpr int kSphincterDegree = 9;  // sin(π·e) on [0, 1]
   struct MusclePlan {
     bool sphincter;
@@ -127,8 +126,10 @@ class FaceSolver {
     double ax, ay, az;  // unit axis v1->v2
     double rf2, cos_omega, rs, rf, omega, k;
     double inv_a2, inv_b2;  // sphincter: 1/semi-axis²
-    std::array<double, kAngularDegree + 3> angular;
-    std::array<double, kRadialDegree + 3> inner, outer;
+    // A and R evaluated side by side (two lanes): {centre_A, centre_R, 1/half_A, 1/half_R} and
+    // interleaved coefficients {A_0, R_0, A_1, R_1, ...}, with R's inner (D <= Rs) or outer piece
+    std::array<double, 4> inner_map, outer_map;
+    std::array<double, 2 * (kFactorDegree + 1)> inner_coeffs, outer_coeffs;
     std::array<double, kSphincterDegree + 3> sphincter_falloff;
   };
   // Point-major candidate lists: a vertex's displacement depends only on its own position, so each
