@@ -5,11 +5,13 @@
 // acos polynomial at ~30 % of the instructions. The Waters factors (thesis §2.2.3, seeds/README.md)
 //   A(x) = cos((acos(x)/Ω)·π/2), x = cos α ∈ [cos Ω, 1],
 //   R(D) = cos((1 − D/Rs)·π/2) on [0, Rs] and cos(((D − Rs)/(Rf − Rs))·π/2) on [Rs, Rf],
+//        = g(u²), g(s) = cos(π/2·√s), u = |D − Rs|/Rs or |D − Rs|/(Rf − Rs),
 //   S(e) = sin(π·e) on [0, 1] (sphincter),
 // are smooth on their intervals (A is analytic in x up to x = −1, because cos(s·θ) is a function of
-// θ² and acos(x)² is analytic at x = 1), so each is replaced by one polynomial per muscle, fitted by
+// θ² and acos(x)² is analytic at x = 1; g is entire), so each is replaced by one polynomial, fitted by
 // interpolation at Chebyshev points (near-minimax, Trefethen, "Approximation Theory and Approximation
-// Practice", ch. 8, 16). A is evaluated from cos α directly: no acos, no sqrt(1 − x).
+// Practice", ch. 8, 16). A is evaluated from cos α directly: no acos, no sqrt(1 − x); R needs no
+// branch between its two pieces but the choice of 1/Rs or 1/(Rf − Rs).
 // The solver measures every fit's maximum error on a dense grid when it is built and falls back to the
 // exact <cmath> formulas of waters.hpp for a muscle whose fit is worse than kFitTolerance (only very
 // wide zones, Ω close to π, can do that). Tested against std::cos/std::acos in solver_test.
@@ -102,38 +104,9 @@ inline double eval_packed(const std::array<double, M>& p, double x) {
   return r;
 }
 
-/// Two polynomials of the same degree side by side: map = {centre_a, centre_b, inv_half_a,
-/// inv_half_b}, coeffs = {a_0, b_0, a_1, b_1, ...}.
-template <int N>
-void interleave(const Poly<N>& a, const Poly<N>& b, std::array<double, 4>& map, std::array<double, 2 * (N + 1)>& coeffs) {
-  map = {a.centre, b.centre, a.inv_half, b.inv_half};
-  for (int k = 0; k <= N; ++k) {
-    coeffs[static_cast<std::size_t>(2 * k)] = a.c[static_cast<std::size_t>(k)];
-    coeffs[static_cast<std::size_t>(2 * k + 1)] = b.c[static_cast<std::size_t>(k)];
-  }
-}
-
-/// a(x)·b(y) for interleaved polynomials: both Horner chains in the two lanes of one SSE2 register
-/// (x86-64 baseline); elsewhere two scalar chains. Both give bit-identical results (same IEEE
-/// operations in the same order).
-template <std::size_t M>
-inline double eval_pair(const std::array<double, 4>& map, const std::array<double, M>& coeffs, double x, double y) {
-  constexpr int kN = static_cast<int>(M / 2) - 1;
-#if defined(EMOFACE_MUSCLES_SSE2)
-  const __m128d t = _mm_mul_pd(_mm_sub_pd(_mm_set_pd(y, x), _mm_loadu_pd(map.data())), _mm_loadu_pd(map.data() + 2));
-  __m128d r = _mm_loadu_pd(coeffs.data() + 2 * kN);
-  for (int k = kN - 1; k >= 0; --k) r = _mm_add_pd(_mm_mul_pd(r, t), _mm_loadu_pd(coeffs.data() + 2 * k));
-  return _mm_cvtsd_f64(r) * _mm_cvtsd_f64(_mm_unpackhi_pd(r, r));
-#else
-  const double tx = (x - map[0]) * map[2], ty = (y - map[1]) * map[3];
-  double rx = coeffs[2 * kN], ry = coeffs[2 * kN + 1];
-  for (int k = kN - 1; k >= 0; --k) {
-    rx = rx * tx + coeffs[static_cast<std::size_t>(2 * k)];
-    ry = ry * ty + coeffs[static_cast<std::size_t>(2 * k + 1)];
-  }
-  return rx * ry;
-#endif
-}
+/// cos(π/2·√s) on s ∈ [0, 1]: the Waters radial factor as R = g(u²) with u = (Rs − D)/Rs for D <= Rs
+/// and u = (D − Rs)/(Rf − Rs) beyond (both pieces of thesis §2.2.3 are cos(π/2·u)); g is entire in s.
+inline double radial_of_square(double s) { return std::cos(1.5707963267948966 * std::sqrt(std::max(0.0, s))); }
 
 /// The exact factors the polynomials replace (the same formulas as waters.cpp).
 inline double angular_of_cos(double cos_alpha, double omega) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -261,15 +262,30 @@ void FaceSolver::build_fast_path() {
       auto a = [omega](double x) { return detail::angular_of_cos(x, omega); };
       auto inner = [rs](double d) { return std::cos((1.0 - d / rs) * kHalfPi); };
       auto outer = [rs, rf](double d) { return std::cos((d - rs) / (rf - rs) * kHalfPi); };
-      const auto pa = detail::fit_chebyshev<kFactorDegree>(a, q.cos_omega, 1.0);
-      const auto pi = detail::fit_chebyshev<kFactorDegree>(inner, 0.0, rs);
-      const auto po = detail::fit_chebyshev<kFactorDegree>(outer, rs, rf);
-      worst = std::max({detail::max_fit_error(pa, a, q.cos_omega, 1.0), detail::max_fit_error(pi, inner, 0.0, rs),
-                        detail::max_fit_error(po, outer, rs, rf)});
-      detail::interleave(pa, pi, q.inner_map, q.inner_coeffs);
-      detail::interleave(pa, po, q.outer_map, q.outer_coeffs);
+      const auto pa = detail::fit_chebyshev<kAngularDegree>(a, q.cos_omega, 1.0);
+      const auto pr = detail::fit_chebyshev<kRadialDegree>(detail::radial_of_square, 0.0, 1.0);
+      // R as fitted, on the distances it is used at (both pieces), against the formula itself
+      auto fitted_r = [&](double d) {
+        const double u = std::abs(d - rs) * (d <= rs ? 1.0 / rs : 1.0 / (rf - rs));
+        return pr(u * u);
+      };
+      worst = std::max(detail::max_fit_error(pa, a, q.cos_omega, 1.0), detail::max_fit_error(pr, detail::radial_of_square, 0.0, 1.0));
+      for (int i = 0; i <= 4000; ++i) {
+        const double d = rf * i / 4000.0;
+        worst = std::max(worst, std::abs(fitted_r(d) - (d <= rs ? inner(d) : outer(d))));
+      }
+      q.angular = detail::pack(pa);
+      q.radial = detail::pack(pr);
+      q.inv_rs = 1.0 / rs;
+      q.inv_span = 1.0 / (rf - rs);
     }
     q.exact = !(worst <= detail::kFitTolerance);
+    const double constants[13] = {q.hx, q.hy, q.hz, q.ax, q.ay, q.az, q.rf2, q.cos_omega, q.rs, q.inv_rs, q.inv_span, 1.0, -0.0};
+    std::size_t at = 0;
+    auto put = [&](double x) { q.lanes[at++] = x, q.lanes[at++] = x; };
+    for (double c : constants) put(c);
+    for (double c : q.angular) put(c);
+    for (double c : q.radial) put(c);
     muscle_plans_.push_back(q);
   }
 
@@ -309,6 +325,27 @@ void FaceSolver::build_fast_path() {
         [&](std::size_t v) -> Eigen::Vector3d { return mesh_.vertices.row(static_cast<long>(v)).transpose(); }, true, vertex_lists_, false);
   build(cps.size(), [](const Muscle& m) -> const std::vector<int>& { return m.control_points; },
         [&](std::size_t c) -> Eigen::Vector3d { return cps[c]; }, false, control_point_lists_, true);
+
+  // Muscle-major view (two-lane pass): slots [0, nv) are the candidate vertices, then the lip control
+  // points, then one dummy slot that pads odd lists; ascending slots keep the reads local.
+  muscle_slots_.assign(muscles_.size(), {});
+  std::size_t offset = 0;
+  for (const CandidateLists* lists : {&vertex_lists_, &control_point_lists_}) {
+    for (std::size_t j = 0; j < lists->point.size(); ++j) {
+      for (int e = lists->start[j]; e < lists->start[j + 1]; ++e) {
+        auto& m = muscle_slots_[static_cast<std::size_t>(lists->muscle[static_cast<std::size_t>(e)])];
+        m.slot.push_back(static_cast<int>(offset + j));
+        m.reach2.push_back(lists->reach2[static_cast<std::size_t>(e)]);
+      }
+    }
+    offset += lists->point.size();
+  }
+  for (auto& m : muscle_slots_) {
+    if (m.slot.size() % 2 != 0) {
+      m.slot.push_back(static_cast<int>(offset));
+      m.reach2.push_back(std::numeric_limits<double>::infinity());
+    }
+  }
 
   // Wrinkles (thesis §2.4.1): the amplitude A·f(l) of a vertex depends only on its original position
   // in the band, so it is tabulated once per muscle (exact cos/acos); deform() scales it by the level.
@@ -368,8 +405,9 @@ inline void accumulate(const Plan& q, double ck, double px, double py, double pz
     const double d = d2 * inv_d;
     double ar;
     if (!q.exact) {
-      const bool in = d <= q.rs;
-      ar = detail::eval_pair(in ? q.inner_map : q.outer_map, in ? q.inner_coeffs : q.outer_coeffs, std::min(1.0, cos_alpha), d);
+      // the same operations, in the same order, as the two-lane pass below
+      const double u = std::abs(d - q.rs) * (d <= q.rs ? q.inv_rs : q.inv_span);
+      ar = detail::eval_packed(q.angular, std::min(1.0, cos_alpha)) * detail::eval_packed(q.radial, u * u);
     } else {
       ar = detail::angular_of_cos(cos_alpha, q.omega) * radial_factor(d, q.rs, q.rf);
     }
@@ -389,6 +427,58 @@ inline void accumulate(const Plan& q, double ck, double px, double py, double pz
     dy -= f * ey;
   }
 }
+
+#if defined(EMOFACE_MUSCLES_SSE2)
+// The vector-muscle displacement of `accumulate` for two candidate vertices at a time (one per SSE2
+// lane; SSE2 is part of x86-64, so no extra target flags). Lanes outside the zone are masked to a
+// zero displacement. Operations and their order match the scalar code, so both give the same bits.
+template <class Plan>
+void vector_muscle_pass(const Plan& q, double ck, const int* slot, const double* reach2, std::size_t n,
+                        const double* px, const double* py, const double* pz, const double* moved2, double* dx,
+                        double* dy, double* dz) {
+  // q.lanes: 13 constants, then the packed A and R polynomials, each as an aligned (x, x) pair
+  const __m128d* L = reinterpret_cast<const __m128d*>(q.lanes.data());
+  enum { kHx, kHy, kHz, kAx, kAy, kAz, kRf2, kCosOmega, kRs, kInvRs, kInvSpan, kOne, kSign, kAngular };
+  constexpr int kA = static_cast<int>(std::tuple_size<decltype(q.angular)>::value);
+  constexpr int kR = static_cast<int>(std::tuple_size<decltype(q.radial)>::value);
+  constexpr int kRadial = kAngular + kA;
+  const __m128d ckv = _mm_set1_pd(ck), zero = _mm_setzero_pd();
+  for (std::size_t e = 0; e < n; e += 2) {
+    const int a = slot[e], b = slot[e + 1];
+    __m128d in = _mm_cmple_pd(_mm_loadu_pd(reach2 + e), _mm_set_pd(moved2[b], moved2[a]));
+    if (_mm_movemask_pd(in) == 0) continue;  // both zones still out of reach
+    const __m128d tx = _mm_sub_pd(L[kHx], _mm_set_pd(px[b], px[a]));  // v1 − p
+    const __m128d ty = _mm_sub_pd(L[kHy], _mm_set_pd(py[b], py[a]));
+    const __m128d tz = _mm_sub_pd(L[kHz], _mm_set_pd(pz[b], pz[a]));
+    const __m128d d2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(tx, tx), _mm_mul_pd(ty, ty)), _mm_mul_pd(tz, tz));
+    in = _mm_and_pd(in, _mm_and_pd(_mm_cmple_pd(d2, L[kRf2]), _mm_cmpgt_pd(d2, zero)));
+    if (_mm_movemask_pd(in) == 0) continue;
+    const __m128d inv_d = _mm_div_pd(L[kOne], _mm_sqrt_pd(d2));
+    const __m128d dot = _mm_add_pd(_mm_add_pd(_mm_mul_pd(tx, L[kAx]), _mm_mul_pd(ty, L[kAy])), _mm_mul_pd(tz, L[kAz]));
+    const __m128d cos_alpha = _mm_mul_pd(_mm_xor_pd(dot, L[kSign]), inv_d);
+    in = _mm_and_pd(in, _mm_cmpgt_pd(cos_alpha, L[kCosOmega]));
+    if (_mm_movemask_pd(in) == 0) continue;
+    const __m128d d = _mm_mul_pd(d2, inv_d);
+    // A(cos α)
+    const __m128d t = _mm_mul_pd(_mm_sub_pd(_mm_min_pd(cos_alpha, L[kOne]), L[kAngular]), L[kAngular + 1]);
+    __m128d pa = L[kAngular + kA - 1];
+    for (int k = kA - 2; k >= 2; --k) pa = _mm_add_pd(_mm_mul_pd(pa, t), L[kAngular + k]);
+    // R = g(u²), u = |D − Rs|·(D <= Rs ? 1/Rs : 1/(Rf − Rs))
+    const __m128d inner = _mm_cmple_pd(d, L[kRs]);
+    const __m128d w = _mm_or_pd(_mm_and_pd(inner, L[kInvRs]), _mm_andnot_pd(inner, L[kInvSpan]));
+    const __m128d u = _mm_mul_pd(_mm_andnot_pd(L[kSign], _mm_sub_pd(d, L[kRs])), w);
+    const __m128d tr = _mm_mul_pd(_mm_sub_pd(_mm_mul_pd(u, u), L[kRadial]), L[kRadial + 1]);
+    __m128d pr = L[kRadial + kR - 1];
+    for (int k = kR - 2; k >= 2; --k) pr = _mm_add_pd(_mm_mul_pd(pr, tr), L[kRadial + k]);
+    // c·k·A·R·(v1 − p)/|v1 − p|, zero outside the zone
+    const __m128d f = _mm_and_pd(in, _mm_mul_pd(_mm_mul_pd(ckv, _mm_mul_pd(pa, pr)), inv_d));
+    const __m128d fx = _mm_mul_pd(f, tx), fy = _mm_mul_pd(f, ty), fz = _mm_mul_pd(f, tz);
+    dx[a] += _mm_cvtsd_f64(fx), dx[b] += _mm_cvtsd_f64(_mm_unpackhi_pd(fx, fx));
+    dy[a] += _mm_cvtsd_f64(fy), dy[b] += _mm_cvtsd_f64(_mm_unpackhi_pd(fy, fy));
+    dz[a] += _mm_cvtsd_f64(fz), dz[b] += _mm_cvtsd_f64(_mm_unpackhi_pd(fz, fz));
+  }
+}
+#endif
 
 }  // namespace
 
@@ -449,42 +539,63 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out, Def
     row[nm + 1] = amount(values[pressor_param_], s);
   }
   const MusclePlan* plans = muscle_plans_.data();
-  // One step over all candidate points. Points are independent, so updating them in place is the same
-  // as summing all displacements first; running the step over all points (rather than all steps per
-  // point) lets the CPU overlap the long sqrt/polynomial dependency chains of different points.
-  auto run = [&](const CandidateLists& lists, const double* neutral, double* positions, int s, bool lips) {
-    const double* ck = ws.step_amount.data() + static_cast<std::size_t>(s) * (nm + 2);
-    const std::size_t n = lists.point.size();
-    const int* muscle = lists.muscle.data();
-    const double* reach2 = lists.reach2.data();
-    const int* start = lists.start.data();
-    for (std::size_t j = 0; j < n; ++j) {
-      const int id = lists.point[j];
-      double* p = positions + 3 * static_cast<std::ptrdiff_t>(id);
-      const double* p0 = neutral + 3 * static_cast<std::ptrdiff_t>(id);
-      const double px = p[0], py = p[1], pz = p[2];
-      const double mx = px - p0[0], my = py - p0[1], mz = pz - p0[2];
-      const double moved2 = mx * mx + my * my + mz * mz;
-      double dx = 0.0, dy = 0.0, dz = 0.0;
-      // entries are sorted by reach: zones further than the point has moved cannot contain it yet
-      // (their membership test would fail), so the walk stops at the first of them
-      for (int e = start[j]; e != start[j + 1] && reach2[e] <= moved2; ++e) {
-        const double c = ck[muscle[e]];
-        if (c != 0.0) accumulate(plans[muscle[e]], c, px, py, pz, dx, dy, dz);
-      }
-      if (lips) {
-        // Orbicularis Oris (thesis §2.4.2): precomputed per-unit displacements, same steps
-        const std::size_t i = static_cast<std::size_t>(id);
-        if (ck[nm] > 0.0) dx += ck[nm] * funnel_delta_[i].x(), dy += ck[nm] * funnel_delta_[i].y(), dz += ck[nm] * funnel_delta_[i].z();
-        if (ck[nm + 1] > 0.0) dx += ck[nm + 1] * press_delta_[i].x(), dy += ck[nm + 1] * press_delta_[i].y(), dz += ck[nm + 1] * press_delta_[i].z();
-      }
-      p[0] = px + dx, p[1] = py + dy, p[2] = pz + dz;
-    }
-  };
+  // Per step: gather the candidate vertices and lip control points (SoA slots) and how far each has
+  // moved, accumulate the muscles in muscle order (vector muscles two points at a time), add the
+  // Orbicularis Oris lip actions, then apply. A point's displacement depends only on its own position.
   static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "control points are read as packed xyz triples");
+  const std::size_t nu = vertex_lists_.point.size(), ncp = C.size(), slots = nu + ncp + 1;  // + dummy slot
+  ws.position.assign(3 * slots, 0.0);
+  ws.moved2.assign(slots, 0.0);
+  ws.displacement.resize(3 * slots);
+  double* px = ws.position.data();
+  double* py = px + slots;
+  double* pz = py + slots;
+  double* dx = ws.displacement.data();
+  double* dy = dx + slots;
+  double* dz = dy + slots;
+  double* moved2 = ws.moved2.data();
+  const double* neutral = mesh_.vertices.data();
+  auto gather = [&](std::size_t j, const double* p, const double* p0) {
+    px[j] = p[0], py[j] = p[1], pz[j] = p[2];
+    const double mx = p[0] - p0[0], my = p[1] - p0[1], mz = p[2] - p0[2];
+    moved2[j] = mx * mx + my * my + mz * mz;
+  };
   for (int s = 0; s < steps; ++s) {
-    run(vertex_lists_, mesh_.vertices.data(), X.data(), s, false);
-    if (!C.empty()) run(control_point_lists_, rig_.lips.control_points.front().data(), C.front().data(), s, true);
+    for (std::size_t j = 0; j < nu; ++j) {
+      const std::ptrdiff_t v = 3 * static_cast<std::ptrdiff_t>(vertex_lists_.point[j]);
+      gather(j, X.data() + v, neutral + v);
+    }
+    for (std::size_t c = 0; c < ncp; ++c) gather(nu + c, C[c].data(), rig_.lips.control_points[c].data());
+    std::fill(ws.displacement.begin(), ws.displacement.end(), 0.0);
+    const double* ck = ws.step_amount.data() + static_cast<std::size_t>(s) * (nm + 2);
+    for (std::size_t i = 0; i < nm; ++i) {
+      if (ck[i] == 0.0) continue;
+      const MusclePlan& q = plans[i];
+      const MuscleSlots& list = muscle_slots_[i];
+#if defined(EMOFACE_MUSCLES_SSE2)
+      if (!q.sphincter && !q.exact) {
+        vector_muscle_pass(q, ck[i], list.slot.data(), list.reach2.data(), list.slot.size(), px, py, pz, moved2, dx, dy, dz);
+        continue;
+      }
+#endif
+      // zones further than the point has moved from its neutral position cannot contain it yet
+      for (std::size_t e = 0; e < list.slot.size(); ++e) {
+        const auto j = static_cast<std::size_t>(list.slot[e]);
+        if (list.reach2[e] <= moved2[j]) accumulate(q, ck[i], px[j], py[j], pz[j], dx[j], dy[j], dz[j]);
+      }
+    }
+    for (std::size_t j = 0; j < nu; ++j) {
+      double* p = X.data() + 3 * static_cast<std::ptrdiff_t>(vertex_lists_.point[j]);
+      p[0] = px[j] + dx[j], p[1] = py[j] + dy[j], p[2] = pz[j] + dz[j];
+    }
+    // Orbicularis Oris (thesis §2.4.2): precomputed per-unit displacements of the control points
+    const double funnel = ck[nm], press = ck[nm + 1];
+    for (std::size_t c = 0; c < ncp; ++c) {
+      const std::size_t j = nu + c;
+      if (funnel > 0.0) dx[j] += funnel * funnel_delta_[c].x(), dy[j] += funnel * funnel_delta_[c].y(), dz[j] += funnel * funnel_delta_[c].z();
+      if (press > 0.0) dx[j] += press * press_delta_[c].x(), dy[j] += press * press_delta_[c].y(), dz[j] += press * press_delta_[c].z();
+      C[c] = Eigen::Vector3d(px[j] + dx[j], py[j] + dy[j], pz[j] + dz[j]);
+    }
   }
 
   apply_lids_jaw_lips(values, lids, out);

@@ -73,6 +73,7 @@ struct DeformWorkspace {
   std::vector<double> step_amount;  ///< per step and muscle: contraction δ times elasticity k
   std::vector<double> wrinkle_amplitude;
   std::vector<double> wrinkle_normal;
+  std::vector<double> position, moved2, displacement;  ///< per candidate vertex, SoA (x | y | z)
 };
 
 /// Thread safety: a FaceSolver is immutable after construction, so one solver may be shared by any
@@ -117,7 +118,8 @@ class FaceSolver {
   };
   // Hot-loop form of one muscle (see solver.cpp, FaceSolver::FaceSolver): constants and the fitted
   // polynomial factors of fast_math.hpp ({centre, 1/half-width, c0..cN} each), contiguous in muscle_plans_.
-  static constexpr int kFactorDegree = 7;     // A(cos α), and R(D) on [0, Rs] and on [Rs, Rf]
+  static constexpr int kAngularDegree = 7;    // A(cos α)
+  static constexpr int kRadialDegree = 6;     // cos(π/2·√s), s = u², R = cos(π/2·u) (see fast_math.hpp)
   static constexpr int kSphincterDegree = 9;  // sin(π·e) on [0, 1]
   struct MusclePlan {
     bool sphincter;
@@ -126,11 +128,12 @@ class FaceSolver {
     double ax, ay, az;  // unit axis v1->v2
     double rf2, cos_omega, rs, rf, omega, k;
     double inv_a2, inv_b2;  // sphincter: 1/semi-axis²
-    // A and R evaluated side by side (two lanes): {centre_A, centre_R, 1/half_A, 1/half_R} and
-    // interleaved coefficients {A_0, R_0, A_1, R_1, ...}, with R's inner (D <= Rs) or outer piece
-    std::array<double, 4> inner_map, outer_map;
-    std::array<double, 2 * (kFactorDegree + 1)> inner_coeffs, outer_coeffs;
+    double inv_rs, inv_span;  // 1/Rs, 1/(Rf − Rs)
+    std::array<double, kAngularDegree + 3> angular;  // packed A(cos α)
+    std::array<double, kRadialDegree + 3> radial;    // packed cos(π/2·√s) on s ∈ [0, 1]
     std::array<double, kSphincterDegree + 3> sphincter_falloff;
+    // the vector-muscle constants and both packed polynomials, each value twice (one per SSE2 lane)
+    alignas(16) std::array<double, 2 * (13 + kAngularDegree + 3 + kRadialDegree + 3)> lanes;
   };
   // Point-major candidate lists: a vertex's displacement depends only on its own position, so each
   // step updates the listed points in place, summing the muscles whose zones it can have reached.
@@ -142,6 +145,14 @@ class FaceSolver {
     // the muscle cannot act on the point before it has moved that far from its neutral position
     std::vector<double> reach2;
   };
+  // Muscle-major copy of vertex_lists_ for the two-lane (SSE2) vector-muscle pass: per muscle the
+  // compact indices into vertex_lists_.point and the entries' reach2, padded to an even length with
+  // a dummy slot (index point.size(), reach2 = +inf).
+  struct MuscleSlots {
+    std::vector<int> slot;
+    std::vector<double> reach2;
+  };
+  std::vector<MuscleSlots> muscle_slots_;
   // Wrinkles depend only on the neutral positions: per muscle, (compact vertex, amplitude at level 1).
   struct WrinkleEntry {
     int slot;       // index into wrinkle_vertices_
