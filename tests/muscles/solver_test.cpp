@@ -443,3 +443,35 @@ TEST(FaceSolver, EyelidCouplingModes) {
 
 }  // namespace
 }  // namespace emoface::muscles
+
+namespace emoface::muscles {
+namespace {
+
+// The built-in rig's sides follow the frame of docs/facemesh.md (+x = the subject's left): every
+// "_r" landmark at x < 0, every "_l" at x > 0, and the iBUG jaw contour 0–16 from the subject's
+// right to the left (0–7 at x < 0, 8 on the midline, 9–16 at x > 0), as 36 and 48 are.
+TEST(BuiltInFace, LandmarkSidesFollowTheConvention) {
+  const auto& f = face();
+  auto x = [&](int v) { return f.mesh.vertices(v, 0); };
+  int sided = 0;
+  for (const auto& l : f.rig.retarget_landmarks) {
+    const std::string& n = l.name;
+    if (n.size() > 2 && n.compare(n.size() - 2, 2, "_r") == 0) {
+      EXPECT_LT(x(l.vertex), 0.0) << n;
+      ++sided;
+    }
+    if (n.size() > 2 && n.compare(n.size() - 2, 2, "_l") == 0) {
+      EXPECT_GT(x(l.vertex), 0.0) << n;
+      ++sided;
+    }
+  }
+  EXPECT_GE(sided, 14);
+  for (int i = 0; i < 8; ++i) EXPECT_LT(x(f.rig.ibug68[static_cast<std::size_t>(i)]), 0.0) << i;
+  EXPECT_NEAR(x(f.rig.ibug68[8]), 0.0, 1e-9);
+  for (int i = 9; i <= 16; ++i) EXPECT_GT(x(f.rig.ibug68[static_cast<std::size_t>(i)]), 0.0) << i;
+  EXPECT_LT(x(f.rig.ibug68[36]), 0.0);
+  EXPECT_LT(x(f.rig.ibug68[48]), 0.0);
+}
+
+}  // namespace
+}  // namespace emoface::muscles
