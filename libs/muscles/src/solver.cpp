@@ -340,6 +340,13 @@ void FaceSolver::build_fast_path() {
     }
     offset += lists->point.size();
   }
+  const std::size_t slots = offset + 1;
+  slot_neutral_.assign(3 * slots, 0.0);
+  for (std::size_t j = 0; j < offset; ++j) {
+    const Eigen::Vector3d p = j < vertex_lists_.point.size() ? Eigen::Vector3d(mesh_.vertices.row(vertex_lists_.point[j]).transpose())
+                                                             : cps[j - vertex_lists_.point.size()];
+    for (int k = 0; k < 3; ++k) slot_neutral_[static_cast<std::size_t>(k) * slots + j] = p[k];
+  }
   for (auto& m : muscle_slots_) {
     if (m.slot.size() % 2 != 0) {
       m.slot.push_back(static_cast<int>(offset));
@@ -544,9 +551,9 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out, Def
   // Orbicularis Oris lip actions, then apply. A point's displacement depends only on its own position.
   static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "control points are read as packed xyz triples");
   const std::size_t nu = vertex_lists_.point.size(), ncp = C.size(), slots = nu + ncp + 1;  // + dummy slot
-  ws.position.assign(3 * slots, 0.0);
-  ws.moved2.assign(slots, 0.0);
-  ws.displacement.resize(3 * slots);
+  ws.position.resize(3 * slots);
+  ws.moved2.resize(slots);
+  ws.displacement.assign(3 * slots, 0.0);
   double* px = ws.position.data();
   double* py = px + slots;
   double* pz = py + slots;
@@ -554,19 +561,17 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out, Def
   double* dy = dx + slots;
   double* dz = dy + slots;
   double* moved2 = ws.moved2.data();
-  const double* neutral = mesh_.vertices.data();
-  auto gather = [&](std::size_t j, const double* p, const double* p0) {
-    px[j] = p[0], py[j] = p[1], pz[j] = p[2];
-    const double mx = p[0] - p0[0], my = p[1] - p0[1], mz = p[2] - p0[2];
-    moved2[j] = mx * mx + my * my + mz * mz;
-  };
+  const double* nx = slot_neutral_.data();
+  const double* ny = nx + slots;
+  const double* nz = ny + slots;
+  if (steps > 0) {  // gather once; the points stay in the SoA slots until the last step
+    std::copy(slot_neutral_.begin(), slot_neutral_.end(), ws.position.begin());
+  }
   for (int s = 0; s < steps; ++s) {
-    for (std::size_t j = 0; j < nu; ++j) {
-      const std::ptrdiff_t v = 3 * static_cast<std::ptrdiff_t>(vertex_lists_.point[j]);
-      gather(j, X.data() + v, neutral + v);
+    for (std::size_t j = 0; j < slots; ++j) {
+      const double mx = px[j] - nx[j], my = py[j] - ny[j], mz = pz[j] - nz[j];
+      moved2[j] = mx * mx + my * my + mz * mz;
     }
-    for (std::size_t c = 0; c < ncp; ++c) gather(nu + c, C[c].data(), rig_.lips.control_points[c].data());
-    std::fill(ws.displacement.begin(), ws.displacement.end(), 0.0);
     const double* ck = ws.step_amount.data() + static_cast<std::size_t>(s) * (nm + 2);
     for (std::size_t i = 0; i < nm; ++i) {
       if (ck[i] == 0.0) continue;
@@ -584,18 +589,21 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out, Def
         if (list.reach2[e] <= moved2[j]) accumulate(q, ck[i], px[j], py[j], pz[j], dx[j], dy[j], dz[j]);
       }
     }
-    for (std::size_t j = 0; j < nu; ++j) {
-      double* p = X.data() + 3 * static_cast<std::ptrdiff_t>(vertex_lists_.point[j]);
-      p[0] = px[j] + dx[j], p[1] = py[j] + dy[j], p[2] = pz[j] + dz[j];
-    }
     // Orbicularis Oris (thesis §2.4.2): precomputed per-unit displacements of the control points
     const double funnel = ck[nm], press = ck[nm + 1];
     for (std::size_t c = 0; c < ncp; ++c) {
       const std::size_t j = nu + c;
       if (funnel > 0.0) dx[j] += funnel * funnel_delta_[c].x(), dy[j] += funnel * funnel_delta_[c].y(), dz[j] += funnel * funnel_delta_[c].z();
       if (press > 0.0) dx[j] += press * press_delta_[c].x(), dy[j] += press * press_delta_[c].y(), dz[j] += press * press_delta_[c].z();
-      C[c] = Eigen::Vector3d(px[j] + dx[j], py[j] + dy[j], pz[j] + dz[j]);
     }
+    for (std::size_t j = 0; j < 3 * slots; ++j) px[j] += dx[j], dx[j] = 0.0;  // apply the step
+  }
+  if (steps > 0) {
+    for (std::size_t j = 0; j < nu; ++j) {
+      double* p = X.data() + 3 * static_cast<std::ptrdiff_t>(vertex_lists_.point[j]);
+      p[0] = px[j], p[1] = py[j], p[2] = pz[j];
+    }
+    for (std::size_t c = 0; c < ncp; ++c) C[c] = Eigen::Vector3d(px[nu + c], py[nu + c], pz[nu + c]);
   }
 
   apply_lids_jaw_lips(values, lids, out);

@@ -153,6 +153,7 @@ class FaceSolver {
     std::vector<double> reach2;
   };
   std::vector<MuscleSlots> muscle_slots_;
+  std::vector<double> slot_neutral_;  // neutral positions of the slots, SoA (x | y | z), dummy = 0
   // Wrinkles depend only on the neutral positions: per muscle, (compact vertex, amplitude at level 1).
   struct WrinkleEntry {
     int slot;       // index into wrinkle_vertices_
