@@ -18,7 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#if defined(__SSE2__) || defined(_M_X64)
+#if (defined(__SSE2__) || defined(_M_X64)) && !defined(EMOFACE_MUSCLES_NO_SIMD)  // the macro forces the scalar path
 #include <emmintrin.h>
 #define EMOFACE_MUSCLES_SSE2 1
 #endif
