@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include <Eigen/Geometry>
 
@@ -404,6 +405,33 @@ TEST(FaceSolver, FastPathMatchesReference) {
   s.deform(v, fast, ws);
   s.deform_reference(v, reference);
   EXPECT_LT((fast.vertices - reference.vertices).rowwise().norm().maxCoeff(), 1e-6 * head_height);
+}
+
+// One const solver shared by threads, each with its own Deformation and DeformWorkspace (the
+// documented thread-safety contract), gives the same bits as serial calls.
+TEST(FaceSolver, SharedSolverAcrossThreads) {
+  std::vector<std::vector<double>> inputs;
+  core::Rng rng(3);
+  for (int t = 0; t < 6; ++t) {
+    std::vector<double> v(kParameterCount, 0.0);
+    for (std::size_t i = 0; i < kSideParameterCount; ++i) v[i] = rng.uniform();
+    inputs.push_back(v);
+  }
+  std::vector<fm::Vertices> serial;
+  for (const auto& v : inputs) serial.push_back(solver().deform(v).vertices);
+  std::vector<fm::Vertices> parallel(inputs.size());
+  auto work = [&](std::size_t first) {
+    Deformation out;
+    DeformWorkspace ws;
+    for (std::size_t i = first; i < inputs.size(); i += 2) {
+      solver().deform(inputs[i], out, ws);
+      parallel[i] = out.vertices;
+    }
+  };
+  std::thread a(work, 0), b(work, 1);
+  a.join();
+  b.join();
+  for (std::size_t i = 0; i < inputs.size(); ++i) EXPECT_EQ(parallel[i], serial[i]) << i;
 }
 
 // A fit that cannot meet the tolerance (a zone wider than a half space) switches the muscle to the
