@@ -73,7 +73,7 @@ struct DeformWorkspace {
   std::vector<double> step_amount;  ///< per step and muscle: contraction δ times elasticity k
   std::vector<double> wrinkle_amplitude;
   std::vector<double> wrinkle_normal;
-  std::vector<double> position, moved2, displacement;  ///< per candidate vertex, SoA (x | y | z)
+  std::vector<double> position, moved2, displacement;  ///< per candidate point (vertices, then lip control points), SoA
 };
 
 /// Thread safety: a FaceSolver is immutable after construction, so one solver may be shared by any
@@ -95,7 +95,8 @@ class FaceSolver {
   /// The same deformation computed the plain way, for tests and as executable documentation of the
   /// fast path: every vertex of the muscle's regions (region cut-off only), exact <cmath> cos/acos
   /// through waters.hpp, per-step displacement buffers, wrinkles recomputed from the band geometry.
-  /// deform() agrees with it to ~1e-10 m (solver_test: FastPathMatchesReference). About 10× slower.
+  /// deform() agrees with it to ~1e-10 m (solver_test: FastPathMatchesReference). ~15 ms on the
+  /// default face (vertex normals by a scan of all faces), some 40× slower than deform().
   void deform_reference(const std::vector<double>& values, Deformation& out) const;
 
   const facemesh::Mesh& neutral() const noexcept { return mesh_; }
@@ -116,8 +117,8 @@ class FaceSolver {
     int wrinkle_count;
     double wrinkle_height;
   };
-  // Hot-loop form of one muscle (see solver.cpp, FaceSolver::FaceSolver): constants and the fitted
-  // polynomial factors of fast_math.hpp ({centre, 1/half-width, c0..cN} each), contiguous in muscle_plans_.
+  // Hot-loop form of one muscle (solver.cpp, build_fast_path): constants and the fitted polynomial
+  // factors of fast_math.hpp ({centre, 1/half-width, c0..cN} each, within detail::kFitTolerance).
   static constexpr int kAngularDegree = 7;    // A(cos α)
   static constexpr int kRadialDegree = 6;     // cos(π/2·√s), s = u², R = cos(π/2·u) (see fast_math.hpp)
   static constexpr int kSphincterDegree = 9;  // sin(π·e) on [0, 1]
@@ -135,8 +136,8 @@ class FaceSolver {
     // the vector-muscle constants and both packed polynomials, each value twice (one per SSE2 lane)
     alignas(16) std::array<double, 2 * (13 + kAngularDegree + 3 + kRadialDegree + 3)> lanes;
   };
-  // Point-major candidate lists: a vertex's displacement depends only on its own position, so each
-  // step updates the listed points in place, summing the muscles whose zones it can have reached.
+  // Per point (vertex or lip control point) candidate muscles, built once; deform() runs on their
+  // muscle-major copy muscle_slots_. A point's displacement depends only on its own position.
   struct CandidateLists {
     std::vector<int> point;   // vertex (or control point) ids, ascending
     std::vector<int> start;   // CSR offsets into muscle, size point.size() + 1
@@ -145,9 +146,9 @@ class FaceSolver {
     // the muscle cannot act on the point before it has moved that far from its neutral position
     std::vector<double> reach2;
   };
-  // Muscle-major copy of vertex_lists_ for the two-lane (SSE2) vector-muscle pass: per muscle the
-  // compact indices into vertex_lists_.point and the entries' reach2, padded to an even length with
-  // a dummy slot (index point.size(), reach2 = +inf).
+  // Muscle-major copy of vertex_lists_ and control_point_lists_ for the two-lane (SSE2) pass: per
+  // muscle the slots (vertex_lists_.point indices, then nv + control point) and the entries' reach2,
+  // ascending, padded to an even length with a dummy slot (the last slot, reach2 = +inf).
   struct MuscleSlots {
     std::vector<int> slot;
     std::vector<double> reach2;
