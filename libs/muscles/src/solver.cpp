@@ -289,7 +289,7 @@ void FaceSolver::build_fast_path() {
     muscle_plans_.push_back(q);
   }
 
-  // Vertex-major candidate lists. The lip samples are skipped: LipSampler::evaluate overwrites them
+  // Per-point candidate lists. The lip samples are skipped: LipSampler::evaluate overwrites them
   // from the control points after the contraction (and the jaw), so moving them would be dead work.
   const std::size_t nv = mesh_.vertex_count();
   const auto& cps = rig_.lips.control_points;
@@ -530,9 +530,9 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out, Def
 
   // Parallel contraction (thesis §2.4.1, seeds/README.md): in steps δc every muscle with contraction
   // left displaces each vertex at its *current* position; displacements are summed, then applied.
-  // A vertex's displacement depends only on its own position, so each step updates the candidate
-  // points in place, summing their candidate muscles in muscle order (CSR lists built once): the same
-  // sums as accumulating the step over the whole mesh first, without per-step buffers.
+  // A point's displacement depends only on its own position, so only the candidate points are kept
+  // (in SoA slots, for all steps) and each muscle adds to them in muscle order: the same sums as the
+  // step over the whole mesh.
   const double dc = options_.delta_c;
   auto amount = [&](double lvl, int s) {
     const double c = options_.parallel ? std::min(dc, lvl - s * dc) : lvl;
