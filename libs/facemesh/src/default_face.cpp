@@ -567,11 +567,13 @@ Face make_default_face() {
     lip_outer.push_back(lip_begin + i);
     lip_inner.push_back(lip_begin + 5 * lips.samples_around + i);
   }
-  auto jawline = [&](double t) {  // t in [0,1], right ear level -> chin -> left ear level
-    const double a = kPi * (1.0 - t);                           // angle from +x
+  // iBUG 0–16: the subject's right (−x) ear level -> chin -> left (+x) ear level, like 36 (right eye
+  // outer) and 48 (right mouth corner); earlier versions ran it from +x, mirroring 0–16 and jaw_r/jaw_l.
+  auto jawline = [&](double t) {  // t in [0,1]
+    const double a = kPi * (1.0 - t);  // angle from +x: π at t = 0 (−x), 0 at t = 1 (+x)
     const double x = 0.068 * std::cos(a);
     const double y = -0.005 - 0.112 * std::sin(a);
-    return std::pair<double, double>(-x, y);
+    return std::pair<double, double>(x, y);
   };
   for (int i = 0; i <= 16; ++i) {
     auto [x, y] = jawline(i / 16.0);

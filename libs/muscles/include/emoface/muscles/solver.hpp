@@ -8,6 +8,7 @@
 // Per call: parallel contraction of all vector and sphincter muscles and the Orbicularis Oris lip
 // actions in steps δc (§2.4.1), eyelids (§2.4.3), jaw (§2.4.4), lip B-spline re-sampling (§2.3.2),
 // wrinkles along the normals (§2.4.1), eyeball rotation with the eye-hole limit (§2.4.5), head pose.
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -37,11 +38,12 @@ struct SolverOptions {
   double delta_c = 0.2;        ///< contraction step δc (thesis §2.4.1: 0.2), (0, 1]
   bool parallel = true;        ///< false: Waters' plain sum of full displacements (thesis Fig. 2.12 g–j)
   bool wrinkles = true;        ///< bulges and wrinkles along the normals (thesis §2.4.1)
-  /// Candidate vertices of a vector muscle: neutral distance to v1 <= Rf·(1 + margin) and neutral
-  /// angle <= Ω·(1 + margin) (sphincter: elliptic radius <= 1 + margin), [0, 4]. Zone membership is
-  /// re-evaluated at the current positions every step; the margin only bounds how far a vertex may
-  /// travel into a zone it started outside of.
-  double zone_margin = 0.3;
+  /// Extra slack, as a fraction of the muscle's Rf, on the distance at which a vertex becomes a
+  /// candidate of a muscle, [0, 4]. The candidate lists are complete without it (a vertex is listed
+  /// when the muscles that can reach it could carry it into the zone, see docs/muscles.md), so the
+  /// default 0 changes no result; larger values only cost time. Zone membership is re-evaluated at the
+  /// current positions every step.
+  double zone_margin = 0.0;
   double funnel_rotation = 0.349065850398866;  ///< lip funneler rotation θ, radians (thesis §2.4.2: 20°), [0, π/2]
   double funnel_extrusion = 0.006;  ///< lip funneler extrusion x at the lip edge, m, [0, 0.05]
   double press_rotation = 0.349065850398866;   ///< lip pressor rotation (opposite sense), radians, [0, π/2]
@@ -64,16 +66,38 @@ struct Deformation {
   int steps = 0;                     ///< contraction steps taken
 };
 
+/// Scratch memory of FaceSolver::deform (contents unspecified). Keep one per thread and pass it to
+/// every call: after the first call on a solver, deform() then allocates nothing.
+struct DeformWorkspace {
+  std::vector<double> level;        ///< per muscle
+  std::vector<double> step_amount;  ///< per step and muscle: contraction δ times elasticity k
+  std::vector<double> wrinkle_amplitude;
+  std::vector<double> wrinkle_normal;
+  std::vector<double> position, moved2, displacement;  ///< per candidate point (vertices, then lip control points), SoA
+};
+
+/// Thread safety: a FaceSolver is immutable after construction, so one solver may be shared by any
+/// number of threads, each calling deform() with its own Deformation (and DeformWorkspace).
 class FaceSolver {
  public:
   /// Validates the rig against the mesh (InvalidInput on mismatch) and precomputes per-muscle data.
   FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions options = {});
 
-  /// Deforms for `values` (kParameterCount entries in parameter_names() order). Reuses `out`'s storage.
+  /// Deforms for `values` (kParameterCount entries in parameter_names() order). Reuses `out`'s storage
+  /// and `workspace`'s scratch memory (no allocation once both have been used with this solver).
+  void deform(const std::vector<double>& values, Deformation& out, DeformWorkspace& workspace) const;
+  /// As above with a temporary workspace (allocates a few small buffers per call).
   void deform(const std::vector<double>& values, Deformation& out) const;
   Deformation deform(const std::vector<double>& values) const;
   /// Named values (missing = 0); unknown names throw InvalidInput.
   Deformation deform(const std::map<std::string, double>& named) const;
+
+  /// The same deformation computed the plain way, for tests and as executable documentation of the
+  /// fast path: every vertex of the muscle's regions (region cut-off only), exact <cmath> cos/acos
+  /// through waters.hpp, per-step displacement buffers, wrinkles recomputed from the band geometry.
+  /// deform() agrees with it to ~1e-10 m (solver_test: FastPathMatchesReference). ~15 ms on the
+  /// default face (vertex normals by a scan of all faces), some 40× slower than deform().
+  void deform_reference(const std::vector<double>& values, Deformation& out) const;
 
   const facemesh::Mesh& neutral() const noexcept { return mesh_; }
   const facemesh::Rig& rig() const noexcept { return rig_; }
@@ -88,15 +112,72 @@ class FaceSolver {
     Eigen::Vector3d axis;  // unit v1->v2
     Eigen::Vector2d semi_axes;
     std::size_t parameter;
-    std::vector<int> vertices;       // candidates (region cut-off + distance margin)
+    std::vector<int> vertices;       // candidates (region cut-off ∩ reachable zone), ascending
     std::vector<int> control_points; // lip control points it may move
     int wrinkle_count;
     double wrinkle_height;
   };
+  // Hot-loop form of one muscle (solver.cpp, build_fast_path): constants and the fitted polynomial
+  // factors of fast_math.hpp ({centre, 1/half-width, c0..cN} each, within detail::kFitTolerance).
+  static constexpr int kAngularDegree = 7;    // A(cos α)
+  static constexpr int kRadialDegree = 6;     // cos(π/2·√s), s = u², R = cos(π/2·u) (see fast_math.hpp)
+  static constexpr int kSphincterDegree = 9;  // sin(π·e) on [0, 1]
+  struct MusclePlan {
+    bool sphincter;
+    bool exact;  // a fit missed detail::kFitTolerance: use the exact <cmath> factors
+    double hx, hy, hz;  // v1 (vector) or centre (sphincter), m
+    double ax, ay, az;  // unit axis v1->v2
+    double rf2, cos_omega, rs, rf, omega, k;
+    double inv_a2, inv_b2;  // sphincter: 1/semi-axis²
+    double inv_rs, inv_span;  // 1/Rs, 1/(Rf − Rs)
+    std::array<double, kAngularDegree + 3> angular;  // packed A(cos α)
+    std::array<double, kRadialDegree + 3> radial;    // packed cos(π/2·√s) on s ∈ [0, 1]
+    std::array<double, kSphincterDegree + 3> sphincter_falloff;
+    // the vector-muscle constants and both packed polynomials, each value twice (one per SSE2 lane)
+    alignas(16) std::array<double, 2 * (13 + kAngularDegree + 3 + kRadialDegree + 3)> lanes;
+  };
+  // Per point (vertex or lip control point) candidate muscles, built once; deform() runs on their
+  // muscle-major copy muscle_slots_. A point's displacement depends only on its own position.
+  struct CandidateLists {
+    std::vector<int> point;   // vertex (or control point) ids, ascending
+    std::vector<int> start;   // CSR offsets into muscle, size point.size() + 1
+    std::vector<int> muscle;  // muscle indices, per point sorted by reach2 (ties: muscle order)
+    // per entry: squared distance from the neutral position to the muscle's zone (less a 1e-9 m slack);
+    // the muscle cannot act on the point before it has moved that far from its neutral position
+    std::vector<double> reach2;
+  };
+  // Muscle-major copy of vertex_lists_ and control_point_lists_ for the two-lane (SSE2) pass: per
+  // muscle the slots (vertex_lists_.point indices, then nv + control point) and the entries' reach2,
+  // ascending, padded to an even length with a dummy slot (the last slot, reach2 = +inf).
+  struct MuscleSlots {
+    std::vector<int> slot;
+    std::vector<double> reach2;
+  };
+  std::vector<MuscleSlots> muscle_slots_;
+  std::vector<double> slot_neutral_;  // neutral positions of the slots, SoA (x | y | z), dummy = 0
+  // Wrinkles depend only on the neutral positions: per muscle, (compact vertex, amplitude at level 1).
+  struct WrinkleEntry {
+    int slot;       // index into wrinkle_vertices_
+    double height;  // A·f(l) at full contraction, m
+    bool crease;
+  };
+  void build_fast_path();
+  static double zone_distance(const Muscle& m, const Eigen::Vector3d& p);
+  // Shared by deform() and deform_reference(): validation, eyelid coupling, muscle levels, steps.
+  int prepare(const std::vector<double>& values, Deformation& out, std::array<EyelidLevels, 2>& lids,
+              std::vector<double>& level) const;
+  // Eyelids, jaw and lip re-sampling (after the contraction), then eyeballs and head pose (last).
+  void apply_lids_jaw_lips(const std::vector<double>& values, const std::array<EyelidLevels, 2>& lids,
+                           Deformation& out) const;
+  void apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const;
   facemesh::Mesh mesh_;
   facemesh::Rig rig_;
   SolverOptions options_;
   std::vector<Muscle> muscles_;
+  std::vector<MusclePlan> muscle_plans_;
+  CandidateLists vertex_lists_, control_point_lists_;
+  std::vector<std::vector<WrinkleEntry>> wrinkles_;  // per muscle
+  std::vector<int> wrinkle_vertices_;                // ascending
   facemesh::LipSampler lip_sampler_;
   std::vector<Eigen::Vector3d> funnel_delta_, press_delta_;  // per control point, per unit contraction
   std::vector<double> lip_jaw_weight_;  // per control point
