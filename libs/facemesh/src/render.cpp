@@ -1,9 +1,10 @@
 // Software rasteriser: perspective camera, z-buffer, per-pixel Phong shading (Bui Tuong Phong 1975,
-// the shading the thesis uses in §2.3), 2x2 supersampling; PNG through libpng.
+// the shading the thesis uses in §2.3), 2x2 supersampling, deferred shading; PNG through core::encode_png.
 #include "emoface/facemesh/render.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -117,65 +118,93 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     const double z = d.dot(forward);
     screen[v] = {0.5 * w + focal * d.dot(right) / std::max(z, 1e-6), 0.5 * h - focal * d.dot(up) / std::max(z, 1e-6), z};
   }
-  std::vector<float> depth(static_cast<std::size_t>(w) * h, std::numeric_limits<float>::infinity());
-  std::vector<Eigen::Vector3f> color(static_cast<std::size_t>(w) * h, options.background.cast<float>());
-  const Eigen::Vector3d key_light = Eigen::Vector3d(-0.35, 0.55, 0.75).normalized();
-  const Eigen::Vector3d fill_light = Eigen::Vector3d(0.6, 0.1, 0.5).normalized();
-  const Eigen::Vector3f skin(0.87f, 0.69f, 0.58f);
-
+  // Pass 1 (visibility): z-buffer with the winning face and its perspective-correct barycentric weights
+  // per sample. Pass 2 shades each visible sample once (deferred shading), so hidden surfaces cost no
+  // lighting. The winner is the same as shading in submission order with a strict depth test.
+  const std::size_t samples = static_cast<std::size_t>(w) * h;
+  std::vector<double> inv_depth(samples, 0.0);  // 1/z: interpolates linearly in screen space, larger = closer
+  std::vector<std::int32_t> face_of(samples, -1);
+  std::vector<float> bary(2 * samples);
   for (long f = 0; f < mesh.faces.rows(); ++f) {
-    const int ids[3] = {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
-    const Eigen::Vector3d& a = screen[ids[0]];
-    const Eigen::Vector3d& b = screen[ids[1]];
-    const Eigen::Vector3d& c = screen[ids[2]];
+    const Eigen::Vector3d& a = screen[mesh.faces(f, 0)];
+    const Eigen::Vector3d& b = screen[mesh.faces(f, 1)];
+    const Eigen::Vector3d& c = screen[mesh.faces(f, 2)];
     if (a.z() <= 1e-4 || b.z() <= 1e-4 || c.z() <= 1e-4) continue;
     const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
     if (area == 0.0) continue;
-    const bool back = area > 0.0;  // screen y points down: counter-clockwise triangles have area < 0
-    Eigen::Vector3d n[3];
-    Eigen::Vector3f col[3];
-    for (int k = 0; k < 3; ++k) {
-      const bool use_face = !crease.empty() && crease[static_cast<std::size_t>(ids[k])];
-      n[k] = use_face ? Eigen::Vector3d(fn.row(f)) : Eigen::Vector3d(vn.row(ids[k]));
-      col[k] = colors.empty() ? skin : colors[static_cast<std::size_t>(ids[k])];
-    }
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
     const int x1 = std::min(w - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
     const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
     const int y1 = std::min(h - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
+    if (x0 > x1 || y0 > y1) continue;
+    // Edge functions w0(px, py), w1(px, py) are affine: step them along x.
+    const double inv_area = 1.0 / area;
+    const double d0x = -(c.y() - b.y()) * inv_area, d1x = -(a.y() - c.y()) * inv_area;
+    const double iza = 1.0 / a.z(), izb = 1.0 / b.z(), izc = 1.0 / c.z();
     for (int y = y0; y <= y1; ++y) {
-      for (int x = x0; x <= x1; ++x) {
-        const double px = x + 0.5, py = y + 0.5;
-        double w0 = ((b.x() - px) * (c.y() - py) - (b.y() - py) * (c.x() - px)) / area;
-        double w1 = ((c.x() - px) * (a.y() - py) - (c.y() - py) * (a.x() - px)) / area;
-        double w2 = 1.0 - w0 - w1;
+      const double py = y + 0.5, px0 = x0 + 0.5;
+      double w0 = ((b.x() - px0) * (c.y() - py) - (b.y() - py) * (c.x() - px0)) * inv_area;
+      double w1 = ((c.x() - px0) * (a.y() - py) - (c.y() - py) * (a.x() - px0)) * inv_area;
+      std::size_t idx = static_cast<std::size_t>(y) * w + x0;
+      for (int x = x0; x <= x1; ++x, ++idx, w0 += d0x, w1 += d1x) {
+        const double w2 = 1.0 - w0 - w1;
         if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
-        // perspective-correct weights
-        const double q0 = w0 / a.z(), q1 = w1 / b.z(), q2 = w2 / c.z();
-        const double qs = q0 + q1 + q2;
+        const double q0 = w0 * iza, q1 = w1 * izb, qs = q0 + q1 + w2 * izc;
+        if (qs <= inv_depth[idx]) continue;  // not closer (z = 1/qs ≥ the stored depth)
+        inv_depth[idx] = qs;
+        face_of[idx] = static_cast<std::int32_t>(f);
         const double z = 1.0 / qs;
-        const std::size_t idx = static_cast<std::size_t>(y) * w + x;
-        if (z >= depth[idx]) continue;
-        depth[idx] = static_cast<float>(z);
-        w0 = q0 / qs, w1 = q1 / qs, w2 = q2 / qs;
-        Eigen::Vector3d normal = (w0 * n[0] + w1 * n[1] + w2 * n[2]);
-        if (normal.squaredNorm() > 0.0) normal.normalize();
-        Eigen::Vector3f base = static_cast<float>(w0) * col[0] + static_cast<float>(w1) * col[1] + static_cast<float>(w2) * col[2];
-        if (back) {
-          color[idx] = Eigen::Vector3f(0.18f, 0.07f, 0.07f);  // inside of the head: dark mouth cavity
-          continue;
-        }
-        const Eigen::Vector3d view = -forward;
-        const double kd = std::max(0.0, normal.dot(key_light));
-        const double fd = std::max(0.0, normal.dot(fill_light));
-        const Eigen::Vector3d half = (key_light + view).normalized();
-        const double spec = options.specular * std::pow(std::max(0.0, normal.dot(half)), options.shininess);
-        const double light = 0.22 + 0.68 * kd + 0.22 * fd;
-        Eigen::Vector3f out = base * static_cast<float>(light) + Eigen::Vector3f::Constant(static_cast<float>(spec));
-        color[idx] = out.cwiseMin(1.0f).cwiseMax(0.0f);
+        bary[2 * idx] = static_cast<float>(q0 * z);
+        bary[2 * idx + 1] = static_cast<float>(q1 * z);
       }
     }
   }
+
+  const Eigen::Vector3f background = options.background.cast<float>();
+  const Eigen::Vector3d key_light = Eigen::Vector3d(-0.35, 0.55, 0.75).normalized();
+  const Eigen::Vector3d fill_light = Eigen::Vector3d(0.6, 0.1, 0.5).normalized();
+  const Eigen::Vector3d half = (key_light - forward).normalized();  // Blinn half vector, view = -forward
+  const Eigen::Vector3f skin(0.87f, 0.69f, 0.58f);
+  const Eigen::Vector3f cavity(0.18f, 0.07f, 0.07f);  // inside of the head: dark mouth cavity
+  // specular * (n·h)^shininess from a table over n·h in [0, 1], interpolated linearly: with 4096 steps
+  // the error is below s(s-1)/(8·4096²) ≈ 2e-5 for s = 64, far under one 8-bit level.
+  constexpr int kSpecSteps = 4096;
+  std::vector<double> spec_table(kSpecSteps + 2);
+  for (int i = 0; i <= kSpecSteps; ++i)
+    spec_table[static_cast<std::size_t>(i)] = options.specular * std::pow(static_cast<double>(i) / kSpecSteps, options.shininess);
+  spec_table[kSpecSteps + 1] = spec_table[kSpecSteps];
+  const auto shade = [&](std::size_t idx) -> Eigen::Vector3f {
+    const std::int32_t f = face_of[idx];
+    if (f < 0) return background;
+    const int ids[3] = {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
+    const Eigen::Vector3d& a = screen[ids[0]];
+    const Eigen::Vector3d& b = screen[ids[1]];
+    const Eigen::Vector3d& c = screen[ids[2]];
+    if ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()) > 0.0) return cavity;  // back face
+    const double w0 = bary[2 * idx], w1 = bary[2 * idx + 1];
+    const double wk[3] = {w0, w1, 1.0 - w0 - w1};
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    Eigen::Vector3f base = Eigen::Vector3f::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const bool use_face = !crease.empty() && crease[static_cast<std::size_t>(ids[k])];
+      normal += wk[k] * (use_face ? Eigen::Vector3d(fn.row(f)) : Eigen::Vector3d(vn.row(ids[k])));
+      base += static_cast<float>(wk[k]) * (colors.empty() ? skin : colors[static_cast<std::size_t>(ids[k])]);
+    }
+    if (normal.squaredNorm() > 0.0) normal.normalize();
+    const double kd = std::max(0.0, normal.dot(key_light));
+    const double fd = std::max(0.0, normal.dot(fill_light));
+    double spec = 0.0;
+    if (const double nh = normal.dot(half); nh > 0.0) {
+      const double t = std::min(nh, 1.0) * kSpecSteps;
+      const int i = static_cast<int>(t);
+      spec = spec_table[static_cast<std::size_t>(i)] + (t - i) * (spec_table[static_cast<std::size_t>(i) + 1] - spec_table[static_cast<std::size_t>(i)]);
+    }
+    const double light = 0.22 + 0.68 * kd + 0.22 * fd;
+    const Eigen::Vector3f out = base * static_cast<float>(light) + Eigen::Vector3f::Constant(static_cast<float>(spec));
+    return out.cwiseMin(1.0f).cwiseMax(0.0f);
+  };
+
+  // Pass 2 fused with the box-filter downsampling: each visible sample is shaded exactly once.
   Image image;
   image.width = options.width;
   image.height = options.height;
@@ -184,7 +213,7 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     for (int x = 0; x < options.width; ++x) {
       Eigen::Vector3f sum = Eigen::Vector3f::Zero();
       for (int dy = 0; dy < ss; ++dy) {
-        for (int dx = 0; dx < ss; ++dx) sum += color[static_cast<std::size_t>(y * ss + dy) * w + (x * ss + dx)];
+        for (int dx = 0; dx < ss; ++dx) sum += shade(static_cast<std::size_t>(y * ss + dy) * w + (x * ss + dx));
       }
       sum /= static_cast<float>(ss * ss);
       for (int k = 0; k < 3; ++k) {
