@@ -20,15 +20,15 @@ trap 'rm -f "$tmp"' EXIT
     echo "## $app"
     echo
     echo '```text'
-    "$exe" --help
+    (exec -a "$app" "$exe" --help)  # argv[0] = the app's name, not the build path
     echo '```'
-    # Subcommands (CLI11 lists them under SUBCOMMANDS:).
-    for sub in $("$exe" --help | awk '/^SUBCOMMANDS:/{f=1;next} f&&/^  [a-z]/{print $1} f&&/^$/{f=0}'); do
+    # Subcommands (CLI11 lists them under "Subcommands:").
+    for sub in $("$exe" --help | awk '/^(SUBCOMMANDS|Subcommands):/{f=1;next} f&&/^  [a-z]/{print $1} f&&/^$/{f=0}'); do
       echo
       echo "### $app $sub"
       echo
       echo '```text'
-      "$exe" "$sub" --help
+      (exec -a "$app" "$exe" "$sub" --help)
       echo '```'
     done
   done
