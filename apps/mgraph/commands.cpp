@@ -1,9 +1,10 @@
 #include "commands.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <iostream>
+#include <memory>
 
 #include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/cli/cli.hpp"
@@ -14,6 +15,7 @@
 #include "emoface/core/video.hpp"
 #include "emoface/motiongraph/evaluate.hpp"
 #include "emoface/motiongraph/io.hpp"
+#include "emoface/motiongraph/layout.hpp"
 #include "emoface/motiongraph/render.hpp"
 #include "emoface/motiongraph/synthesis.hpp"
 #include "emoface/motiongraph/synthetic.hpp"
@@ -143,6 +145,23 @@ int generate(const Args& a) {
   for (std::size_t i = 0; i < count; ++i)
     if (shard.owns(i)) db.sequences.push_back(synthetic_sequence(*model, o, i));
   if (db.sequences.empty()) throw InvalidInput("--shard " + a.shard + " owns none of the " + std::to_string(count) + " sequences");
+  if (!a.sheet.empty()) {
+    // First frame of the first sequence, then the peak frame of the first sequence of each label;
+    // colours = regions of the built-in layout (grey: landmarks outside the reduced set).
+    std::vector<int> groups(68, 8);
+    const LandmarkLayout layout = default_layout();
+    for (std::size_t r = 0; r < layout.regions.size(); ++r)
+      for (int i : layout.regions[r].landmarks) groups[static_cast<std::size_t>(i)] = static_cast<int>(r);
+    std::vector<Pose> shown{db.sequences.front().frames.front()};
+    std::vector<Label> seen;
+    for (const Sequence& s : db.sequences)
+      if (std::find(seen.begin(), seen.end(), s.label) == seen.end()) {
+        seen.push_back(s.label);
+        shown.push_back(s.frames.back());
+      }
+    core::write_file_atomic(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
+                                                              a.cell_width * 7 / 8)));
+  }
   cli::Output out(a.out);
   const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
   out.write(csv ? database_to_csv(db) : database_to_json(db));

@@ -54,6 +54,9 @@ int main(int argc, char** argv) {
   gen->add_option("--camera-distance", a.camera_distance, "face model: camera distance (m)")->capture_default_str();
   gen->add_option("--shard", a.shard, "i/N: only sequences with index % N == i (same values as one run)")
       ->capture_default_str();
+  gen->add_option("--sheet", a.sheet, "contact sheet PNG: a neutral frame, then one peak per label");
+  gen->add_option("--columns", a.columns, "contact sheet columns")->capture_default_str();
+  gen->add_option("--cell-width", a.cell_width, "contact sheet cell width (px)")->capture_default_str();
   gen->add_option("--seed", a.seed, "random seed")->capture_default_str();
   gen->add_option("--per-label", a.per_label, "sequences per label (7 labels)")->capture_default_str();
   gen->add_option("--subjects", a.subjects, "distinct identities")->capture_default_str();

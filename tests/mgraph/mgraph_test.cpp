@@ -1,5 +1,6 @@
 // mgraph end to end: face/parametric generation, shards, --on-error, batch requests, GIF/MP4 output.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -31,7 +32,8 @@ class Mgraph : public emoface::test::CliTest {
 
   // A small face-driven database and its graph, made once for the suite.
   static void SetUpTestSuite() {
-    shared_ = fs::temp_directory_path() / "emoface_cli_mgraph_shared";
+    // One directory per process: ctest runs the tests of this suite in parallel processes.
+    shared_ = fs::temp_directory_path() / ("emoface_cli_mgraph_shared_" + std::to_string(::getpid()));
     fs::remove_all(shared_);
     fs::create_directories(shared_);
     const std::string exe = MGRAPH_EXE;

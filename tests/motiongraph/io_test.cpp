@@ -222,7 +222,9 @@ TEST(GraphJson, RoundTripAndBadInput) {
 class CkPlus : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / "emoface_mg_ckplus_test";
+    // One tree per test: ctest runs the tests of this fixture in parallel processes.
+    root_ = fs::temp_directory_path() /
+            (std::string("emoface_mg_ckplus_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root_);
     write_sequence("S005", "001", 3, 4, "   3.0000000e+00");  // disgust
     write_sequence("S010", "002", 2, 4, "   7.0000000e+00");  // surprise
