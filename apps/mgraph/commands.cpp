@@ -228,6 +228,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
 int synth(const Args& a) {
   const MotionGraph g = read_graph(a.graph);
   std::vector<Sequence> seqs;
+  if (!a.requests.empty() && !a.labels.empty()) throw cli::UsageError("give --labels or --requests, not both");
   if (a.requests.empty()) {
     if (a.labels.empty()) throw cli::UsageError("give --labels or --requests");
     synthesize_chain(a, g, a.labels, a.seed, "", seqs);

@@ -177,6 +177,8 @@ TEST_F(Mgraph, SynthBatchRequestsWithShardsAndSkip) {
   EXPECT_EQ(r.code, 2);
   r = run("synth --graph " + shared("graph.json") + " --out -");
   EXPECT_EQ(r.code, 1);
+  r = run("synth --graph " + shared("graph.json") + " --labels fear --requests " + req + " --out -");
+  EXPECT_EQ(r.code, 1);
 }
 
 TEST_F(Mgraph, WritesGifAndMp4) {
