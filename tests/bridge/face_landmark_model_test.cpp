@@ -1,9 +1,9 @@
 #include "emoface/bridge/face_landmark_model.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/fuzzyexpr/names.hpp"
@@ -26,8 +26,9 @@ double max_abs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
 
 // Independent re-implementation of the documented projection for one point: camera on +z through
 // the neutral centroid at `distance`, pixel = centre + s·k·(x, −y), k = d / (d − z).
-Eigen::Vector2d project_by_hand(const Eigen::Vector3d& q, const Eigen::Vector3d& centroid, double distance,
-                                double s, const Eigen::Vector2d& centre_of_raw, const Eigen::Vector2d& centre) {
+Eigen::Vector2d project_by_hand(const Eigen::Vector3d& q, const Eigen::Vector3d& centroid,
+                                double distance, double s, const Eigen::Vector2d& centre_of_raw,
+                                const Eigen::Vector2d& centre) {
   const Eigen::Vector3d r = q - centroid;
   const double k = distance / (distance - r.z());
   return centre + s * (k * Eigen::Vector2d(r.x(), -r.y()) - centre_of_raw);
@@ -48,7 +49,8 @@ TEST(FaceLandmarkModel, NeutralIsTheProjectedRigLandmarks) {
   // Rig landmarks: the mesh vertices named by rig.ibug68.
   const auto& ids = m.solver().rig().ibug68;
   for (int i = 0; i < 68; ++i)
-    EXPECT_EQ((m.neutral_landmarks_3d().row(i) - m.solver().neutral().vertices.row(ids[i])).norm(), 0.0);
+    EXPECT_EQ((m.neutral_landmarks_3d().row(i) - m.solver().neutral().vertices.row(ids[i])).norm(),
+              0.0);
   EXPECT_LT(max_abs(m.landmarks(mg::Label::Neutral, 0.0, id) - neutral), 1e-12);
   EXPECT_LT(max_abs(m.landmarks(mg::Label::Neutral, 0.8, id) - neutral), 1e-12);
   for (mg::Label l : mg::all_labels()) EXPECT_LT(max_abs(m.landmarks(l, 0.0, id) - neutral), 1e-12);
@@ -56,7 +58,8 @@ TEST(FaceLandmarkModel, NeutralIsTheProjectedRigLandmarks) {
   const Eigen::RowVector2d c = neutral.colwise().mean();
   EXPECT_NEAR(c(0), m.options().centre_px.x(), 1e-9);
   EXPECT_NEAR(c(1), m.options().centre_px.y(), 1e-9);
-  EXPECT_NEAR(std::sqrt((neutral.rowwise() - c).rowwise().squaredNorm().mean()), m.options().face_size_px, 1e-9);
+  EXPECT_NEAR(std::sqrt((neutral.rowwise() - c).rowwise().squaredNorm().mean()),
+              m.options().face_size_px, 1e-9);
   EXPECT_GT(neutral.col(0).minCoeff(), 100.0);
   EXPECT_LT(neutral.col(0).maxCoeff(), 540.0);
   EXPECT_GT(neutral.col(1).minCoeff(), 60.0);
@@ -79,7 +82,8 @@ TEST(FaceLandmarkModel, PerspectiveAndOrthographicProjectionsByHand) {
     o.projection = proj;
     o.camera_distance = 0.5;
     const br::FaceLandmarkModel fm(m.solver(), emoface::fuzzyexpr::Engine(), o);
-    const double d = proj == br::Projection::Perspective ? 0.5 : 1e12;  // orthographic = infinitely far
+    const double d =
+        proj == br::Projection::Perspective ? 0.5 : 1e12;  // orthographic = infinitely far
     // Raw image (scale 1) of the neutral landmarks, its centroid and RMS radius → s, then compare.
     Eigen::MatrixXd raw(68, 2);
     for (int i = 0; i < 68; ++i) {
@@ -88,12 +92,14 @@ TEST(FaceLandmarkModel, PerspectiveAndOrthographicProjectionsByHand) {
       raw.row(i) << k * r.x(), -k * r.y();
     }
     const Eigen::RowVector2d rc = raw.colwise().mean();
-    const double s = o.face_size_px / std::sqrt((raw.rowwise() - rc).rowwise().squaredNorm().mean());
+    const double s =
+        o.face_size_px / std::sqrt((raw.rowwise() - rc).rowwise().squaredNorm().mean());
     // A displaced point (not a neutral one) to test the formula, not just the normalisation.
     Eigen::MatrixXd q = n3;
     q.row(30) += Eigen::RowVector3d(0.01, -0.02, 0.03);
     const Eigen::MatrixXd px = fm.project(q, mg::Identity());
-    const Eigen::Vector2d hand = project_by_hand(q.row(30).transpose(), centroid, d, s, rc.transpose(), o.centre_px);
+    const Eigen::Vector2d hand =
+        project_by_hand(q.row(30).transpose(), centroid, d, s, rc.transpose(), o.centre_px);
     EXPECT_NEAR(px(30, 0), hand.x(), 1e-6) << br::to_string(proj);
     EXPECT_NEAR(px(30, 1), hand.y(), 1e-6) << br::to_string(proj);
   }
@@ -103,9 +109,10 @@ TEST(FaceLandmarkModel, PerspectiveAndOrthographicProjectionsByHand) {
   const br::FaceLandmarkModel near_cam(m.solver(), emoface::fuzzyexpr::Engine(), o);
   o.projection = br::Projection::Orthographic;
   const br::FaceLandmarkModel ortho(m.solver(), emoface::fuzzyexpr::Engine(), o);
-  const Eigen::MatrixXd a = near_cam.project(n3, mg::Identity()), b = ortho.project(n3, mg::Identity());
-  // Outer eye corners (behind the nose) vs mouth corners (in front): the ratio of their widths grows
-  // in the perspective image.
+  const Eigen::MatrixXd a = near_cam.project(n3, mg::Identity()),
+                        b = ortho.project(n3, mg::Identity());
+  // Outer eye corners (behind the nose) vs mouth corners (in front): the ratio of their widths
+  // grows in the perspective image.
   const double ratio_p = (a.row(54) - a.row(48)).norm() / (a.row(45) - a.row(36)).norm();
   const double ratio_o = (b.row(54) - b.row(48)).norm() / (b.row(45) - b.row(36)).norm();
   EXPECT_GT(ratio_p, ratio_o * 1.01);
@@ -149,7 +156,7 @@ TEST(FaceLandmarkModel, EveryEmotionMovesTheFaceSurpriseOpensTheJaw) {
   EXPECT_GT(s(8, 1), n(8, 1) + 5.0);    // chin down
   EXPECT_LT(s(19, 1), n(19, 1) - 3.0);  // brows up
   const Eigen::MatrixXd a = m.landmarks(mg::Label::Anger, 1.0, id);
-  EXPECT_GT(a(21, 1), n(21, 1));        // inner brows down
+  EXPECT_GT(a(21, 1), n(21, 1));  // inner brows down
 }
 
 TEST(FaceLandmarkModel, ContemptIsUnilateral) {
@@ -183,7 +190,8 @@ TEST(FaceLandmarkModel, IdentityTransform) {
     const Eigen::Vector2d r = base.row(i).transpose() - centre;
     const double c = std::cos(0.2), s = std::sin(0.2);
     const Eigen::Vector2d want =
-        centre + Eigen::Vector2d(7.0, -4.0) + 1.1 * Eigen::Vector2d(c * r.x() - s * r.y(), s * r.x() + c * r.y()) +
+        centre + Eigen::Vector2d(7.0, -4.0) +
+        1.1 * Eigen::Vector2d(c * r.x() - s * r.y(), s * r.x() + c * r.y()) +
         Eigen::Vector2d(0.5, 0.5);
     EXPECT_NEAR(got(i, 0), want.x(), 1e-9);
     EXPECT_NEAR(got(i, 1), want.y(), 1e-9);
@@ -222,9 +230,11 @@ TEST(FaceLandmarkModel, BadInput) {
   EXPECT_THROW(o.validate(), emoface::InvalidInput);
   o = {};
   o.centre_px.x() = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(br::FaceLandmarkModel(m.solver(), emoface::fuzzyexpr::Engine(), o), emoface::InvalidInput);
+  EXPECT_THROW(br::FaceLandmarkModel(m.solver(), emoface::fuzzyexpr::Engine(), o),
+               emoface::InvalidInput);
   EXPECT_EQ(br::projection_from_string("orthographic"), br::Projection::Orthographic);
-  EXPECT_EQ(br::projection_from_string(br::to_string(br::Projection::Perspective)), br::Projection::Perspective);
+  EXPECT_EQ(br::projection_from_string(br::to_string(br::Projection::Perspective)),
+            br::Projection::Perspective);
   EXPECT_FALSE(br::projection_from_string("fisheye"));
 }
 

@@ -1,6 +1,6 @@
 // libFuzzer target: the per-file parsers of the CK+ reader (landmark files "x y" per line, emotion
-// files with one code) must reject bad input with an emoface error, never crash or hang. The directory
-// walk is fuzzed by fuzz_motiongraph_ckplus. Seeds: tests/fuzz/corpus/motiongraph_ckplus.
+// files with one code) must reject bad input with an emoface error, never crash or hang. The
+// directory walk is fuzzed by fuzz_motiongraph_ckplus. Seeds: tests/fuzz/corpus/motiongraph_ckplus.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>

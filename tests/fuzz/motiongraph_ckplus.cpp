@@ -1,10 +1,10 @@
-// libFuzzer target: the CK+ directory reader must reject bad input with an emoface error, never crash
-// or hang (its per-file parsers alone: fuzz_motiongraph_ck_files, much faster). The input, split at
-// 0xFF bytes, is a small CK+ tree: each chunk's first byte picks subject (bits 0–1), sequence (bits 2–3),
-// file kind (bit 4: landmarks / emotion) and frame (bits 5–7); the rest is the file's content. The tree
-// lives in a private temporary directory, rebuilt for every input and read with on_error stop and skip.
-// Keep inputs short (-max_len=2048): every chunk is a file.
-// Seeds: tests/fuzz/corpus/motiongraph_ckplus (see the command in tests/fuzz/CMakeLists.txt).
+// libFuzzer target: the CK+ directory reader must reject bad input with an emoface error, never
+// crash or hang (its per-file parsers alone: fuzz_motiongraph_ck_files, much faster). The input,
+// split at 0xFF bytes, is a small CK+ tree: each chunk's first byte picks subject (bits 0–1),
+// sequence (bits 2–3), file kind (bit 4: landmarks / emotion) and frame (bits 5–7); the rest is the
+// file's content. The tree lives in a private temporary directory, rebuilt for every input and read
+// with on_error stop and skip. Keep inputs short (-max_len=2048): every chunk is a file. Seeds:
+// tests/fuzz/corpus/motiongraph_ckplus (see the command in tests/fuzz/CMakeLists.txt).
 #include <unistd.h>
 
 #include <cstddef>
@@ -26,7 +26,8 @@ namespace {
 const fs::path& root() {
   static const fs::path dir = [] {
     std::error_code ec;  // a RAM disk when there is one: the tree is rewritten for every input
-    const fs::path base = fs::is_directory("/dev/shm", ec) ? fs::path("/dev/shm") : fs::temp_directory_path();
+    const fs::path base =
+        fs::is_directory("/dev/shm", ec) ? fs::path("/dev/shm") : fs::temp_directory_path();
     std::string tmpl = (base / "emoface_fuzz_ckplus_XXXXXX").string();
     if (!mkdtemp(tmpl.data())) std::abort();
     std::atexit([] {
@@ -73,7 +74,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     char name[64];
     std::snprintf(name, sizeof name, "%s_%s_%08u_%s.txt", subject, seq, (sel >> 5) + 1u,
                   emotion ? "emotion" : "landmarks");
-    std::ofstream(d / name, std::ios::binary).write(chunk.data() + 1, static_cast<std::streamsize>(chunk.size() - 1));
+    std::ofstream(d / name, std::ios::binary)
+        .write(chunk.data() + 1, static_cast<std::streamsize>(chunk.size() - 1));
   }
   for (int k = 0; k < 2; ++k) {  // stop, labelled only; skip, unlabelled kept
     mg::CkPlusOptions o;

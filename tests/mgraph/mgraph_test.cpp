@@ -1,4 +1,5 @@
-// mgraph end to end: face/parametric generation, shards, --on-error, batch requests, GIF/MP4 output.
+// mgraph end to end: face/parametric generation, shards, --on-error, batch requests, GIF/MP4
+// output.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -33,13 +34,19 @@ class Mgraph : public emoface::test::CliTest {
   // A small face-driven database and its graph, made once for the suite.
   static void SetUpTestSuite() {
     // One directory per process: ctest runs the tests of this suite in parallel processes.
-    shared_ = fs::temp_directory_path() / ("emoface_cli_mgraph_shared_" + std::to_string(::getpid()));
+    shared_ =
+        fs::temp_directory_path() / ("emoface_cli_mgraph_shared_" + std::to_string(::getpid()));
     fs::remove_all(shared_);
     fs::create_directories(shared_);
     const std::string exe = MGRAPH_EXE;
-    const std::string db = (shared_ / "db.json").string(), graph = (shared_ / "graph.json").string();
-    ASSERT_EQ(std::system((exe + " generate --per-label 2 --subjects 4 --out " + db + " 2>/dev/null").c_str()), 0);
-    ASSERT_EQ(std::system((exe + " build --db " + db + " --out " + graph + " 2>/dev/null").c_str()), 0);
+    const std::string db = (shared_ / "db.json").string(),
+                      graph = (shared_ / "graph.json").string();
+    ASSERT_EQ(
+        std::system(
+            (exe + " generate --per-label 2 --subjects 4 --out " + db + " 2>/dev/null").c_str()),
+        0);
+    ASSERT_EQ(std::system((exe + " build --db " + db + " --out " + graph + " 2>/dev/null").c_str()),
+              0);
   }
   static void TearDownTestSuite() { fs::remove_all(shared_); }
   static std::string shared(const std::string& name) { return (shared_ / name).string(); }
@@ -63,7 +70,8 @@ TEST_F(Mgraph, GeneratesFaceDrivenAndParametricDatabases) {
   EXPECT_EQ(face["sequences"][3]["frames"].size(), par["sequences"][3]["frames"].size());
   EXPECT_NE(face["sequences"][3]["frames"][0], par["sequences"][3]["frames"][0]);
   // Orthographic differs from the default perspective; same seed → same file.
-  r = run("generate --per-label 1 --subjects 3 --projection orthographic --out " + path("ortho.json"));
+  r = run("generate --per-label 1 --subjects 3 --projection orthographic --out " +
+          path("ortho.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(slurp(path("ortho.json")), slurp(path("face.json")));
   r = run("generate --per-label 1 --subjects 3 --out " + path("face2.json"));
@@ -102,16 +110,19 @@ TEST_F(Mgraph, GenerateShardsConcatenateToTheWholeRun) {
 
 TEST_F(Mgraph, OnErrorSkipReportsBadSequences) {
   auto doc = nlohmann::json::parse(slurp(shared("db.json")));
-  doc["sequences"][2]["frames"][1][5] = nullptr;           // not a number
-  doc["sequences"][4]["label"] = "boredom";                // unknown label
+  doc["sequences"][2]["frames"][1][5] = nullptr;  // not a number
+  doc["sequences"][4]["label"] = "boredom";       // unknown label
   const std::string bad = write("bad.json", doc.dump());
   auto r = run("build --db " + bad + " --out " + path("g.json"));
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("bad.json: at /sequences/2/frames/1/5: expected a number"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bad.json: at /sequences/2/frames/1/5: expected a number"),
+            std::string::npos)
+      << r.err;
   EXPECT_FALSE(fs::exists(path("g.json")));
   r = run("build --db " + bad + " --on-error skip --out " + path("g.json"));
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("skipped: " + bad + ": at /sequences/2/frames/1/5"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("skipped: " + bad + ": at /sequences/2/frames/1/5"), std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("/sequences/4/label"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("2 record(s) skipped"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(path("g.json")));
@@ -126,7 +137,8 @@ TEST_F(Mgraph, EvalShardsMergeToTheWholeTable) {
   double length_sum = 0, pose_sum = 0, samples = 0, distances = 0;
   for (int i = 0; i < 3; ++i) {
     const std::string csv = path("s" + std::to_string(i) + ".csv");
-    r = run("eval --db " + shared("db.json") + " --thresholds 0.5 --shard " + std::to_string(i) + "/3 --csv " + csv);
+    r = run("eval --db " + shared("db.json") + " --thresholds 0.5 --shard " + std::to_string(i) +
+            "/3 --csv " + csv);
     ASSERT_EQ(r.code, 0) << r.err;
     const auto lines = split_lines(slurp(csv));
     ASSERT_EQ(lines.size(), 2u);
@@ -152,11 +164,13 @@ TEST_F(Mgraph, EvalShardsMergeToTheWholeTable) {
 
 TEST_F(Mgraph, SynthBatchRequestsWithShardsAndSkip) {
   const std::string req = write("req.csv", "id,labels\na,fear;surprise\nb,boredom\nc,happiness\n");
-  auto r = run("synth --graph " + shared("graph.json") + " --requests " + req + " --out " + path("o.json"));
+  auto r = run("synth --graph " + shared("graph.json") + " --requests " + req + " --out " +
+               path("o.json"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("req.csv:3:2:"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("o.json")));
-  r = run("synth --graph " + shared("graph.json") + " --requests " + req + " --on-error skip --out " + path("o.json"));
+  r = run("synth --graph " + shared("graph.json") + " --requests " + req +
+          " --on-error skip --out " + path("o.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("1 request(s) skipped"), std::string::npos) << r.err;
   const auto doc = nlohmann::json::parse(slurp(path("o.json")));
@@ -164,31 +178,37 @@ TEST_F(Mgraph, SynthBatchRequestsWithShardsAndSkip) {
   EXPECT_EQ(doc["sequences"][0]["id"], "a/synth_0_fear");
   EXPECT_EQ(doc["sequences"][2]["id"], "c/synth_0_happiness");
   // Shard 2/3 holds request c only, and it is the same animation as in the whole run.
-  r = run("synth --graph " + shared("graph.json") + " --requests " + req + " --shard 2/3 --out " + path("c.json"));
+  r = run("synth --graph " + shared("graph.json") + " --requests " + req + " --shard 2/3 --out " +
+          path("c.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   const auto c = nlohmann::json::parse(slurp(path("c.json")));
   ASSERT_EQ(c["sequences"].size(), 1u);
   EXPECT_EQ(c["sequences"][0], doc["sequences"][2]);
   // Malformed files.
-  r = run("synth --graph " + shared("graph.json") + " --requests " + write("h.csv", "name,labels\n") + " --out -");
+  r = run("synth --graph " + shared("graph.json") + " --requests " +
+          write("h.csv", "name,labels\n") + " --out -");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("header"), std::string::npos);
-  r = run("synth --graph " + shared("graph.json") + " --requests " + write("e.csv", "") + " --out -");
+  r = run("synth --graph " + shared("graph.json") + " --requests " + write("e.csv", "") +
+          " --out -");
   EXPECT_EQ(r.code, 2);
   r = run("synth --graph " + shared("graph.json") + " --out -");
   EXPECT_EQ(r.code, 1);
-  r = run("synth --graph " + shared("graph.json") + " --labels fear --requests " + req + " --out -");
+  r = run("synth --graph " + shared("graph.json") + " --labels fear --requests " + req +
+          " --out -");
   EXPECT_EQ(r.code, 1);
 }
 
 TEST_F(Mgraph, WritesGifAndMp4) {
   if (!emoface::core::ffmpeg_available()) GTEST_SKIP() << "ffmpeg not installed";
-  auto r = run("synth --graph " + shared("graph.json") + " --labels surprise --out " + path("s.json") +
-               " --video " + path("s.gif") + " --video-width 160 --video-height 120");
+  auto r =
+      run("synth --graph " + shared("graph.json") + " --labels surprise --out " + path("s.json") +
+          " --video " + path("s.gif") + " --video-width 160 --video-height 120");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(slurp(path("s.gif")).substr(0, 6), "GIF89a");
-  r = run("idle --graph " + shared("graph.json") + " --label happiness --duration 1 --out " + path("i.csv") +
-          " --video " + path("i.mp4") + " --video-width 160 --video-height 120 --fps 25");
+  r = run("idle --graph " + shared("graph.json") + " --label happiness --duration 1 --out " +
+          path("i.csv") + " --video " + path("i.mp4") +
+          " --video-width 160 --video-height 120 --fps 25");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string mp4 = slurp(path("i.mp4"));
   ASSERT_GT(mp4.size(), 12u);
@@ -199,8 +219,8 @@ TEST_F(Mgraph, WritesGifAndMp4) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(slurp(path("s2.gif")), slurp(path("s.gif")));
   // Unsupported extension: nothing written.
-  r = run("synth --graph " + shared("graph.json") + " --labels surprise --out " + path("s3.json") + " --video " +
-          path("s.avi"));
+  r = run("synth --graph " + shared("graph.json") + " --labels surprise --out " + path("s3.json") +
+          " --video " + path("s.avi"));
   EXPECT_EQ(r.code, 2);
   EXPECT_FALSE(fs::exists(path("s.avi")));
   EXPECT_FALSE(fs::exists(path("s3.json")));

@@ -25,13 +25,20 @@ muscles::FaceSolver default_solver() {
 // The fuzzyexpr emotion of a motion-graph label (the six of the ESV; thesis §6.1).
 std::optional<fuzzyexpr::Emotion> emotion_of(mg::Label label) {
   switch (label) {
-    case mg::Label::Happiness: return fuzzyexpr::Emotion::Happiness;
-    case mg::Label::Sadness: return fuzzyexpr::Emotion::Sadness;
-    case mg::Label::Disgust: return fuzzyexpr::Emotion::Disgust;
-    case mg::Label::Surprise: return fuzzyexpr::Emotion::Surprise;
-    case mg::Label::Anger: return fuzzyexpr::Emotion::Anger;
-    case mg::Label::Fear: return fuzzyexpr::Emotion::Fear;
-    default: return std::nullopt;
+    case mg::Label::Happiness:
+      return fuzzyexpr::Emotion::Happiness;
+    case mg::Label::Sadness:
+      return fuzzyexpr::Emotion::Sadness;
+    case mg::Label::Disgust:
+      return fuzzyexpr::Emotion::Disgust;
+    case mg::Label::Surprise:
+      return fuzzyexpr::Emotion::Surprise;
+    case mg::Label::Anger:
+      return fuzzyexpr::Emotion::Anger;
+    case mg::Label::Fear:
+      return fuzzyexpr::Emotion::Fear;
+    default:
+      return std::nullopt;
   }
 }
 
@@ -57,13 +64,15 @@ void FaceLandmarkModelOptions::validate() const {
     throw InvalidInput("FaceLandmarkModelOptions: camera_distance must be in [0.2, 100] m");
   if (!(face_size_px > 0.0 && face_size_px <= 1000.0))
     throw InvalidInput("FaceLandmarkModelOptions: face_size_px must be in (0, 1000]");
-  if (!centre_px.allFinite()) throw InvalidInput("FaceLandmarkModelOptions: centre_px must be finite");
+  if (!centre_px.allFinite())
+    throw InvalidInput("FaceLandmarkModelOptions: centre_px must be finite");
 }
 
 // Contempt: EMFACS prototype AU12 + AU14, unilateral (Ekman & Friesen; CK+ criteria, Lucey et al.
 // 2010). Table 2.1 has no buccinator (AU14), so the corner tightening is the risorius pulling the
-// corner back plus a little Orbicularis Oris pressing; AU12 is the zygomatic major. Weights chosen so
-// the raised corner moves about as far as in motiongraph's parametric contempt (docs/motiongraph.md).
+// corner back plus a little Orbicularis Oris pressing; AU12 is the zygomatic major. Weights chosen
+// so the raised corner moves about as far as in motiongraph's parametric contempt
+// (docs/motiongraph.md).
 std::vector<double> contempt_parameters(double intensity) {
   check_intensity(intensity);
   std::vector<double> side(muscles::kSideParameterCount, 0.0);
@@ -87,8 +96,9 @@ FaceLandmarkModel::FaceLandmarkModel(muscles::FaceSolver solver, fuzzyexpr::Engi
   neutral_.resize(kLandmarks, 3);
   for (Eigen::Index i = 0; i < kLandmarks; ++i) {
     const int id = ids[static_cast<std::size_t>(i)];
-    if (id < 0 || id >= v.rows()) throw InvalidInput("face landmark model: iBUG landmark " + std::to_string(i) +
-                                                     " is not a vertex of the mesh");
+    if (id < 0 || id >= v.rows())
+      throw InvalidInput("face landmark model: iBUG landmark " + std::to_string(i) +
+                         " is not a vertex of the mesh");
     neutral_.row(i) = v.row(id);
   }
   centroid_ = neutral_.colwise().mean().transpose();
@@ -128,7 +138,8 @@ Eigen::MatrixXd FaceLandmarkModel::landmarks_3d(mg::Label label, double intensit
   solver_.deform(values, d);
   const std::vector<int>& ids = solver_.rig().ibug68;
   Eigen::MatrixXd out(kLandmarks, 3);
-  for (Eigen::Index i = 0; i < kLandmarks; ++i) out.row(i) = d.vertices.row(ids[static_cast<std::size_t>(i)]);
+  for (Eigen::Index i = 0; i < kLandmarks; ++i)
+    out.row(i) = d.vertices.row(ids[static_cast<std::size_t>(i)]);
   return out;
 }
 
@@ -142,7 +153,8 @@ Eigen::MatrixXd FaceLandmarkModel::project_raw(const Eigen::MatrixXd& p) const {
     double k = 1.0;
     if (options_.projection == Projection::Perspective) {
       const double depth = d - q.z();
-      if (!(depth > 1e-6)) throw NumericalError("face landmark model: a landmark is behind the camera");
+      if (!(depth > 1e-6))
+        throw NumericalError("face landmark model: a landmark is behind the camera");
       k = d / depth;  // 1 at the centroid's depth
     }
     px(i, 0) = pixels_per_unit_ * k * q.x();
@@ -156,15 +168,18 @@ Eigen::MatrixXd FaceLandmarkModel::project(const Eigen::MatrixXd& landmarks_3d,
                                            const mg::Identity& identity) const {
   if (landmarks_3d.rows() != kLandmarks || landmarks_3d.cols() != 3)
     throw InvalidInput("face landmark model: expected 68 by 3 landmarks");
-  if (!landmarks_3d.allFinite()) throw InvalidInput("face landmark model: landmarks must be finite");
+  if (!landmarks_3d.allFinite())
+    throw InvalidInput("face landmark model: landmarks must be finite");
   if (!(identity.scale > 0.0) || !std::isfinite(identity.scale))
     throw InvalidInput("face landmark model: identity scale must be > 0");
   if (!std::isfinite(identity.roll) || !identity.translation.allFinite())
     throw InvalidInput("face landmark model: identity roll and translation must be finite");
-  if (identity.shape.size() != 0 && (identity.shape.rows() != kLandmarks || identity.shape.cols() != 2))
+  if (identity.shape.size() != 0 &&
+      (identity.shape.rows() != kLandmarks || identity.shape.cols() != 2))
     throw InvalidInput("face landmark model: identity shape must be 68 by 2");
-  // Same identity transform as motiongraph::ParametricLandmarkModel: scale and roll about the frame
-  // position of the face centre, then translation and per-person shape offsets.
+  // The identity transform of motiongraph::ParametricLandmarkModel (which turns about its template
+  // origin, 27 px above the centroid): scale and roll about the face centre, then translation and
+  // per-person shape offsets.
   Eigen::MatrixXd rel = project_raw(landmarks_3d);
   rel.rowwise() -= options_.centre_px.transpose();
   const double c = std::cos(identity.roll), s = std::sin(identity.roll);
