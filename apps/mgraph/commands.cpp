@@ -1,14 +1,21 @@
 #include "commands.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
+#include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/cli/cli.hpp"
+#include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/rng.hpp"
+#include "emoface/core/video.hpp"
 #include "emoface/motiongraph/evaluate.hpp"
 #include "emoface/motiongraph/io.hpp"
+#include "emoface/motiongraph/layout.hpp"
 #include "emoface/motiongraph/render.hpp"
 #include "emoface/motiongraph/synthesis.hpp"
 #include "emoface/motiongraph/synthetic.hpp"
@@ -19,9 +26,24 @@ using namespace motiongraph;
 
 namespace {
 
+OnError on_error(const Args& a) {
+  if (a.on_error == "stop") return OnError::Stop;
+  if (a.on_error == "skip") return OnError::Skip;
+  throw cli::UsageError("--on-error: unknown value \"" + a.on_error + "\" (expected stop|skip)");
+}
+
+void print_skipped(const ReadReport& report) {
+  for (const std::string& m : report.skipped) std::cerr << "mgraph: skipped: " << m << "\n";
+  if (!report.skipped.empty()) std::cerr << "mgraph: " << report.skipped.size() << " record(s) skipped\n";
+}
+
 PreparedDatabase load_prepared(const Args& a) {
   if (a.db.empty() == a.ckplus.empty()) throw InvalidInput("give exactly one of --db and --ckplus");
-  const Database db = a.db.empty() ? read_ck_plus(a.ckplus) : read_database(a.db);
+  ReadReport report;
+  CkPlusOptions ck;
+  ck.on_error = on_error(a);
+  const Database db = a.db.empty() ? read_ck_plus(a.ckplus, ck, &report) : read_database(a.db, 30.0, ck.on_error, &report);
+  print_skipped(report);
   LandmarkLayout layout = a.layout.empty() ? (db.landmark_count == 68 ? default_layout()
                                                                       : single_region_layout(db.landmark_count))
                                            : read_layout(a.layout);
@@ -52,6 +74,21 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
   std::vector<Pose> all;
   for (const Sequence& s : seqs) all.insert(all.end(), s.frames.begin(), s.frames.end());
   const std::vector<int> groups = g.landmark_regions();
+  if (!a.video.empty()) {  // GIF / MP4 / MOV / MKV through ffmpeg (core/video.hpp), written atomically
+    core::VideoOptions vo;
+    vo.width = a.video_width;
+    vo.height = a.video_height;
+    vo.fps = a.fps > 0.0 ? a.fps : g.frame_rate;
+    vo.comment = "emoface mgraph";
+    core::VideoWriter video(a.video, vo);
+    const View view = fit_view(all, vo.width, vo.height);
+    for (const Pose& pose : all) {
+      Image img(vo.width, vo.height);
+      draw_pose(img, pose, groups, view, std::max(1.5, vo.width / 256.0));
+      video.add_frame(img.rgb);
+    }
+    video.finish();
+  }
   if (!a.sheet.empty()) {
     std::vector<Pose> shown;
     for (std::size_t f = 0; f < all.size(); f += static_cast<std::size_t>(a.every)) shown.push_back(all[f]);
@@ -86,7 +123,49 @@ int generate(const Args& a) {
   o.sequences_per_label = a.per_label;
   o.subjects = a.subjects;
   o.noise_std = a.noise;
-  write_database(a.out, generate_synthetic_database(ParametricLandmarkModel(), o));
+  const cli::Shard shard = cli::parse_shard(a.shard);
+  std::unique_ptr<LandmarkModel> model;
+  if (a.model == "parametric") {
+    model = std::make_unique<ParametricLandmarkModel>();
+  } else if (a.model == "face") {
+    bridge::FaceLandmarkModelOptions fo;
+    fo.projection = cli::parse_enum<bridge::Projection>(a.projection, bridge::projection_from_string,
+                                                        "--projection", "perspective|orthographic");
+    fo.camera_distance = a.camera_distance;
+    model = std::make_unique<bridge::FaceLandmarkModel>(fo);
+  } else {
+    throw cli::UsageError("--model: unknown value \"" + a.model + "\" (expected face|parametric)");
+  }
+  // Sequence i depends only on (seed, i): shards of a batch are parts of the same database.
+  Database db;
+  db.dimensions = 2;
+  db.landmark_count = 68;
+  db.frame_rate = o.frame_rate;
+  const std::size_t count = synthetic_sequence_count(o);
+  for (std::size_t i = 0; i < count; ++i)
+    if (shard.owns(i)) db.sequences.push_back(synthetic_sequence(*model, o, i));
+  if (db.sequences.empty()) throw InvalidInput("--shard " + a.shard + " owns none of the " + std::to_string(count) + " sequences");
+  if (!a.sheet.empty()) {
+    // First frame of the first sequence, then the peak frame of the first sequence of each label;
+    // colours = regions of the built-in layout (grey: landmarks outside the reduced set).
+    std::vector<int> groups(68, 8);
+    const LandmarkLayout layout = default_layout();
+    for (std::size_t r = 0; r < layout.regions.size(); ++r)
+      for (int i : layout.regions[r].landmarks) groups[static_cast<std::size_t>(i)] = static_cast<int>(r);
+    std::vector<Pose> shown{db.sequences.front().frames.front()};
+    std::vector<Label> seen;
+    for (const Sequence& s : db.sequences)
+      if (std::find(seen.begin(), seen.end(), s.label) == seen.end()) {
+        seen.push_back(s.label);
+        shown.push_back(s.frames.back());
+      }
+    core::write_file_atomic(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
+                                                              a.cell_width * 7 / 8)));
+  }
+  cli::Output out(a.out);
+  const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
+  out.write(csv ? database_to_csv(db) : database_to_json(db));
+  out.commit();
   return cli::kExitOk;
 }
 
@@ -103,26 +182,105 @@ int build(const Args& a) {
   return cli::kExitOk;
 }
 
-int synth(const Args& a) {
-  const MotionGraph g = read_graph(a.graph);
+namespace {
+// One chained animation from neutral: a transition per label (each sink the next source), idle after
+// each when asked. Sequence ids start with `prefix`.
+void synthesize_chain(const Args& a, const MotionGraph& g, const std::vector<std::string>& labels,
+                      std::uint64_t seed, const std::string& prefix, std::vector<Sequence>& seqs) {
   SynthesisOptions o;
-  o.seed = a.seed;
+  o.seed = seed;
   o.vary_duration = a.vary;
   o.replace_probability = a.replace;
   o.path_fraction = a.hint;
   o.smoothing.sigmoid = !a.no_sigmoid;
+  std::vector<Label> parsed;
+  for (const std::string& name : labels) parsed.push_back(label_from_string(name));  // all checked first
+  if (parsed.empty()) throw InvalidInput("no labels");
   SynthesisState state = initial_state(g);
-  std::vector<Sequence> seqs;
-  for (const std::string& name : a.labels) {
-    const Label label = label_from_string(name);
-    seqs.push_back({"synth_" + std::to_string(seqs.size()) + "_" + name, "", label, synthesize(g, state, label, o)});
+  std::vector<Sequence> out;
+  for (std::size_t k = 0; k < parsed.size(); ++k) {
+    const std::string& name = labels[k];
+    out.push_back({prefix + "synth_" + std::to_string(out.size()) + "_" + name, "", parsed[k],
+                   synthesize(g, state, parsed[k], o)});
     if (a.idle_after > 0.0) {
       IdleOptions io;
       io.duration = a.idle_after;
-      io.seed = a.seed;
-      seqs.push_back({"idle_" + std::to_string(seqs.size()) + "_" + name, "", label, idle(g, state, label, io)});
+      io.seed = seed;
+      out.push_back({prefix + "idle_" + std::to_string(out.size()) + "_" + name, "", parsed[k],
+                     idle(g, state, parsed[k], io)});
     }
   }
+  seqs.insert(seqs.end(), out.begin(), out.end());
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t e = s.find(sep, pos);
+    parts.push_back(s.substr(pos, e == std::string::npos ? std::string::npos : e - pos));
+    if (e == std::string::npos) return parts;
+    pos = e + 1;
+  }
+}
+}  // namespace
+
+int synth(const Args& a) {
+  const MotionGraph g = read_graph(a.graph);
+  std::vector<Sequence> seqs;
+  if (!a.requests.empty() && !a.labels.empty()) throw cli::UsageError("give --labels or --requests, not both");
+  if (a.requests.empty()) {
+    if (a.labels.empty()) throw cli::UsageError("give --labels or --requests");
+    synthesize_chain(a, g, a.labels, a.seed, "", seqs);
+    return write_animation(a, g, seqs);
+  }
+  // Batch: CSV with header "id,labels", labels separated by ';'. Request r uses the seed stream r,
+  // so --shard runs produce the same animations as one run.
+  const cli::Shard shard = cli::parse_shard(a.shard);
+  const OnError policy = on_error(a);
+  const std::string text = core::read_file(a.requests);
+  std::vector<std::string> fields;
+  std::size_t line_no = 0, pos = 0, record = 0, skipped = 0;
+  bool header = true;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    std::string err;
+    const std::size_t col = core::split_csv_line(line, fields, &err);
+    if (header) {
+      if (col != 0 || fields.size() != 2 || fields[0] != "id" || fields[1] != "labels")
+        throw FormatError({a.requests, "", line_no, 1}, "header must be \"id,labels\"");
+      header = false;
+      continue;
+    }
+    const std::size_t index = record++;
+    if (!shard.owns(index)) continue;
+    try {
+      if (col != 0) throw FormatError({a.requests, "", line_no, col}, err);
+      if (fields.size() != 2)
+        throw FormatError({a.requests, "", line_no, 1}, "expected 2 fields (id,labels), got " + std::to_string(fields.size()));
+      if (fields[0].empty()) throw FormatError({a.requests, "", line_no, 1}, "empty request id");
+      std::vector<Sequence> mine;
+      try {
+        synthesize_chain(a, g, split(fields[1], ';'), core::derive_seed(a.seed, index), fields[0] + "/", mine);
+      } catch (const InvalidInput& e) {
+        throw FormatError({a.requests, "", line_no, 2}, e.what());
+      }
+      seqs.insert(seqs.end(), mine.begin(), mine.end());
+    } catch (const FormatError& e) {
+      if (policy == OnError::Stop) throw;
+      std::cerr << "mgraph: skipped: " << e.what() << "\n";
+      ++skipped;
+    }
+  }
+  if (header) throw FormatError({a.requests, "", 1, 1}, "empty requests file (no header)");
+  if (skipped) std::cerr << "mgraph: " << skipped << " request(s) skipped\n";
+  if (seqs.empty()) throw InvalidInput("no request produced an animation (shard " + a.shard + ")");
   return write_animation(a, g, seqs);
 }
 
@@ -152,16 +310,25 @@ int eval(const Args& a) {
   for (std::size_t i = 1; i <= a.curve; ++i) thresholds.push_back(0.25 * static_cast<double>(i));
   EvaluationOptions eo;
   eo.graph = g;
-  std::string csv = "threshold,compression_percent,nodes,length_diff_mean,length_diff_std,pose_diff_mean,pose_diff_std\n";
+  const cli::Shard shard = cli::parse_shard(a.shard);
+  eo.shard_index = shard.index;
+  eo.shard_count = shard.count;
+  if (shard.count > 1)
+    std::printf("shard %zu/%zu: samples with index %% %zu == %zu (graphs from the whole database)\n", shard.index,
+                shard.count, shard.count, shard.index);
+  // The sums let rows of shards be merged exactly (motiongraph::merge_rows; docs/motiongraph.md).
+  std::string csv = "threshold,compression_percent,nodes,length_diff_mean,length_diff_std,pose_diff_mean,"
+                    "pose_diff_std,samples,distances,length_sum,length_sum2,pose_sum,pose_sum2\n";
   std::printf("%10s %14s %7s %22s %22s\n", "threshold", "compression %", "nodes", "length diff (frames)",
               "pose diff (px)");
   for (double t : thresholds) {
     const EvaluationRow r = evaluate(data, t, eo);
     std::printf("%10.4f %14.2f %7zu %10.3f +- %-8.3f %10.3f +- %-8.3f\n", t, 100 * r.compression, r.nodes,
                 r.length_mean, r.length_std, r.pose_mean, r.pose_std);
-    char line[256];
-    std::snprintf(line, sizeof line, "%.6g,%.4f,%zu,%.6g,%.6g,%.6g,%.6g\n", t, 100 * r.compression, r.nodes,
-                  r.length_mean, r.length_std, r.pose_mean, r.pose_std);
+    char line[512];
+    std::snprintf(line, sizeof line, "%.6g,%.4f,%zu,%.6g,%.6g,%.6g,%.6g,%zu,%zu,%.17g,%.17g,%.17g,%.17g\n", t,
+                  100 * r.compression, r.nodes, r.length_mean, r.length_std, r.pose_mean, r.pose_std, r.samples,
+                  r.distances, r.length_sum, r.length_sum2, r.pose_sum, r.pose_sum2);
     csv += line;
   }
   std::printf("paper (CK+, 70 sequences): 90%% -> 0.98 +- 1.84 frames, 2.86 +- 2.3 px; 78%% -> 0.071 +- 0.39, "

@@ -8,6 +8,10 @@ namespace emoface::mgraph {
 
 struct Args {
   std::string db, ckplus, layout, graph, out = "-", sheet, plot, frames_dir, idle_label;
+  std::string model = "face", projection = "perspective", video, requests, samples_csv;
+  std::string shard = "0/1", on_error = "stop";
+  double camera_distance = 1.0, fps = 0.0;
+  int video_width = 640, video_height = 490;
   bool no_align = false, no_clean = false, no_reverse = false, vary = false, no_sigmoid = false;
   double lambda = 0.5, sample_threshold = 0.4, merge_threshold = 0.4, target_compression = -1.0;
   double replace = 0.0, hint = 1.0, idle_after = 0.0, duration = 4.0, hop_interval = 1.0, dwell = 0.4;

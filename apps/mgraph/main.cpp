@@ -11,9 +11,9 @@ using namespace emoface;
 int main(int argc, char** argv) {
   CLI::App app{"Facial motion graphs: labelled landmark sequences -> region graphs -> new motion.\n"
                "Example:\n"
-               "  mgraph generate --out db.json\n"
+               "  mgraph generate --out db.json            (face-driven: default face + fuzzyexpr + muscles)\n"
                "  mgraph build --db db.json --out graph.json\n"
-               "  mgraph synth --graph graph.json --labels fear,surprise --out anim.json --sheet anim.png\n"
+               "  mgraph synth --graph graph.json --labels fear,surprise --out anim.json --sheet anim.png --video anim.gif\n"
                "  mgraph idle --graph graph.json --label happiness --duration 4 --out idle.csv\n"
                "  mgraph eval --db db.json --compression 0.5753,0.78,0.90"};
   app.require_subcommand(1);
@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
     c->add_flag("--no-reverse", a.no_reverse, "do not append reversed copies");
     c->add_option("--lambda", a.lambda, "velocity influence of eq. (1)")->capture_default_str();
     c->add_option("--seed", a.seed, "random seed")->capture_default_str();
+    c->add_option("--on-error", a.on_error, "stop|skip sequences with bad data (skip: reported on stderr)")
+        ->capture_default_str();
   };
   auto add_output = [&](CLI::App* c) {
     c->add_option("--out", a.out, "output landmark sequences (.json or .csv; - = JSON on stdout)")
@@ -38,10 +40,23 @@ int main(int argc, char** argv) {
     c->add_option("--columns", a.columns, "contact sheet columns")->capture_default_str();
     c->add_option("--every", a.every, "contact sheet: every n-th frame")->capture_default_str()->check(CLI::PositiveNumber);
     c->add_option("--cell-width", a.cell_width, "contact sheet cell width (px)")->capture_default_str();
+    c->add_option("--video", a.video, "animation of the landmarks: .gif, .mp4, .mov or .mkv (needs ffmpeg)");
+    c->add_option("--video-width", a.video_width, "video frame width (px)")->capture_default_str();
+    c->add_option("--video-height", a.video_height, "video frame height (px)")->capture_default_str();
+    c->add_option("--fps", a.fps, "video frame rate (default: the graph's)");
   };
 
-  auto* gen = app.add_subcommand("generate", "synthetic CK+-like database (parametric 68-point face)");
-  gen->add_option("--out", a.out, "output database (.json or .csv)")->required();
+  auto* gen = app.add_subcommand("generate", "synthetic CK+-like database (68 landmarks, 640x490 px)");
+  gen->add_option("--out", a.out, "output database (.json or .csv; - = JSON on stdout)")->required();
+  gen->add_option("--model", a.model, "face (default face + fuzzyexpr + muscles, projected) | parametric")
+      ->capture_default_str();
+  gen->add_option("--projection", a.projection, "face model: perspective|orthographic")->capture_default_str();
+  gen->add_option("--camera-distance", a.camera_distance, "face model: camera distance (m)")->capture_default_str();
+  gen->add_option("--shard", a.shard, "i/N: only sequences with index % N == i (same values as one run)")
+      ->capture_default_str();
+  gen->add_option("--sheet", a.sheet, "contact sheet PNG: a neutral frame, then one peak per label");
+  gen->add_option("--columns", a.columns, "contact sheet columns")->capture_default_str();
+  gen->add_option("--cell-width", a.cell_width, "contact sheet cell width (px)")->capture_default_str();
   gen->add_option("--seed", a.seed, "random seed")->capture_default_str();
   gen->add_option("--per-label", a.per_label, "sequences per label (7 labels)")->capture_default_str();
   gen->add_option("--subjects", a.subjects, "distinct identities")->capture_default_str();
@@ -58,7 +73,10 @@ int main(int argc, char** argv) {
 
   auto* synth = app.add_subcommand("synth", "synthesize transitions to peaks of the given labels");
   synth->add_option("--graph", a.graph, "motion graph JSON")->required();
-  synth->add_option("--labels", a.labels, "comma-separated labels, chained")->required()->delimiter(',');
+  synth->add_option("--labels", a.labels, "comma-separated labels, chained")->delimiter(',');
+  synth->add_option("--requests", a.requests, "batch: CSV \"id,labels\" (labels separated by ';'), one chain each");
+  synth->add_option("--shard", a.shard, "i/N: only requests with index % N == i")->capture_default_str();
+  synth->add_option("--on-error", a.on_error, "stop|skip bad requests (skip: reported on stderr)")->capture_default_str();
   synth->add_option("--seed", a.seed, "random seed")->capture_default_str();
   synth->add_flag("--vary", a.vary, "sample durations from the peak nodes' distributions (§5.1)");
   synth->add_option("--replace", a.replace, "probability of replacing a path node by a neighbour")
@@ -85,7 +103,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   eval->add_option("--thresholds", a.thresholds, "explicit thresholds instead")->delimiter(',');
   eval->add_option("--curve", a.curve, "also sweep this many thresholds (whole curve)")->capture_default_str();
-  eval->add_option("--csv", a.out, "also write the rows as CSV");
+  eval->add_option("--csv", a.out, "also write the rows as CSV (with the sums that merge shards)");
+  eval->add_option("--shard", a.shard, "i/N: evaluate only samples with index % N == i")->capture_default_str();
 
   if (auto code = cli::parse(app, argc, argv)) return *code;
   return cli::run("mgraph", [&] {

@@ -94,6 +94,48 @@ TEST(Sigmoid, VariableProjectionRecoversParametersAndAgreesWithCeres) {
   EXPECT_THROW(sigmoid_solver_from_string("lm"), InvalidInput);
 }
 
+TEST(Sigmoid, VariableProjectionStartsFromTheDataAndStopsAtTheRmsTolerance) {
+  // Exact sigmoid: the data-driven start (¼, ½, ¾ crossings) is already close, so few iterations.
+  SigmoidCurve truth;
+  truth.slope = 0.35;
+  truth.midpoint = 31.0;
+  truth.offset = Eigen::Vector2d(1.0, -2.0);
+  truth.amplitude = Eigen::Vector2d(-6.0, 9.0);
+  Eigen::VectorXd t(53);
+  for (int i = 0; i < 53; ++i) t[i] = i;
+  const Eigen::MatrixXd y = truth.evaluate(t);
+  SigmoidFitOptions vp;
+  vp.solver = SigmoidSolver::VariableProjection;
+  SigmoidFitReport rep;
+  const SigmoidCurve fit = fit_sigmoid(y, vp, &rep);
+  EXPECT_NEAR(fit.slope, 0.35, 1e-5);
+  EXPECT_NEAR(fit.midpoint, 31.0, 1e-5);
+  EXPECT_LE(rep.iterations, 8);
+  // An early-rising, exponential-looking motion (the minimum lies on the midpoint bound): plain
+  // Ceres and variable projection agree on the cost; with rms_tolerance the fit stops early but its
+  // RMS residual is within a few tolerances of the optimum.
+  Eigen::MatrixXd e(30, 2);
+  for (int i = 0; i < 30; ++i) {
+    e(i, 0) = 4.0 * (1.0 - std::exp(-0.15 * i)) + ((i * 7) % 5 - 2) * 0.05;
+    e(i, 1) = -1.5 * (1.0 - std::exp(-0.15 * i)) + ((i * 3) % 5 - 2) * 0.05;
+  }
+  SigmoidFitReport full, quick, ceres_rep;
+  vp.max_iterations = 200;
+  fit_sigmoid(e, vp, &full);
+  SigmoidFitOptions co;
+  co.max_iterations = 200;
+  fit_sigmoid(e, co, &ceres_rep);
+  EXPECT_NEAR(full.final_cost, ceres_rep.final_cost, 1e-3 * (1.0 + ceres_rep.final_cost));
+  vp.rms_tolerance = 0.01;
+  fit_sigmoid(e, vp, &quick);
+  EXPECT_TRUE(quick.converged);
+  EXPECT_LT(quick.iterations, full.iterations);
+  EXPECT_LT(quick.rms - full.rms, 0.03) << quick.rms << " " << full.rms << " " << quick.iterations << " "
+                                         << full.iterations;
+  vp.rms_tolerance = -1.0;
+  EXPECT_THROW(fit_sigmoid(e, vp), InvalidInput);
+}
+
 TEST(Sigmoid, NoisyDataReducesError) {
   Eigen::MatrixXd y(15, 1);
   for (int i = 0; i < 15; ++i) y(i, 0) = 5.0 / (1.0 + std::exp(-(i - 6.0))) + ((i % 2) ? 0.3 : -0.3);

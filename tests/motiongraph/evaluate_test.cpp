@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "emoface/core/errors.hpp"
 #include "fixtures.hpp"
 
@@ -18,6 +20,39 @@ TEST(Evaluate, NoCompressionReproducesLengths) {
   EXPECT_DOUBLE_EQ(row.length_mean, 0.0);  // each peak node holds one sample: its own length
   EXPECT_DOUBLE_EQ(row.length_std, 0.0);
   EXPECT_LT(row.pose_mean, 1.0);  // only smoothing changes the poses
+}
+
+TEST(Evaluate, ShardsMergeToTheWholeEvaluation) {
+  const double t = 0.6;
+  const EvaluationRow whole = evaluate(test::small_prepared(), t);
+  std::vector<EvaluationRow> parts;
+  EvaluationOptions o;
+  o.shard_count = 3;
+  for (std::size_t i = 0; i < 3; ++i) {
+    o.shard_index = i;
+    parts.push_back(evaluate(test::small_prepared(), t, o));
+  }
+  EXPECT_EQ(parts[0].samples + parts[1].samples + parts[2].samples, test::small_prepared().samples.size());
+  const EvaluationRow merged = merge_rows(parts);
+  EXPECT_EQ(merged.samples, whole.samples);
+  EXPECT_EQ(merged.distances, whole.distances);
+  EXPECT_NEAR(merged.length_mean, whole.length_mean, 1e-12);
+  EXPECT_NEAR(merged.length_std, whole.length_std, 1e-9);
+  EXPECT_NEAR(merged.pose_mean, whole.pose_mean, 1e-12);
+  EXPECT_NEAR(merged.pose_std, whole.pose_std, 1e-9);
+  EXPECT_EQ(merged.nodes, whole.nodes);
+  // Hand check of the merge arithmetic: lengths {1, 3} and {2} → mean 2, population std √(2/3).
+  EvaluationRow a, b;
+  a.samples = 2, a.length_sum = 4, a.length_sum2 = 10;
+  b.samples = 1, b.length_sum = 2, b.length_sum2 = 4;
+  const EvaluationRow m = merge_rows({a, b});
+  EXPECT_DOUBLE_EQ(m.length_mean, 2.0);
+  EXPECT_NEAR(m.length_std, std::sqrt(2.0 / 3.0), 1e-12);
+  b.threshold = 1.0;
+  EXPECT_THROW(merge_rows({a, b}), InvalidInput);
+  EXPECT_THROW(merge_rows({}), InvalidInput);
+  o.shard_index = 3;
+  EXPECT_THROW(evaluate(test::small_prepared(), t, o), InvalidInput);
 }
 
 TEST(Evaluate, ErrorGrowsWithCompression) {

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 #include "fixtures.hpp"
@@ -220,7 +222,9 @@ TEST(GraphJson, RoundTripAndBadInput) {
 class CkPlus : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / "emoface_mg_ckplus_test";
+    // One tree per test: ctest runs the tests of this fixture in parallel processes.
+    root_ = fs::temp_directory_path() /
+            (std::string("emoface_mg_ckplus_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root_);
     write_sequence("S005", "001", 3, 4, "   3.0000000e+00");  // disgust
     write_sequence("S010", "002", 2, 4, "   7.0000000e+00");  // surprise
@@ -274,6 +278,104 @@ TEST_F(CkPlus, BadInput) {
   write_sequence("S013", "001", 2, 4, "   1.0000000e+00");
   std::ofstream(root_ / "Landmarks/S013/001/S013_001_00000001_landmarks.txt", std::ios::app) << "1.0 nan\n";
   EXPECT_THROW(read_ck_plus(root_.string()), FormatError);
+}
+
+TEST_F(CkPlus, SkipReportsBadSequencesAndKeepsTheRest) {
+  write_sequence("S011", "001", 2, 5, "   1.0000000e+00");  // inconsistent landmark count
+  write_sequence("S012", "001", 2, 4, "   9.0000000e+00");  // unknown code
+  write_sequence("S013", "001", 2, 4, "   1.0000000e+00");
+  std::ofstream(root_ / "Landmarks/S013/001/S013_001_00000002_landmarks.txt", std::ios::app) << "1.0 inf\n";
+  CkPlusOptions o;
+  o.on_error = OnError::Skip;
+  ReadReport report;
+  const Database db = read_ck_plus(root_.string(), o, &report);
+  ASSERT_EQ(db.sequences.size(), 2u);
+  EXPECT_EQ(db.sequences[1].id, "S010_002");
+  ASSERT_EQ(report.skipped.size(), 3u);
+  EXPECT_NE(report.skipped[0].find("S011_001_00000001_landmarks.txt:5:1: has 5 landmarks, expected 4"),
+            std::string::npos) << report.skipped[0];
+  EXPECT_NE(report.skipped[1].find("S012_001_00000002_emotion.txt:1:1: emotion code must be 0..7"),
+            std::string::npos) << report.skipped[1];
+  EXPECT_NE(report.skipped[2].find("S013_001_00000002_landmarks.txt:5:2"), std::string::npos) << report.skipped[2];
+}
+
+TEST(CkPlusParsers, GoodAndBadFiles) {
+  const Pose p = parse_ck_landmarks("  1.5e+02   2\n\n 3 4 \r\n", "f.txt");
+  ASSERT_EQ(p.rows(), 2);
+  EXPECT_DOUBLE_EQ(p(0, 0), 150.0);
+  EXPECT_DOUBLE_EQ(p(1, 1), 4.0);
+  EXPECT_EQ(parse_ck_emotion("   5.0000000e+00\n", "e.txt"), Label::Happiness);
+  EXPECT_EQ(parse_ck_emotion("2", "e.txt"), Label::Contempt);
+  auto message = [](auto&& f) {
+    try {
+      f();
+    } catch (const FormatError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message([] { parse_ck_landmarks("", "f.txt"); }), "f.txt:1:1: no landmarks");
+  EXPECT_EQ(message([] { parse_ck_landmarks("1 2\n3\n", "f.txt"); }), "f.txt:2:1: expected 2 number(s), got 1");
+  EXPECT_EQ(message([] { parse_ck_landmarks("1 2 3\n", "f.txt"); }), "f.txt:1:1: expected 2 number(s), got more");
+  EXPECT_EQ(message([] { parse_ck_landmarks("1 nan\n", "f.txt"); }), "f.txt:1:2: expected a finite number, got \"nan\"");
+  EXPECT_EQ(message([] { parse_ck_landmarks("1 1e999\n", "f.txt"); }), "f.txt:1:2: expected a finite number, got \"1e999\"");
+  EXPECT_EQ(message([] { parse_ck_landmarks("1 2x\n", "f.txt"); }), "f.txt:1:2: expected a finite number, got \"2x\"");
+  EXPECT_EQ(message([] { parse_ck_landmarks("1 2\n", "f.txt", 3); }), "f.txt:1:1: has 1 landmarks, expected 3");
+  EXPECT_EQ(message([] { parse_ck_emotion("", "e.txt"); }), "e.txt:1:1: expected one emotion code");
+  EXPECT_EQ(message([] { parse_ck_emotion("1\n2\n", "e.txt"); }), "e.txt:1:1: expected one emotion code");
+  EXPECT_EQ(message([] { parse_ck_emotion("2.5", "e.txt"); }), "e.txt:1:1: emotion code must be 0..7");
+  EXPECT_EQ(message([] { parse_ck_emotion("-1", "e.txt"); }), "e.txt:1:1: emotion code must be 0..7");
+  // Huge: a line with a million numbers stops at the third.
+  std::string huge;
+  for (int i = 0; i < 500000; ++i) huge += "1 ";
+  EXPECT_EQ(message([&] { parse_ck_landmarks(huge, "f.txt"); }), "f.txt:1:1: expected 2 number(s), got more");
+  EXPECT_EQ(message([] { parse_ck_landmarks("1 " + std::string(400, '9') + "\n", "f.txt"); }).substr(0, 45),
+            "f.txt:1:2: expected a finite number, got \"999");
+}
+
+TEST(DatabaseJson, SkipBadSequences) {
+  const std::string good = database_to_json(tiny());
+  // Break sequence 0 (a NaN-like string coordinate) and give sequence 1's duplicate id to a third.
+  nlohmann::json doc = nlohmann::json::parse(good);
+  doc["sequences"][0]["frames"][1][2] = "x";
+  doc["sequences"].push_back(doc["sequences"][1]);
+  doc["sequences"][2]["frames"] = nlohmann::json::array();
+  const std::string text = doc.dump();
+  EXPECT_THROW(parse_database_json(text, "d.json"), FormatError);
+  ReadReport report;
+  const Database db = parse_database_json(text, "d.json", OnError::Skip, &report);
+  ASSERT_EQ(db.sequences.size(), 1u);
+  EXPECT_EQ(db.sequences[0].id, "S001_001");
+  ASSERT_EQ(report.skipped.size(), 2u);
+  EXPECT_EQ(report.skipped[0], "d.json: at /sequences/0/frames/1/2: expected a number");
+  EXPECT_EQ(report.skipped[1], "d.json: at /sequences/2/id: duplicate sequence id \"S001_001\"");
+  EXPECT_EQ(on_error_from_string(to_string(OnError::Skip)), OnError::Skip);
+  EXPECT_THROW(on_error_from_string("ignore"), InvalidInput);
+}
+
+TEST(DatabaseCsv, SkipBadSequences) {
+  const std::string csv = database_to_csv(tiny());
+  // Row 2 (frame 1 of the first sequence) gets a bad number; the second sequence survives whole.
+  std::vector<std::string> lines;
+  std::size_t pos = 0;
+  while (pos < csv.size()) {
+    const std::size_t e = csv.find('\n', pos);
+    lines.push_back(csv.substr(pos, e - pos));
+    pos = e + 1;
+  }
+  lines[2].replace(lines[2].rfind(','), std::string::npos, ",inf");
+  std::string text;
+  for (const auto& l : lines) text += l + "\n";
+  text += "S009_001,S009,fear,0,1,2,3\n";  // too few fields: its own sequence is skipped
+  EXPECT_THROW(parse_database_csv(text, "d.csv"), FormatError);
+  ReadReport report;
+  const Database db = parse_database_csv(text, "d.csv", 30.0, OnError::Skip, &report);
+  ASSERT_EQ(db.sequences.size(), 1u);
+  EXPECT_EQ(db.sequences[0].id, "S001_001");
+  EXPECT_EQ(db.sequences[0].frames.size(), 3u);
+  ASSERT_EQ(report.skipped.size(), 2u);
+  EXPECT_EQ(report.skipped[0].rfind("d.csv:3:", 0), 0u) << report.skipped[0];
+  EXPECT_EQ(report.skipped[1].rfind("d.csv:8:", 0), 0u) << report.skipped[1];
 }
 
 }  // namespace

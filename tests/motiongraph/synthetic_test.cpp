@@ -93,3 +93,24 @@ TEST(SyntheticDatabase, SeededAndBadOptions) {
 
 }  // namespace
 }  // namespace emoface::motiongraph
+
+namespace emoface::motiongraph {
+TEST(Synthetic, SingleSequencesMatchTheDatabase) {
+  SyntheticOptions o;
+  o.sequences_per_label = 2;
+  o.subjects = 3;
+  o.max_frames = 12;
+  const ParametricLandmarkModel model;
+  const Database db = generate_synthetic_database(model, o);
+  ASSERT_EQ(synthetic_sequence_count(o), db.sequences.size());
+  for (std::size_t i : {std::size_t{0}, std::size_t{5}, db.sequences.size() - 1}) {
+    const Sequence s = synthetic_sequence(model, o, i);
+    EXPECT_EQ(s.id, db.sequences[i].id);
+    EXPECT_EQ(s.label, db.sequences[i].label);
+    ASSERT_EQ(s.frames.size(), db.sequences[i].frames.size());
+    for (std::size_t f = 0; f < s.frames.size(); ++f) EXPECT_TRUE(s.frames[f] == db.sequences[i].frames[f]);
+  }
+  EXPECT_EQ(db.sequences[4].id, "S002_002");  // 5th sequence: subject 2's second recording
+  EXPECT_THROW(synthetic_sequence(model, o, db.sequences.size()), InvalidInput);
+}
+}  // namespace emoface::motiongraph

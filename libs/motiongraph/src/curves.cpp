@@ -27,6 +27,8 @@ void SigmoidFitOptions::validate() const {
     throw InvalidInput("sigmoid fit: max_slope must be finite and > 1e-3");
   if (!(function_tolerance > 0.0 && function_tolerance < 1.0))
     throw InvalidInput("sigmoid fit: function_tolerance must be in (0, 1)");
+  if (!(rms_tolerance >= 0.0) || !std::isfinite(rms_tolerance))
+    throw InvalidInput("sigmoid fit: rms_tolerance must be finite and >= 0");
 }
 
 namespace {
@@ -57,28 +59,44 @@ SigmoidSolver sigmoid_solver_from_string(const std::string& name) {
 
 namespace {
 
-// Variable projection (Golub & Pereyra 1973): for a given (slope, midpoint) the offsets and
-// amplitudes are a linear least-squares problem; Levenberg–Marquardt with a forward-difference
-// Jacobian runs on the two remaining parameters.
+// Variable projection (Golub & Pereyra 1973): for a given p = (slope k, midpoint m) the offsets c_j
+// and amplitudes a_j are a linear least-squares problem in closed form (basis 1, σ(t)); Levenberg–
+// Marquardt runs on p alone with Kaufman's (1975) Jacobian J_j = P⊥·a_j·W, where W = ∂σ/∂p =
+// [σ(1−σ)(t−m), −σ(1−σ)k] and P⊥ projects out span{1, σ}. Because r_j ⊥ span{1, σ},
+// Jᵀr = Σ_j a_j·Wᵀr_j is the exact gradient of the reduced cost (same minimum as the full problem),
+// and JᵀJ = (Σ_j a_j²)·(WᵀW − Bᵀ G⁻¹ B) with G = [1 σ]ᵀ[1 σ], B = [1 σ]ᵀW: 2×2 sums, one pass over
+// the data per evaluation, no allocation. The projection is what lets the steps follow the curved
+// valley where midpoint and amplitude trade off (without it LM crawls there).
 struct Projection {
   const Eigen::MatrixXd& y;
   Eigen::Index n;
   mutable std::vector<double> sig;
-  // Fills `r` (column-major T·m residuals) for p = (slope, midpoint); `coef` (2 by m: offsets,
-  // amplitudes) when not null. Closed-form 2×2 normal equations, no allocation in the hot loop.
-  void residual(const double p[2], Eigen::VectorXd& r, Eigen::MatrixXd* coef = nullptr) const {
+  // ½‖r‖² for p = (slope, midpoint); with `jtj`/`g`, also JᵀJ and Jᵀr; with `coef` (2 by m: offsets,
+  // amplitudes) the linear coefficients.
+  double cost(const double p[2], Eigen::Matrix2d* jtj = nullptr, Eigen::Vector2d* g = nullptr,
+              Eigen::MatrixXd* coef = nullptr) const {
     sig.resize(static_cast<std::size_t>(n));
     double s1 = 0.0, s2 = 0.0;
+    Eigen::Matrix2d wtw = Eigen::Matrix2d::Zero(), b = Eigen::Matrix2d::Zero();  // b: rows 1, σ
     for (Eigen::Index t = 0; t < n; ++t) {
       const double v = 1.0 / (1.0 + std::exp(-p[0] * (static_cast<double>(t) - p[1])));
       sig[static_cast<std::size_t>(t)] = v;
       s1 += v;
       s2 += v * v;
+      if (jtj) {
+        const double dv = v * (1.0 - v);
+        const double w0 = dv * (static_cast<double>(t) - p[1]), w1 = -dv * p[0];
+        wtw(0, 0) += w0 * w0;
+        wtw(0, 1) += w0 * w1;
+        wtw(1, 1) += w1 * w1;
+        b(0, 0) += w0, b(0, 1) += w1, b(1, 0) += v * w0, b(1, 1) += v * w1;
+      }
     }
     const double nn = static_cast<double>(n), det = nn * s2 - s1 * s1;
     const bool flat = !(det > 1e-12 * (1.0 + nn * s2));
-    r.resize(n * y.cols());
     if (coef) coef->resize(2, y.cols());
+    if (g) g->setZero();
+    double total = 0.0, a2 = 0.0;
     for (Eigen::Index j = 0; j < y.cols(); ++j) {
       double sy = 0.0, ssy = 0.0;
       for (Eigen::Index t = 0; t < n; ++t) {
@@ -88,11 +106,60 @@ struct Projection {
       // Flat sigmoid (all samples on one side): offsets only.
       const double c = flat ? sy / nn : (s2 * sy - s1 * ssy) / det;
       const double a = flat ? 0.0 : (nn * ssy - s1 * sy) / det;
-      for (Eigen::Index t = 0; t < n; ++t) r[j * n + t] = c + a * sig[static_cast<std::size_t>(t)] - y(t, j);
       if (coef) (*coef)(0, j) = c, (*coef)(1, j) = a;
+      a2 += a * a;
+      double g0 = 0.0, g1 = 0.0;
+      for (Eigen::Index t = 0; t < n; ++t) {
+        const double v = sig[static_cast<std::size_t>(t)];
+        const double r = c + a * v - y(t, j);
+        total += r * r;
+        if (g) {
+          const double dv = v * (1.0 - v);
+          g0 += dv * (static_cast<double>(t) - p[1]) * r;
+          g1 -= dv * p[0] * r;
+        }
+      }
+      if (g) (*g)(0) += a * g0, (*g)(1) += a * g1;
     }
+    if (jtj) {
+      wtw(1, 0) = wtw(0, 1);
+      Eigen::Matrix2d proj = wtw;
+      if (!flat) {
+        Eigen::Matrix2d gi;  // G⁻¹, G = [[n, s1], [s1, s2]]
+        gi << s2, -s1, -s1, nn;
+        gi /= det;
+        proj -= b.transpose() * gi * b;
+      }
+      *jtj = a2 * proj;
+    }
+    return 0.5 * total;
   }
 };
+
+// Starting point from the data: the mean progress u(t) of all columns from the first to the last
+// sample (projection on y_last − y_first) crosses ½ at the midpoint, and a logistic rises from ¼ to
+// ¾ in 2·ln3/slope frames. Falls back to (8/T, (T−1)/2) when the series does not move end to end or
+// never crosses.
+void initial_guess(const Eigen::MatrixXd& y, double max_slope, double p[2]) {
+  const Eigen::Index n = y.rows();
+  p[0] = std::min(8.0 / static_cast<double>(n), max_slope);
+  p[1] = 0.5 * static_cast<double>(n - 1);
+  const Eigen::RowVectorXd first = y.row(0), delta = y.row(n - 1) - first;
+  const double dd = delta.squaredNorm();
+  if (!(dd > 1e-18)) return;
+  auto crossing = [&](double level) {  // first t where u(t) reaches level, linear interpolation
+    double prev = 0.0;
+    for (Eigen::Index t = 1; t < n; ++t) {
+      const double u = (y.row(t) - first).dot(delta) / dd;
+      if (u >= level) return static_cast<double>(t - 1) + (level - prev) / std::max(u - prev, 1e-12);
+      prev = u;
+    }
+    return -1.0;
+  };
+  const double t25 = crossing(0.25), t50 = crossing(0.5), t75 = crossing(0.75);
+  if (t50 >= 0.0) p[1] = t50;
+  if (t25 >= 0.0 && t75 > t25) p[0] = std::clamp(2.0 * std::log(3.0) / (t75 - t25), 1e-3, max_slope);
+}
 
 }  // namespace
 
@@ -106,39 +173,62 @@ SigmoidCurve fit_sigmoid(const Eigen::MatrixXd& values, const SigmoidFitOptions&
   const double lo[2] = {1e-3, -static_cast<double>(n)}, hi[2] = {options.max_slope, 2.0 * static_cast<double>(n)};
   if (options.solver == SigmoidSolver::VariableProjection) {
     const Projection proj{values, n, {}};
-    double p[2] = {std::min(8.0 / static_cast<double>(n), options.max_slope), 0.5 * static_cast<double>(n - 1)};
-    Eigen::VectorXd r, rq, rh;
-    proj.residual(p, r);
-    double cost = 0.5 * r.squaredNorm(), mu = 1e-3;
+    const double nm = static_cast<double>(n * m);
+    double p[2];
+    initial_guess(values, options.max_slope, p);
+    Eigen::Matrix2d jtj;
+    Eigen::Vector2d g;
+    double cost = proj.cost(p, &jtj, &g), mu = 1e-3;
     SigmoidFitReport rep;
     rep.initial_cost = cost;
-    Eigen::MatrixXd jac(r.size(), 2);
     for (rep.iterations = 0; rep.iterations < options.max_iterations; ++rep.iterations) {
-      for (int k = 0; k < 2; ++k) {
-        double q[2] = {p[0], p[1]};
-        const double h = 1e-6 * std::max(1.0, std::abs(p[k]));
-        q[k] += h;
-        proj.residual(q, rh);
-        jac.col(k) = (rh - r) / h;
-      }
-      const Eigen::Matrix2d jtj = jac.transpose() * jac;
-      const Eigen::Vector2d g = jac.transpose() * r;
       if (g.lpNorm<Eigen::Infinity>() < 1e-12 * (1.0 + cost)) {
         rep.converged = true;
         break;
+      }
+      if (options.rms_tolerance > 0.0) {
+        // Gauss–Newton prediction of the decrease still available, ½gᵀ(JᵀJ)⁻¹g (free parameters
+        // only), as an RMS change: below rms_tolerance the curve is settled at that resolution.
+        bool free[2];
+        for (int k = 0; k < 2; ++k) free[k] = !((p[k] <= lo[k] && g[k] > 0.0) || (p[k] >= hi[k] && g[k] < 0.0));
+        double predicted = -1.0;
+        const double det2 = jtj(0, 0) * jtj(1, 1) - jtj(0, 1) * jtj(1, 0);
+        if (free[0] && free[1] && det2 > 1e-300)
+          predicted = 0.5 * g.dot(jtj.inverse() * g);
+        else if (free[0] != free[1]) {
+          const int k = free[0] ? 0 : 1;
+          if (jtj(k, k) > 0.0) predicted = 0.5 * g[k] * g[k] / jtj(k, k);
+        } else if (!free[0] && !free[1]) {
+          predicted = 0.0;
+        }
+        if (predicted >= 0.0 &&
+            std::sqrt(2.0 * cost / nm) - std::sqrt(2.0 * std::max(cost - predicted, 0.0) / nm) < options.rms_tolerance) {
+          rep.converged = true;
+          break;
+        }
       }
       bool improved = false;
       for (int tries = 0; tries < 10 && !improved; ++tries) {
         Eigen::Matrix2d lhs = jtj;
         lhs.diagonal() += mu * (jtj.diagonal().array() + 1e-12).matrix();
-        const Eigen::Vector2d step = -lhs.ldlt().solve(g);
+        Eigen::Vector2d step = -lhs.ldlt().solve(g);
+        // Active bound: a parameter at its bound that the step pushes outwards is held there and the
+        // other one takes its own 1D step (plain clamping crawls along the bound).
+        for (int k = 0; k < 2; ++k) {
+          const bool out = (p[k] <= lo[k] && step[k] < 0.0) || (p[k] >= hi[k] && step[k] > 0.0);
+          if (out) {
+            step[k] = 0.0;
+            step[1 - k] = -g[1 - k] / lhs(1 - k, 1 - k);
+          }
+        }
         double q[2] = {std::clamp(p[0] + step[0], lo[0], hi[0]), std::clamp(p[1] + step[1], lo[1], hi[1])};
-        proj.residual(q, rq);
-        const double cq = 0.5 * rq.squaredNorm();
+        Eigen::Matrix2d jq;
+        Eigen::Vector2d gq;
+        const double cq = proj.cost(q, &jq, &gq);
         if (cq < cost) {
           const double decrease = (cost - cq) / std::max(cost, 1e-300);
           p[0] = q[0], p[1] = q[1], cost = cq, mu = std::max(mu / 3.0, 1e-12), improved = true;
-          r.swap(rq);
+          jtj = jq, g = gq;
           if (decrease < options.function_tolerance) rep.converged = true;
         } else {
           mu *= 4.0;
@@ -150,7 +240,7 @@ SigmoidCurve fit_sigmoid(const Eigen::MatrixXd& values, const SigmoidFitOptions&
       }
     }
     Eigen::MatrixXd coef;
-    proj.residual(p, r, &coef);
+    cost = proj.cost(p, nullptr, nullptr, &coef);
     SigmoidCurve curve;
     curve.slope = p[0];
     curve.midpoint = p[1];
@@ -162,7 +252,9 @@ SigmoidCurve fit_sigmoid(const Eigen::MatrixXd& values, const SigmoidFitOptions&
     if (report) *report = rep;
     return curve;
   }
-  // Start: the step from the first to the last value, centred, slope spanning the series.
+  // Start: the step from the first to the last value, centred, slope spanning the series. (The
+  // data-driven start of the variable-projection path is not used here: on landmarks that hardly move
+  // it lets LM fit the noise with a saturated step, which changes what cleaning keeps.)
   double shape[2] = {std::min(8.0 / static_cast<double>(n), options.max_slope),
                      0.5 * static_cast<double>(n - 1)};
   std::vector<std::array<double, 2>> linear(m);

@@ -11,6 +11,8 @@ namespace emoface::motiongraph {
 void EvaluationOptions::validate() const {
   graph.validate();
   smoothing.validate();
+  if (shard_count < 1 || shard_index >= shard_count)
+    throw InvalidInput("evaluation: need shard_index < shard_count");
 }
 
 namespace {
@@ -41,6 +43,7 @@ EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const Eva
   Stats length, pose;
   const int d = data.dimensions;
   for (std::size_t s = 0; s < data.samples.size(); ++s) {
+    if (s % options.shard_count != options.shard_index) continue;
     const PreparedSample& ps = data.samples[s];
     std::vector<Eigen::MatrixXd> region_frames;
     for (std::size_t r = 0; r < graph.regions.size(); ++r) {
@@ -80,7 +83,29 @@ EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const Eva
   row.length_std = length.std();
   row.pose_mean = pose.mean();
   row.pose_std = pose.std();
+  row.samples = static_cast<std::size_t>(length.n);
+  row.distances = static_cast<std::size_t>(pose.n);
+  row.length_sum = length.sum, row.length_sum2 = length.sum2;
+  row.pose_sum = pose.sum, row.pose_sum2 = pose.sum2;
   return row;
+}
+
+EvaluationRow merge_rows(const std::vector<EvaluationRow>& rows) {
+  if (rows.empty()) throw InvalidInput("merge_rows: no rows");
+  EvaluationRow out = rows.front();
+  Stats length, pose;
+  for (const EvaluationRow& r : rows) {
+    if (r.threshold != out.threshold) throw InvalidInput("merge_rows: rows of different thresholds");
+    length.sum += r.length_sum, length.sum2 += r.length_sum2, length.n += static_cast<double>(r.samples);
+    pose.sum += r.pose_sum, pose.sum2 += r.pose_sum2, pose.n += static_cast<double>(r.distances);
+  }
+  out.samples = static_cast<std::size_t>(length.n);
+  out.distances = static_cast<std::size_t>(pose.n);
+  out.length_sum = length.sum, out.length_sum2 = length.sum2;
+  out.pose_sum = pose.sum, out.pose_sum2 = pose.sum2;
+  out.length_mean = length.mean(), out.length_std = length.std();
+  out.pose_mean = pose.mean(), out.pose_std = pose.std();
+  return out;
 }
 
 double threshold_for_compression(const PreparedDatabase& data, double target, const GraphOptions& options) {

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -164,7 +165,16 @@ std::string database_to_json(const Database& db) {
   return doc.dump() + "\n";
 }
 
-Database parse_database_json(std::string_view text, const std::string& file) {
+std::string to_string(OnError on_error) { return on_error == OnError::Stop ? "stop" : "skip"; }
+
+OnError on_error_from_string(std::string_view name) {
+  if (name == "stop") return OnError::Stop;
+  if (name == "skip") return OnError::Skip;
+  throw InvalidInput("unknown on-error policy \"" + std::string(name) + "\" (known: stop, skip)");
+}
+
+Database parse_database_json(std::string_view text, const std::string& file, OnError on_error,
+                             ReadReport* report) {
   const Json doc = parse(text, file);
   core::check_envelope(doc, "landmark_database", kVersion, file);
   Reader rd{file};
@@ -180,23 +190,33 @@ Database parse_database_json(std::string_view text, const std::string& file) {
     db.landmark_ids = rd.indices(doc["landmark_ids"], "/landmark_ids", std::size_t{1} << 30);
   const Json& seqs = rd.array(doc, "", "sequences");
   const Eigen::Index width = static_cast<Eigen::Index>(db.landmark_count * dims);
+  std::map<std::string, std::size_t> ids;
   for (std::size_t s = 0; s < seqs.size(); ++s) {
     const std::string ptr = "/sequences/" + std::to_string(s);
-    const Json& js = seqs[s];
-    Sequence seq;
-    seq.id = rd.string(js, ptr, "id");
-    seq.subject = rd.string(js, ptr, "subject");
-    seq.label = rd.label(rd.field(js, ptr, "label"), ptr + "/label");
-    const Json& frames = rd.array(js, ptr, "frames");
-    for (std::size_t f = 0; f < frames.size(); ++f) {
-      const std::string fp = ptr + "/frames/" + std::to_string(f);
-      const Eigen::RowVectorXd v = rd.vector(frames[f], fp, width);
-      Pose p(static_cast<Eigen::Index>(db.landmark_count), db.dimensions);
-      for (Eigen::Index i = 0; i < p.rows(); ++i)
-        for (int j = 0; j < db.dimensions; ++j) p(i, j) = v[i * db.dimensions + j];
-      seq.frames.push_back(std::move(p));
+    try {
+      const Json& js = seqs[s];
+      Sequence seq;
+      seq.id = rd.string(js, ptr, "id");
+      if (seq.id.empty()) fail(file, ptr + "/id", "empty sequence id");
+      if (ids.count(seq.id)) fail(file, ptr + "/id", "duplicate sequence id \"" + seq.id + "\"");
+      seq.subject = rd.string(js, ptr, "subject");
+      seq.label = rd.label(rd.field(js, ptr, "label"), ptr + "/label");
+      const Json& frames = rd.array(js, ptr, "frames");
+      if (frames.empty()) fail(file, ptr + "/frames", "a sequence needs at least one frame");
+      for (std::size_t f = 0; f < frames.size(); ++f) {
+        const std::string fp = ptr + "/frames/" + std::to_string(f);
+        const Eigen::RowVectorXd v = rd.vector(frames[f], fp, width);
+        Pose p(static_cast<Eigen::Index>(db.landmark_count), db.dimensions);
+        for (Eigen::Index i = 0; i < p.rows(); ++i)
+          for (int j = 0; j < db.dimensions; ++j) p(i, j) = v[i * db.dimensions + j];
+        seq.frames.push_back(std::move(p));
+      }
+      ids.emplace(seq.id, s);
+      db.sequences.push_back(std::move(seq));
+    } catch (const FormatError& e) {
+      if (on_error == OnError::Stop) throw;
+      if (report) report->skipped.push_back(e.what());
     }
-    db.sequences.push_back(std::move(seq));
   }
   validated(file, [&] { validate(db, 1); return 0; });
   return db;
@@ -228,13 +248,15 @@ std::string database_to_csv(const Database& db) {
   return out;
 }
 
-Database parse_database_csv(std::string_view text, const std::string& file, double frame_rate) {
+Database parse_database_csv(std::string_view text, const std::string& file, double frame_rate, OnError on_error,
+                            ReadReport* report) {
   if (!(frame_rate > 0.0) || !std::isfinite(frame_rate)) throw InvalidInput("CSV frame_rate must be > 0");
   Database db;
   db.frame_rate = frame_rate;
   std::vector<std::string> fields;
   std::size_t line_no = 0, pos = 0, width = 0;
   std::map<std::string, std::size_t> index;
+  std::set<std::string> bad;  // ids of skipped sequences (OnError::Skip)
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
@@ -243,7 +265,12 @@ Database parse_database_csv(std::string_view text, const std::string& file, doub
     ++line_no;
     if (line.empty() || line == "\r") continue;
     std::string err;
-    if (std::size_t col = core::split_csv_line(line, fields, &err)) fail_line(file, line_no, col, err);
+    if (std::size_t col = core::split_csv_line(line, fields, &err)) {
+      if (width == 0 || on_error == OnError::Stop) fail_line(file, line_no, col, err);
+      // Unreadable row: its sequence is caught by the frame numbering of the next row.
+      if (report) report->skipped.push_back(file + ":" + std::to_string(line_no) + ":" + std::to_string(col) + ": " + err);
+      continue;
+    }
     if (width == 0) {  // header
       if (fields.size() < 6 || fields[0] != "sequence" || fields[1] != "subject" || fields[2] != "label" ||
           fields[3] != "frame")
@@ -264,50 +291,64 @@ Database parse_database_csv(std::string_view text, const std::string& file, doub
       width = fields.size();
       continue;
     }
-    if (fields.size() != width)
-      fail_line(file, line_no, std::min(fields.size(), width) + 1,
-                "expected " + std::to_string(width) + " fields, got " + std::to_string(fields.size()));
-    Label label;
+    // A row of a sequence that was skipped: the sequence was reported once, drop the rest quietly.
+    if (!fields.empty() && bad.count(fields[0])) continue;
     try {
-      label = label_from_string(fields[2]);
-    } catch (const InvalidInput& e) {
-      fail_line(file, line_no, 3, e.what());
+      if (fields.size() != width)
+        fail_line(file, line_no, std::min(fields.size(), width) + 1,
+                  "expected " + std::to_string(width) + " fields, got " + std::to_string(fields.size()));
+      Label label;
+      try {
+        label = label_from_string(fields[2]);
+      } catch (const InvalidInput& e) {
+        fail_line(file, line_no, 3, e.what());
+      }
+      auto it = index.find(fields[0]);
+      if (it == index.end()) {
+        if (fields[0].empty()) fail_line(file, line_no, 1, "empty sequence id");
+        it = index.emplace(fields[0], db.sequences.size()).first;
+        db.sequences.push_back({fields[0], fields[1], label, {}});
+      } else if (it->second + 1 != db.sequences.size()) {
+        fail_line(file, line_no, 1, "rows of sequence \"" + fields[0] + "\" are not contiguous");
+      }
+      Sequence& seq = db.sequences[it->second];
+      if (seq.subject != fields[1] || seq.label != label)
+        fail_line(file, line_no, 2, "subject or label changes within sequence \"" + seq.id + "\"");
+      if (fields[3] != std::to_string(seq.frames.size()))
+        fail_line(file, line_no, 4, "expected frame " + std::to_string(seq.frames.size()));
+      Pose p(static_cast<Eigen::Index>(db.landmark_count), db.dimensions);
+      for (std::size_t c = 4; c < width; ++c) {
+        const std::string& s = fields[c];
+        char* stop = nullptr;
+        errno = 0;
+        const double v = std::strtod(s.c_str(), &stop);
+        if (s.empty() || stop != s.c_str() + s.size() || errno == ERANGE || !std::isfinite(v))
+          fail_line(file, line_no, c + 1, "expected a finite number, got \"" + s + "\"");
+        const std::size_t k = c - 4;
+        p(static_cast<Eigen::Index>(k / db.dimensions), static_cast<Eigen::Index>(k % db.dimensions)) = v;
+      }
+  seq.frames.push_back(std::move(p));
+    } catch (const FormatError& e) {
+      if (on_error == OnError::Stop) throw;
+      if (report) report->skipped.push_back(e.what());
+      const std::string id = fields.empty() ? std::string() : fields[0];
+      bad.insert(id);
+      auto it = index.find(id);
+      if (it != index.end() && it->second + 1 == db.sequences.size()) {  // drop its rows so far
+        db.sequences.pop_back();
+        index.erase(it);
+      }
     }
-    auto it = index.find(fields[0]);
-    if (it == index.end()) {
-      if (fields[0].empty()) fail_line(file, line_no, 1, "empty sequence id");
-      it = index.emplace(fields[0], db.sequences.size()).first;
-      db.sequences.push_back({fields[0], fields[1], label, {}});
-    } else if (it->second + 1 != db.sequences.size()) {
-      fail_line(file, line_no, 1, "rows of sequence \"" + fields[0] + "\" are not contiguous");
-    }
-    Sequence& seq = db.sequences[it->second];
-    if (seq.subject != fields[1] || seq.label != label)
-      fail_line(file, line_no, 2, "subject or label changes within sequence \"" + seq.id + "\"");
-    if (fields[3] != std::to_string(seq.frames.size()))
-      fail_line(file, line_no, 4, "expected frame " + std::to_string(seq.frames.size()));
-    Pose p(static_cast<Eigen::Index>(db.landmark_count), db.dimensions);
-    for (std::size_t c = 4; c < width; ++c) {
-      const std::string& s = fields[c];
-      char* stop = nullptr;
-      errno = 0;
-      const double v = std::strtod(s.c_str(), &stop);
-      if (s.empty() || stop != s.c_str() + s.size() || errno == ERANGE || !std::isfinite(v))
-        fail_line(file, line_no, c + 1, "expected a finite number, got \"" + s + "\"");
-      const std::size_t k = c - 4;
-      p(static_cast<Eigen::Index>(k / db.dimensions), static_cast<Eigen::Index>(k % db.dimensions)) = v;
-    }
-    seq.frames.push_back(std::move(p));
   }
   if (width == 0) fail_line(file, 1, 1, "empty CSV (no header)");
   validated(file, [&] { validate(db, 1); return 0; });
   return db;
 }
 
-Database read_database(const std::string& path, double csv_frame_rate) {
+Database read_database(const std::string& path, double csv_frame_rate, OnError on_error, ReadReport* report) {
   const std::string text = core::read_file(path);
-  if (ends_with(path, ".csv")) return parse_database_csv(text, path, csv_frame_rate);
-  return parse_database_json(text, path);
+  if (ends_with(path, ".csv")) return parse_database_csv(text, path, csv_frame_rate, on_error, report);
+  return parse_database_json(text, path, on_error, report);
 }
 
 void write_database(const std::string& path, const Database& db) {
@@ -476,14 +517,18 @@ std::vector<fs::path> sorted_entries(const fs::path& dir, bool directories) {
   return out;
 }
 
+}  // namespace
+
 // Whitespace-separated numbers, `per_line` per non-empty line.
-std::vector<std::vector<double>> read_numbers(const fs::path& path, std::size_t per_line) {
-  const std::string text = core::read_file(path.string(), std::size_t{16} << 20);
+std::vector<std::vector<double>> parse_ck_numbers(std::string_view text, const std::string& file,
+                                                  std::size_t per_line) {
   std::vector<std::vector<double>> rows;
-  std::istringstream in(text);
-  std::string line;
-  std::size_t line_no = 0;
-  while (std::getline(in, line)) {
+  std::size_t line_no = 0, pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string line(text.substr(pos, end - pos));
+    pos = end + 1;
     ++line_no;
     std::istringstream ls(line);
     std::vector<double> row;
@@ -493,25 +538,47 @@ std::vector<std::vector<double>> read_numbers(const fs::path& path, std::size_t 
       errno = 0;
       const double v = std::strtod(tok.c_str(), &stop);
       if (stop != tok.c_str() + tok.size() || errno == ERANGE || !std::isfinite(v))
-        fail_line(path.string(), line_no, row.size() + 1, "expected a finite number, got \"" + tok + "\"");
+        fail_line(file, line_no, row.size() + 1, "expected a finite number, got \"" + tok.substr(0, 40) + "\"");
+      if (row.size() == per_line)
+        fail_line(file, line_no, 1, "expected " + std::to_string(per_line) + " number(s), got more");
       row.push_back(v);
     }
     if (row.empty()) continue;
     if (row.size() != per_line)
-      fail_line(path.string(), line_no, 1,
+      fail_line(file, line_no, 1,
                 "expected " + std::to_string(per_line) + " number(s), got " + std::to_string(row.size()));
     rows.push_back(std::move(row));
   }
   return rows;
 }
-}  // namespace
 
-Database read_ck_plus(const std::string& root, const CkPlusOptions& options) {
-  const fs::path lm_root = fs::path(root) / "Landmarks", emo_root = fs::path(root) / "Emotion";
-  if (!fs::is_directory(lm_root)) throw IoError("CK+ root \"" + root + "\" has no Landmarks/ directory");
+Pose parse_ck_landmarks(std::string_view text, const std::string& file, std::size_t expected) {
+  const auto rows = parse_ck_numbers(text, file, 2);
+  if (rows.empty()) fail_line(file, 1, 1, "no landmarks");
+  if (rows.size() > kMaxLandmarks) fail_line(file, kMaxLandmarks + 1, 1, "too many landmarks");
+  if (expected != 0 && rows.size() != expected)
+    fail_line(file, rows.size(), 1,
+              "has " + std::to_string(rows.size()) + " landmarks, expected " + std::to_string(expected));
+  Pose p(static_cast<Eigen::Index>(rows.size()), 2);
+  for (std::size_t i = 0; i < rows.size(); ++i) p.row(static_cast<Eigen::Index>(i)) << rows[i][0], rows[i][1];
+  return p;
+}
+
+Label parse_ck_emotion(std::string_view text, const std::string& file) {
   // CK+ Emotion codes (Lucey et al. 2010).
   static const Label codes[] = {Label::Neutral, Label::Anger, Label::Contempt, Label::Disgust,
                                 Label::Fear,    Label::Happiness, Label::Sadness, Label::Surprise};
+  const auto rows = parse_ck_numbers(text, file, 1);
+  if (rows.size() != 1) fail_line(file, 1, 1, "expected one emotion code");
+  const double c = rows[0][0];
+  if (c != std::floor(c) || c < 0 || c > 7) fail_line(file, 1, 1, "emotion code must be 0..7");
+  return codes[static_cast<int>(c)];
+}
+
+Database read_ck_plus(const std::string& root, const CkPlusOptions& options, ReadReport* report) {
+  const fs::path lm_root = fs::path(root) / "Landmarks", emo_root = fs::path(root) / "Emotion";
+  if (!fs::is_directory(lm_root)) throw IoError("CK+ root \"" + root + "\" has no Landmarks/ directory");
+  constexpr std::size_t kMaxFile = std::size_t{16} << 20;
   Database db;
   db.dimensions = 2;
   db.frame_rate = options.frame_rate;
@@ -525,35 +592,30 @@ Database read_ck_plus(const std::string& root, const CkPlusOptions& options) {
       seq.subject = subject.filename().string();
       seq.id = seq.subject + "_" + seq_dir.filename().string();
       const fs::path emo_dir = emo_root / subject.filename() / seq_dir.filename();
-      std::vector<fs::path> emo;
-      if (fs::is_directory(emo_dir))
-        for (const fs::path& f : sorted_entries(emo_dir, false))
-          if (ends_with(f.filename().string(), "_emotion.txt")) emo.push_back(f);
-      if (emo.empty() && !options.keep_unlabelled) continue;
-      if (emo.size() > 1) throw FormatError({emo_dir.string(), "", 0, 0}, "more than one emotion file");
-      if (!emo.empty()) {
-        const auto rows = read_numbers(emo[0], 1);
-        if (rows.size() != 1) fail_line(emo[0].string(), 1, 1, "expected one emotion code");
-        const double c = rows[0][0];
-        if (c != std::floor(c) || c < 0 || c > 7) fail_line(emo[0].string(), 1, 1, "emotion code must be 0..7");
-        seq.label = codes[static_cast<int>(c)];
+      try {
+        std::vector<fs::path> emo;
+        if (fs::is_directory(emo_dir))
+          for (const fs::path& f : sorted_entries(emo_dir, false))
+            if (ends_with(f.filename().string(), "_emotion.txt")) emo.push_back(f);
+        if (emo.empty() && !options.keep_unlabelled) continue;
+        if (emo.size() > 1) throw FormatError({emo_dir.string(), "", 0, 0}, "more than one emotion file");
+        if (!emo.empty()) seq.label = parse_ck_emotion(core::read_file(emo[0].string(), kMaxFile), emo[0].string());
+        std::size_t expected = db.landmark_count;  // 0 until the first frame is read
+        for (const fs::path& f : files) {
+          seq.frames.push_back(parse_ck_landmarks(core::read_file(f.string(), kMaxFile), f.string(), expected));
+          expected = static_cast<std::size_t>(seq.frames.back().rows());
+        }
+      } catch (const Error& e) {  // FormatError, IoError
+        if (options.on_error == OnError::Stop) throw;
+        if (report) report->skipped.push_back(e.what());
+        continue;
       }
-      for (const fs::path& f : files) {
-        const auto rows = read_numbers(f, 2);
-        if (rows.empty()) fail_line(f.string(), 1, 1, "no landmarks");
-        if (db.landmark_count == 0) db.landmark_count = rows.size();
-        if (rows.size() != db.landmark_count)
-          fail_line(f.string(), rows.size(), 1,
-                    "has " + std::to_string(rows.size()) + " landmarks, expected " + std::to_string(db.landmark_count));
-        Pose p(static_cast<Eigen::Index>(rows.size()), 2);
-        for (std::size_t i = 0; i < rows.size(); ++i) p.row(static_cast<Eigen::Index>(i)) << rows[i][0], rows[i][1];
-        seq.frames.push_back(std::move(p));
-      }
+      if (db.landmark_count == 0) db.landmark_count = static_cast<std::size_t>(seq.frames.front().rows());
       db.sequences.push_back(std::move(seq));
     }
   }
   if (db.sequences.empty()) throw IoError("CK+ root \"" + root + "\": no labelled landmark sequences found");
-  validate(db, 1);
+  validated(root, [&] { validate(db, 1); return 0; });
   return db;
 }
 

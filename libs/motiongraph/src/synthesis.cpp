@@ -26,6 +26,8 @@ void SmoothingOptions::validate() const {
     throw InvalidInput("smoothing: sigmoid_max_rms must be >= 0");
   if (!(sigmoid_min_range >= 0.0) || !std::isfinite(sigmoid_min_range))
     throw InvalidInput("smoothing: sigmoid_min_range must be >= 0");
+  if (!(sigmoid_tolerance >= 0.0) || !std::isfinite(sigmoid_tolerance))
+    throw InvalidInput("smoothing: sigmoid_tolerance must be >= 0");
 }
 
 void SynthesisOptions::validate() const {
@@ -176,6 +178,7 @@ std::vector<Pose> assemble(const MotionGraph& graph, std::vector<Eigen::MatrixXd
       SigmoidFitOptions fit;
       fit.solver = SigmoidSolver::VariableProjection;
       fit.max_iterations = 12;
+      fit.rms_tolerance = smoothing.sigmoid_tolerance;
       for (Eigen::Index l = 0; l < m.cols() / d; ++l) {
         SigmoidFitReport rep;
         const Eigen::MatrixXd y = m.middleCols(l * d, d);

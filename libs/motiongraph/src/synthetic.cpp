@@ -1,6 +1,8 @@
 #include "emoface/motiongraph/synthetic.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
@@ -187,8 +189,8 @@ void SyntheticOptions::validate() const {
   if (!(frame_rate > 0.0) || !std::isfinite(frame_rate)) throw InvalidInput("synthetic: frame_rate must be > 0");
 }
 
-Database generate_synthetic_database(const LandmarkModel& model, const SyntheticOptions& options) {
-  options.validate();
+namespace {
+std::vector<Identity> identities(const SyntheticOptions& options) {
   core::Rng id_rng(options.seed, 1);
   std::vector<Identity> people(options.subjects);
   for (Identity& p : people) {
@@ -199,39 +201,57 @@ Database generate_synthetic_database(const LandmarkModel& model, const Synthetic
     p.shape.resize(68, 2);
     for (Eigen::Index i = 0; i < p.shape.size(); ++i) p.shape.data()[i] = id_rng.normal(0.0, options.shape_std);
   }
+  return people;
+}
+
+Sequence make_sequence(const LandmarkModel& model, const SyntheticOptions& options,
+                       const std::vector<Identity>& people, std::size_t index) {
+  core::Rng rng(options.seed, 100 + index);
+  const Label label = options.labels[index % options.labels.size()];
+  const std::size_t subject = index % options.subjects;
+  Identity who = people[subject];
+  // Each recording: the head sits a little differently.
+  who.translation += Eigen::Vector2d(rng.normal(0.0, 3.0), rng.normal(0.0, 3.0));
+  const std::size_t n =
+      options.min_frames + static_cast<std::size_t>(rng.uniform_int(options.max_frames - options.min_frames + 1));
+  const double peak = rng.uniform(options.min_intensity, options.max_intensity);
+  Sequence seq;
+  char name[48];
+  std::snprintf(name, sizeof name, "S%03zu", subject + 1);
+  seq.subject = name;
+  // The k-th recording of a subject (sequences are dealt to subjects round-robin).
+  std::snprintf(name, sizeof name, "_%03zu", index / options.subjects + 1);
+  seq.id = seq.subject + name;
+  seq.label = label;
+  for (std::size_t f = 0; f < n; ++f) {
+    const double x = onset_curve(static_cast<double>(f), static_cast<double>(n - 1));
+    Eigen::MatrixXd pose = model.landmarks(label, peak * x, who);
+    for (Eigen::Index i = 0; i < pose.size(); ++i) pose.data()[i] += rng.normal(0.0, options.noise_std);
+    seq.frames.push_back(std::move(pose));
+  }
+  return seq;
+}
+}  // namespace
+
+std::size_t synthetic_sequence_count(const SyntheticOptions& options) {
+  options.validate();
+  return options.sequences_per_label * options.labels.size();
+}
+
+Sequence synthetic_sequence(const LandmarkModel& model, const SyntheticOptions& options, std::size_t index) {
+  if (index >= synthetic_sequence_count(options)) throw InvalidInput("synthetic: sequence index out of range");
+  return make_sequence(model, options, identities(options), index);
+}
+
+Database generate_synthetic_database(const LandmarkModel& model, const SyntheticOptions& options) {
+  const std::size_t count = synthetic_sequence_count(options);
+  const std::vector<Identity> people = identities(options);
   Database db;
   db.dimensions = 2;
   db.landmark_count = 68;
   db.frame_rate = options.frame_rate;
-  std::vector<std::size_t> per_subject(options.subjects, 0);
-  std::size_t index = 0;
-  for (std::size_t k = 0; k < options.sequences_per_label; ++k) {
-    for (Label label : options.labels) {
-      core::Rng rng(options.seed, 100 + index);
-      const std::size_t subject = index % options.subjects;
-      Identity who = people[subject];
-      // Each recording: the head sits a little differently.
-      who.translation += Eigen::Vector2d(rng.normal(0.0, 3.0), rng.normal(0.0, 3.0));
-      const std::size_t n =
-          options.min_frames + static_cast<std::size_t>(rng.uniform_int(options.max_frames - options.min_frames + 1));
-      const double peak = rng.uniform(options.min_intensity, options.max_intensity);
-      Sequence seq;
-      char name[32];
-      std::snprintf(name, sizeof name, "S%03zu", subject + 1);
-      seq.subject = name;
-      std::snprintf(name, sizeof name, "_%03zu", ++per_subject[subject]);
-      seq.id = seq.subject + name;
-      seq.label = label;
-      for (std::size_t f = 0; f < n; ++f) {
-        const double x = onset_curve(static_cast<double>(f), static_cast<double>(n - 1));
-        Eigen::MatrixXd pose = model.landmarks(label, peak * x, who);
-        for (Eigen::Index i = 0; i < pose.size(); ++i) pose.data()[i] += rng.normal(0.0, options.noise_std);
-        seq.frames.push_back(std::move(pose));
-      }
-      db.sequences.push_back(std::move(seq));
-      ++index;
-    }
-  }
+  for (std::size_t index = 0; index < count; ++index)
+    db.sequences.push_back(make_sequence(model, options, people, index));
   return db;
 }
 

@@ -35,6 +35,9 @@ struct SigmoidFitOptions {
   double max_slope = 10.0;    ///< upper bound of slope (1/frame), > 1e-3; lower bound is 1e-3
   double function_tolerance = 1e-6;  ///< stop when the relative cost decrease is below, (0, 1)
                                      ///< (Ceres' default)
+  /// Variable projection only: also stop when the Gauss–Newton model predicts that the RMS residual
+  /// can still drop by less than this (data units, >= 0; 0 = off).
+  double rms_tolerance = 0.0;
   void validate() const;
 };
 

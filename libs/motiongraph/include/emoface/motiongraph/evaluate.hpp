@@ -18,11 +18,18 @@ struct EvaluationRow {
   double length_mean = 0.0, length_std = 0.0;  ///< |synth − original| frames, over samples
   double pose_mean = 0.0, pose_std = 0.0;      ///< landmark distance (units), over all landmarks
                                                ///< of all frames of all samples
+  /// Sums behind the statistics, so rows of shards can be merged exactly (merge_rows).
+  std::size_t samples = 0;       ///< samples evaluated
+  std::size_t distances = 0;     ///< landmark distances measured
+  double length_sum = 0.0, length_sum2 = 0.0, pose_sum = 0.0, pose_sum2 = 0.0;
 };
 
 struct EvaluationOptions {
   GraphOptions graph;           ///< thresholds are overridden per row
   SmoothingOptions smoothing;   ///< smoothing of the re-synthesized samples
+  /// Evaluate only the samples whose index % shard_count == shard_index (the graph is always built
+  /// from the whole database, so shards are parts of one evaluation). shard_index < shard_count.
+  std::size_t shard_index = 0, shard_count = 1;
   void validate() const;
 };
 
@@ -31,6 +38,11 @@ struct EvaluationOptions {
 /// the sample's neutral-to-peak part (synthesized frames resampled to the original length).
 EvaluationRow evaluate(const PreparedDatabase& data, double threshold,
                        const EvaluationOptions& options = {});
+
+/// Merges rows of the same threshold computed on different shards: sums added, statistics recomputed
+/// (mean and population standard deviation over all samples / distances). Throws InvalidInput for an
+/// empty list or different thresholds.
+EvaluationRow merge_rows(const std::vector<EvaluationRow>& rows);
 
 /// Threshold whose graph compression is closest to `target` in [0, 1) (bisection, ~20 builds).
 double threshold_for_compression(const PreparedDatabase& data, double target,

@@ -72,4 +72,10 @@ struct SyntheticOptions {
 /// "S<subject>_<n>" like CK+.
 Database generate_synthetic_database(const LandmarkModel& model, const SyntheticOptions& options = {});
 
+/// Number of sequences generate_synthetic_database makes: sequences_per_label × labels.
+std::size_t synthetic_sequence_count(const SyntheticOptions& options);
+/// Sequence `index` (< synthetic_sequence_count) of generate_synthetic_database, computed alone (its
+/// randomness comes from the stream of its index), so shards of a batch give the same sequences.
+Sequence synthetic_sequence(const LandmarkModel& model, const SyntheticOptions& options, std::size_t index);
+
 }  // namespace emoface::motiongraph

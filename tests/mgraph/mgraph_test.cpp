@@ -1,0 +1,229 @@
+// mgraph end to end: face/parametric generation, shards, --on-error, batch requests, GIF/MP4
+// output.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_harness.hpp"
+#include "emoface/core/video.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Result = emoface::test::CliResult;
+
+std::vector<std::string> split_lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+class Mgraph : public emoface::test::CliTest {
+ protected:
+  Result run(const std::string& args) const { return run_tool(MGRAPH_EXE, args); }
+
+  // A small face-driven database and its graph, made once for the suite.
+  static void SetUpTestSuite() {
+    // One directory per process: ctest runs the tests of this suite in parallel processes.
+    shared_ =
+        fs::temp_directory_path() / ("emoface_cli_mgraph_shared_" + std::to_string(::getpid()));
+    fs::remove_all(shared_);
+    fs::create_directories(shared_);
+    const std::string exe = MGRAPH_EXE;
+    const std::string db = (shared_ / "db.json").string(),
+                      graph = (shared_ / "graph.json").string();
+    ASSERT_EQ(
+        std::system(
+            (exe + " generate --per-label 2 --subjects 4 --out " + db + " 2>/dev/null").c_str()),
+        0);
+    ASSERT_EQ(std::system((exe + " build --db " + db + " --out " + graph + " 2>/dev/null").c_str()),
+              0);
+  }
+  static void TearDownTestSuite() { fs::remove_all(shared_); }
+  static std::string shared(const std::string& name) { return (shared_ / name).string(); }
+  static fs::path shared_;
+};
+fs::path Mgraph::shared_;
+
+TEST_F(Mgraph, GeneratesFaceDrivenAndParametricDatabases) {
+  auto r = run("generate --per-label 1 --subjects 3 --out " + path("face.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto face = nlohmann::json::parse(slurp(path("face.json")));
+  EXPECT_EQ(face["format"], "emoface.landmark_database");
+  EXPECT_EQ(face["landmark_count"], 68);
+  ASSERT_EQ(face["sequences"].size(), 7u);
+  r = run("generate --model parametric --per-label 1 --subjects 3 --out " + path("par.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto par = nlohmann::json::parse(slurp(path("par.json")));
+  ASSERT_EQ(par["sequences"].size(), 7u);
+  // Same sequence ids, labels and lengths (same seed), different faces.
+  EXPECT_EQ(face["sequences"][3]["id"], par["sequences"][3]["id"]);
+  EXPECT_EQ(face["sequences"][3]["frames"].size(), par["sequences"][3]["frames"].size());
+  EXPECT_NE(face["sequences"][3]["frames"][0], par["sequences"][3]["frames"][0]);
+  // Orthographic differs from the default perspective; same seed → same file.
+  r = run("generate --per-label 1 --subjects 3 --projection orthographic --out " +
+          path("ortho.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(path("ortho.json")), slurp(path("face.json")));
+  r = run("generate --per-label 1 --subjects 3 --out " + path("face2.json"));
+  EXPECT_EQ(slurp(path("face2.json")), slurp(path("face.json")));
+  // Bad option values: usage errors, nothing written.
+  r = run("generate --model blendshape --out " + path("x.json"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--model"), std::string::npos) << r.err;
+  r = run("generate --projection fisheye --out " + path("x.json"));
+  EXPECT_EQ(r.code, 1);
+  r = run("generate --camera-distance 0 --out " + path("x.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("camera_distance"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("x.json")));
+}
+
+TEST_F(Mgraph, GenerateShardsConcatenateToTheWholeRun) {
+  const std::string common = "generate --model parametric --per-label 2 --subjects 5 ";
+  ASSERT_EQ(run(common + "--out " + path("all.csv")).code, 0);
+  ASSERT_EQ(run(common + "--shard 0/2 --out " + path("s0.csv")).code, 0);
+  ASSERT_EQ(run(common + "--shard 1/2 --out " + path("s1.csv")).code, 0);
+  const auto all = split_lines(slurp(path("all.csv")));
+  const auto s0 = split_lines(slurp(path("s0.csv"))), s1 = split_lines(slurp(path("s1.csv")));
+  ASSERT_GT(s0.size(), 1u);
+  ASSERT_GT(s1.size(), 1u);
+  EXPECT_EQ(s0[0], all[0]);  // same header
+  EXPECT_EQ(s0.size() + s1.size() - 2, all.size() - 1);
+  std::multiset<std::string> whole(all.begin() + 1, all.end()), parts(s0.begin() + 1, s0.end());
+  parts.insert(s1.begin() + 1, s1.end());
+  EXPECT_EQ(parts, whole);
+  auto r = run(common + "--shard 2/2 --out " + path("bad.csv"));
+  EXPECT_EQ(r.code, 1);
+  r = run(common + "--shard 1of2 --out " + path("bad.csv"));
+  EXPECT_EQ(r.code, 1);
+}
+
+TEST_F(Mgraph, OnErrorSkipReportsBadSequences) {
+  auto doc = nlohmann::json::parse(slurp(shared("db.json")));
+  doc["sequences"][2]["frames"][1][5] = nullptr;  // not a number
+  doc["sequences"][4]["label"] = "boredom";       // unknown label
+  const std::string bad = write("bad.json", doc.dump());
+  auto r = run("build --db " + bad + " --out " + path("g.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bad.json: at /sequences/2/frames/1/5: expected a number"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(path("g.json")));
+  r = run("build --db " + bad + " --on-error skip --out " + path("g.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("skipped: " + bad + ": at /sequences/2/frames/1/5"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("/sequences/4/label"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("2 record(s) skipped"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(path("g.json")));
+  r = run("build --db " + bad + " --on-error ignore --out " + path("g2.json"));
+  EXPECT_EQ(r.code, 1);
+}
+
+TEST_F(Mgraph, EvalShardsMergeToTheWholeTable) {
+  auto r = run("eval --db " + shared("db.json") + " --thresholds 0.5 --csv " + path("all.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("paper (CK+"), std::string::npos);
+  double length_sum = 0, pose_sum = 0, samples = 0, distances = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::string csv = path("s" + std::to_string(i) + ".csv");
+    r = run("eval --db " + shared("db.json") + " --thresholds 0.5 --shard " + std::to_string(i) +
+            "/3 --csv " + csv);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto lines = split_lines(slurp(csv));
+    ASSERT_EQ(lines.size(), 2u);
+    std::vector<std::string> f;
+    std::stringstream ss(lines[1]);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    ASSERT_EQ(f.size(), 13u);
+    samples += std::stod(f[7]);
+    distances += std::stod(f[8]);
+    length_sum += std::stod(f[9]);
+    pose_sum += std::stod(f[11]);
+  }
+  const auto whole = split_lines(slurp(path("all.csv")));
+  std::vector<std::string> w;
+  std::stringstream ss(whole[1]);
+  for (std::string x; std::getline(ss, x, ',');) w.push_back(x);
+  EXPECT_EQ(samples, std::stod(w[7]));
+  EXPECT_EQ(samples, 14.0);
+  EXPECT_EQ(distances, std::stod(w[8]));
+  EXPECT_NEAR(length_sum / samples, std::stod(w[3]), 1e-5);
+  EXPECT_NEAR(pose_sum / distances, std::stod(w[5]), 1e-5);
+}
+
+TEST_F(Mgraph, SynthBatchRequestsWithShardsAndSkip) {
+  const std::string req = write("req.csv", "id,labels\na,fear;surprise\nb,boredom\nc,happiness\n");
+  auto r = run("synth --graph " + shared("graph.json") + " --requests " + req + " --out " +
+               path("o.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("req.csv:3:2:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("o.json")));
+  r = run("synth --graph " + shared("graph.json") + " --requests " + req +
+          " --on-error skip --out " + path("o.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("1 request(s) skipped"), std::string::npos) << r.err;
+  const auto doc = nlohmann::json::parse(slurp(path("o.json")));
+  ASSERT_EQ(doc["sequences"].size(), 3u);  // a: 2 transitions, c: 1
+  EXPECT_EQ(doc["sequences"][0]["id"], "a/synth_0_fear");
+  EXPECT_EQ(doc["sequences"][2]["id"], "c/synth_0_happiness");
+  // Shard 2/3 holds request c only, and it is the same animation as in the whole run.
+  r = run("synth --graph " + shared("graph.json") + " --requests " + req + " --shard 2/3 --out " +
+          path("c.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto c = nlohmann::json::parse(slurp(path("c.json")));
+  ASSERT_EQ(c["sequences"].size(), 1u);
+  EXPECT_EQ(c["sequences"][0], doc["sequences"][2]);
+  // Malformed files.
+  r = run("synth --graph " + shared("graph.json") + " --requests " +
+          write("h.csv", "name,labels\n") + " --out -");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("header"), std::string::npos);
+  r = run("synth --graph " + shared("graph.json") + " --requests " + write("e.csv", "") +
+          " --out -");
+  EXPECT_EQ(r.code, 2);
+  r = run("synth --graph " + shared("graph.json") + " --out -");
+  EXPECT_EQ(r.code, 1);
+  r = run("synth --graph " + shared("graph.json") + " --labels fear --requests " + req +
+          " --out -");
+  EXPECT_EQ(r.code, 1);
+}
+
+TEST_F(Mgraph, WritesGifAndMp4) {
+  if (!emoface::core::ffmpeg_available()) GTEST_SKIP() << "ffmpeg not installed";
+  auto r =
+      run("synth --graph " + shared("graph.json") + " --labels surprise --out " + path("s.json") +
+          " --video " + path("s.gif") + " --video-width 160 --video-height 120");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(path("s.gif")).substr(0, 6), "GIF89a");
+  r = run("idle --graph " + shared("graph.json") + " --label happiness --duration 1 --out " +
+          path("i.csv") + " --video " + path("i.mp4") +
+          " --video-width 160 --video-height 120 --fps 25");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string mp4 = slurp(path("i.mp4"));
+  ASSERT_GT(mp4.size(), 12u);
+  EXPECT_EQ(mp4.substr(4, 4), "ftyp");
+  // Same seed → the same GIF, byte for byte.
+  r = run("synth --graph " + shared("graph.json") + " --labels surprise --out " + path("s2.json") +
+          " --video " + path("s2.gif") + " --video-width 160 --video-height 120");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(path("s2.gif")), slurp(path("s.gif")));
+  // Unsupported extension: nothing written.
+  r = run("synth --graph " + shared("graph.json") + " --labels surprise --out " + path("s3.json") +
+          " --video " + path("s.avi"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_FALSE(fs::exists(path("s.avi")));
+  EXPECT_FALSE(fs::exists(path("s3.json")));
+}
+
+}  // namespace
