@@ -317,7 +317,7 @@ int eval(const Args& a) {
     std::printf("shard %zu/%zu: samples with index %% %zu == %zu (graphs from the whole database)\n", shard.index,
                 shard.count, shard.count, shard.index);
   // The sums let rows of shards be merged exactly (motiongraph::merge_rows; docs/motiongraph.md).
-  std::string csv = "threshold,compression_percent,nodes,length_diff_mean,length_diff_std,pose_diff_mean,"
+  std::string csv = core::csv_stamp() + "threshold,compression_percent,nodes,length_diff_mean,length_diff_std,pose_diff_mean,"
                     "pose_diff_std,samples,distances,length_sum,length_sum2,pose_sum,pose_sum2\n";
   std::printf("%10s %14s %7s %22s %22s\n", "threshold", "compression %", "nodes", "length diff (frames)",
               "pose diff (px)");

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
+#include "emoface/core/csv.hpp"
 #include "emoface/core/video.hpp"
 
 namespace {
@@ -20,9 +21,11 @@ namespace {
 namespace fs = std::filesystem;
 using Result = emoface::test::CliResult;
 
-std::vector<std::string> split_lines(const std::string& s) {
+// Lines of a CSV file we wrote, after checking and dropping its "# emoface x.y.z" stamp line.
+std::vector<std::string> csv_lines(const std::string& s) {
+  EXPECT_EQ(s.rfind(emoface::core::csv_stamp(), 0), 0u) << s.substr(0, 40);
   std::vector<std::string> out;
-  std::istringstream in(s);
+  std::istringstream in(s.substr(s.rfind(emoface::core::csv_stamp(), 0) == 0 ? emoface::core::csv_stamp().size() : 0));
   for (std::string line; std::getline(in, line);) out.push_back(line);
   return out;
 }
@@ -93,8 +96,8 @@ TEST_F(Mgraph, GenerateShardsConcatenateToTheWholeRun) {
   ASSERT_EQ(run(common + "--out " + path("all.csv")).code, 0);
   ASSERT_EQ(run(common + "--shard 0/2 --out " + path("s0.csv")).code, 0);
   ASSERT_EQ(run(common + "--shard 1/2 --out " + path("s1.csv")).code, 0);
-  const auto all = split_lines(slurp(path("all.csv")));
-  const auto s0 = split_lines(slurp(path("s0.csv"))), s1 = split_lines(slurp(path("s1.csv")));
+  const auto all = csv_lines(slurp(path("all.csv")));
+  const auto s0 = csv_lines(slurp(path("s0.csv"))), s1 = csv_lines(slurp(path("s1.csv")));
   ASSERT_GT(s0.size(), 1u);
   ASSERT_GT(s1.size(), 1u);
   EXPECT_EQ(s0[0], all[0]);  // same header
@@ -140,7 +143,7 @@ TEST_F(Mgraph, EvalShardsMergeToTheWholeTable) {
     r = run("eval --db " + shared("db.json") + " --thresholds 0.5 --shard " + std::to_string(i) +
             "/3 --csv " + csv);
     ASSERT_EQ(r.code, 0) << r.err;
-    const auto lines = split_lines(slurp(csv));
+    const auto lines = csv_lines(slurp(csv));
     ASSERT_EQ(lines.size(), 2u);
     std::vector<std::string> f;
     std::stringstream ss(lines[1]);
@@ -151,7 +154,7 @@ TEST_F(Mgraph, EvalShardsMergeToTheWholeTable) {
     length_sum += std::stod(f[9]);
     pose_sum += std::stod(f[11]);
   }
-  const auto whole = split_lines(slurp(path("all.csv")));
+  const auto whole = csv_lines(slurp(path("all.csv")));
   std::vector<std::string> w;
   std::stringstream ss(whole[1]);
   for (std::string x; std::getline(ss, x, ',');) w.push_back(x);

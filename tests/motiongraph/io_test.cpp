@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "emoface/core/csv.hpp"
+
 #include <filesystem>
 #include <fstream>
 
@@ -13,6 +15,13 @@
 
 namespace emoface::motiongraph {
 namespace {
+
+// A CSV database we wrote, after checking and dropping its "# emoface x.y.z" stamp line (so line numbers in
+// the expectations below count from the header, as in a hand-written file).
+std::string unstamped(const std::string& csv) {
+  EXPECT_EQ(csv.rfind(core::csv_stamp(), 0), 0u) << csv.substr(0, 40);
+  return csv.rfind(core::csv_stamp(), 0) == 0 ? csv.substr(core::csv_stamp().size()) : csv;
+}
 
 namespace fs = std::filesystem;
 
@@ -65,10 +74,11 @@ TEST(DatabaseJson, RoundTrip) {
 TEST(DatabaseCsv, RoundTrip) {
   for (int dims : {2, 3}) {
     const Database db = tiny(dims);
-    const std::string text = database_to_csv(db);
+    const std::string text = unstamped(database_to_csv(db));
     EXPECT_EQ(text.substr(0, 40), dims == 2 ? "sequence,subject,label,frame,x0,y0,x1,y1"
                                             : "sequence,subject,label,frame,x0,y0,z0,x1");
     expect_equal(parse_database_csv(text, "t.csv", 25.0), db);
+    expect_equal(parse_database_csv(database_to_csv(db), "t.csv", 25.0), db);  // with the stamp
   }
 }
 
@@ -114,7 +124,7 @@ TEST(DatabaseJson, BadInput) {
 }
 
 TEST(DatabaseCsv, BadInput) {
-  const std::string good = database_to_csv(tiny());
+  const std::string good = unstamped(database_to_csv(tiny()));
   expect_format_error("", "empty", true);
   expect_format_error("a,b,c\n", "header", true);
   expect_format_error("sequence,subject,label,frame,x0,y0,x2,y1\n", "x1", true);
@@ -354,7 +364,7 @@ TEST(DatabaseJson, SkipBadSequences) {
 }
 
 TEST(DatabaseCsv, SkipBadSequences) {
-  const std::string csv = database_to_csv(tiny());
+  const std::string csv = unstamped(database_to_csv(tiny()));
   // Row 2 (frame 1 of the first sequence) gets a bad number; the second sequence survives whole.
   std::vector<std::string> lines;
   std::size_t pos = 0;

@@ -30,6 +30,13 @@ TEST(Render, PngDecodesBackToThePixels) {
   ASSERT_EQ(uncompress(reinterpret_cast<Bytef*>(raw.data()), &size,
                        reinterpret_cast<const Bytef*>(png.data() + idat + 4), len), Z_OK);
   ASSERT_EQ(size, raw.size());
+  // Undo the row filters (0 None or 1 Sub, PNG spec §9.2) to get the pixels back.
+  for (int y = 0; y < 3; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * 16;
+    ASSERT_TRUE(raw[row] == 0 || raw[row] == 1) << "filter " << int(raw[row]);
+    if (raw[row] == 1)
+      for (std::size_t x = 3; x < 15; ++x) raw[row + 1 + x] = static_cast<char>(raw[row + 1 + x] + raw[row + 1 + x - 3]);
+  }
   EXPECT_EQ(std::uint8_t(raw[2 * 16 + 1 + 3]), 0x10);
   EXPECT_EQ(std::uint8_t(raw[2 * 16 + 1 + 5]), 0x30);
   EXPECT_EQ(std::uint8_t(raw[1]), 255);

@@ -226,7 +226,7 @@ Database parse_database_json(std::string_view text, const std::string& file, OnE
 std::string database_to_csv(const Database& db) {
   validate(db, 1);
   static const char* axes[] = {"x", "y", "z"};
-  std::string out = "sequence,subject,label,frame";
+  std::string out = core::csv_stamp() + "sequence,subject,label,frame";
   for (std::size_t i = 0; i < db.landmark_count; ++i)
     for (int j = 0; j < db.dimensions; ++j) out += "," + std::string(axes[j]) + std::to_string(i);
   out += "\n";
@@ -264,6 +264,7 @@ Database parse_database_csv(std::string_view text, const std::string& file, doub
     pos = end + 1;
     ++line_no;
     if (line.empty() || line == "\r") continue;
+    if (width == 0 && core::is_csv_comment(line)) continue;  // "# emoface x.y.z" stamp
     std::string err;
     if (std::size_t col = core::split_csv_line(line, fields, &err)) {
       if (width == 0 || on_error == OnError::Stop) fail_line(file, line_no, col, err);

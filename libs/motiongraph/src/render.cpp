@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include <zlib.h>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/png.hpp"
 
 namespace emoface::motiongraph {
 
@@ -163,45 +163,11 @@ Image plot_trajectories(const std::vector<Pose>& frames, const std::vector<int>&
   return plot_series(series, width, height);
 }
 
-namespace {
-void put32(std::string& out, std::uint32_t v) {
-  for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<char>((v >> s) & 0xff));
-}
-void chunk(std::string& out, const char* type, const std::string& data) {
-  put32(out, static_cast<std::uint32_t>(data.size()));
-  const std::string body = std::string(type, 4) + data;
-  out += body;
-  put32(out, static_cast<std::uint32_t>(crc32(0L, reinterpret_cast<const Bytef*>(body.data()),
-                                              static_cast<uInt>(body.size()))));
-}
-}  // namespace
-
 std::string encode_png(const Image& image) {
   if (image.width < 1 || image.height < 1 ||
       image.rgb.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3)
     throw InvalidInput("encode_png: inconsistent image");
-  std::string raw;
-  raw.reserve(image.rgb.size() + static_cast<std::size_t>(image.height));
-  const std::size_t stride = static_cast<std::size_t>(image.width) * 3;
-  for (int y = 0; y < image.height; ++y) {
-    raw.push_back('\0');  // filter: none
-    raw.append(reinterpret_cast<const char*>(image.rgb.data()) + static_cast<std::size_t>(y) * stride, stride);
-  }
-  uLongf size = compressBound(static_cast<uLong>(raw.size()));
-  std::string z(size, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(z.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
-                static_cast<uLong>(raw.size()), 9) != Z_OK)
-    throw Error("encode_png: zlib compression failed");
-  z.resize(size);
-  std::string out("\x89PNG\r\n\x1a\n", 8);
-  std::string ihdr;
-  put32(ihdr, static_cast<std::uint32_t>(image.width));
-  put32(ihdr, static_cast<std::uint32_t>(image.height));
-  ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8-bit RGB, deflate, no filter, no interlace
-  chunk(out, "IHDR", ihdr);
-  chunk(out, "IDAT", z);
-  chunk(out, "IEND", "");
-  return out;
+  return core::encode_png(image.width, image.height, image.rgb);  // with the tEXt "Software" stamp
 }
 
 }  // namespace emoface::motiongraph
