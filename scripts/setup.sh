@@ -14,7 +14,7 @@ PACKAGES=(
   libpng-dev zlib1g-dev             # PNG output (facemesh renders, parlee/channels charts, motiongraph sheets)
   libtinygltf-dev                   # facemesh: animated glTF export
   libespeak-ng-dev espeak-ng-data libpugixml-dev   # channels / talkinghead: speech, markup
-  ffmpeg                            # facerender / talkinghead: MP4 from rendered frames
+  ffmpeg                            # core::VideoWriter: facerender, obie, mgraph, mindmap crowd videos
   liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
 )
 
