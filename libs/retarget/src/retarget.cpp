@@ -73,7 +73,12 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
   if (rig.retarget_landmarks.size() < 3) throw InvalidInput("the source rig needs at least three retarget landmarks");
   const int source_top = landmark_vertex(rig, "top_of_head");
   const Eigen::Vector3d top = landmark_position(source, "top_of_head"), nose = landmark_position(source, "nose_tip");
-  r.alignment = align_to_frame(target, top, nose, options.align);
+  r.alignment = align_to_frame(target, source.mesh, top, nose, options.align);
+  const auto& ar = r.alignment.report;
+  if (options.align.mode == AlignMode::Auto && ar.confidence < options.align.min_confidence)
+    throw InvalidInput("cannot orient the target reliably (alignment confidence " + std::to_string(ar.confidence) + " < " +
+                       std::to_string(options.align.min_confidence) + "; " + ar.message +
+                       "): give --up/--front hints, or --align axes if the mesh is already axis-aligned");
   r.aligned_target = target;
   r.aligned_target.vertices = r.alignment.apply(target.vertices);
   const auto found = detect_landmarks(r.aligned_target, options.detected);
