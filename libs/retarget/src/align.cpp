@@ -302,6 +302,7 @@ struct Matcher {
   int stride;
   const facemesh::Vertices* target_vertices = nullptr;  // normalised used vertices of the target
   Eigen::Vector3d source_top = Eigen::Vector3d::Zero(), source_nose = Eigen::Vector3d::Zero();  // normalised
+  double source_bottom = -std::numeric_limits<double>::infinity();  // lowest source sample − margin, normalised
   // Cue (thesis §3.2.1 read backwards): in the right pose the target's highest vertex (top of head)
   // and most forward vertex (nose tip) land where the source's are. Sum of both distances.
   double landmark_offset(const Eigen::Matrix3d& r, double scale, const Eigen::Vector3d& t) const {
@@ -338,17 +339,20 @@ struct Matcher {
     for (Eigen::Index i = 0; i < target.rows(); i += stride) {
       double dd = 0;
       const Eigen::Vector3d x = scale * (r * target.row(i).transpose()) + t;
+      if (x.y() < source_bottom) continue;  // neck and shoulders below the source: not matched
       const int j = source_index.nearest(x, dd);
       d1.push_back(surface_gap(x - Eigen::Vector3d(source.row(j)), source_normals.row(j)));
       p1.emplace_back(static_cast<int>(i), j);
     }
     for (Eigen::Index j = 0; j < source.rows(); j += stride) {
+      if (source(j, 1) < source_bottom) continue;
       double dd = 0;
       const Eigen::Vector3d x = r.transpose() * (source.row(j).transpose() - t) / scale;
       const int i = target_index.nearest(x, dd);
       d2.push_back(scale * surface_gap(x - Eigen::Vector3d(target.row(i)), target_normals.row(i)));
       p2.emplace_back(i, static_cast<int>(j));
     }
+    if (d1.empty()) return std::numeric_limits<double>::infinity();
     if (pairs) {
       pairs->clear();
       const double t1 = trim_threshold(d1), t2 = trim_threshold(d2);
@@ -486,6 +490,7 @@ Eigen::Matrix3d auto_rotation(const facemesh::Mesh& target, const facemesh::Mesh
   // nose tip minus one radius (no neck).
   for (Eigen::Index j = 0; j < s.points.rows(); j += coarse.stride)
     if (s.points(j, 2) > 0.3 && s.points(j, 1) > coarse.source_nose.y() - 1.0) coarse.source_front.push_back(static_cast<int>(j));
+  coarse.source_bottom = s.points.col(1).minCoeff() - 0.1;
   Matcher fine = coarse;
   fine.stride = stride;
   const std::optional<Eigen::Vector3d> hint_up = options.up ? std::optional<Eigen::Vector3d>(axis_vector(*options.up)) : std::nullopt;
@@ -601,13 +606,22 @@ Alignment align_to_frame(const facemesh::Mesh& target, const facemesh::Mesh& sou
   } else {
     a.report.message = "axes given: up " + to_string(options.up.value_or(Axis::PosY)) + ", front " + to_string(options.front.value_or(Axis::PosZ));
   }
+  place_in_frame(a, target, source_top, source_nose, options.scale);
+  return a;
+}
+
+void place_in_frame(Alignment& a, const facemesh::Mesh& target, const Eigen::Vector3d& source_top,
+                    const Eigen::Vector3d& source_nose, bool scale) {
+  facemesh::Mesh rotated = target;
+  rotated.vertices = target.vertices * a.rotation.transpose();
+  const auto lm = detect_landmarks(rotated, {"top_of_head", "nose_tip"});
+  const Eigen::Vector3d top = rotated.vertices.row(lm[0].vertex), nose = rotated.vertices.row(lm[1].vertex);
   const double source_h = source_top.y() - source_nose.y();
   if (!(source_h > 0.0)) throw InvalidInput("align_to_frame: the source nose tip is not below its top of head");
-  if (options.scale) a.scale = source_h / (top.y() - nose.y());
+  a.scale = scale ? source_h / (top.y() - nose.y()) : 1.0;
   if (!std::isfinite(a.scale) || !(a.scale > 0.0)) throw InvalidInput("align_to_frame: degenerate target (cannot determine its scale)");
   a.translation = Eigen::Vector3d(source_top.x() - a.scale * top.x(), source_top.y() - a.scale * top.y(),
                                   source_nose.z() - a.scale * nose.z());
-  return a;
 }
 
 }  // namespace emoface::retarget

@@ -31,6 +31,7 @@ std::string format_report(const RetargetResult& r, bool include_time) {
   a["top_on_plane"] = ar.top_on_plane;
   a["hints_used"] = ar.hints_used;
   a["snapped"] = ar.snapped;
+  a["pitch_correction_deg"] = ar.pitch_correction_deg;
   a["message"] = ar.message;
   doc["length_scale"] = r.length_scale;
   auto& lm = doc["landmarks"];

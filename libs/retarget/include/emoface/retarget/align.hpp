@@ -93,6 +93,9 @@ struct AlignReport {
   bool top_on_plane = true;   ///< the highest-y vertex lies within 10 % of the width from the plane
   bool hints_used = false;    ///< up/front restricted the search
   bool snapped = false;       ///< the estimate was within snap_degrees of an axis-aligned frame and replaced by it
+  /// Pitch (rotation about the thesis x axis, degrees) added by retarget_face's search on the initial
+  /// error (RetargetOptions::pitch_search_degrees); 0 when not searched.
+  double pitch_correction_deg = 0.0;
   /// min(symmetry_margin, 2·orientation_margin) clamped to [0, 1], halved for each failed cue.
   double confidence = 1.0;
   std::string message;        ///< one line: which cues decided
@@ -127,6 +130,11 @@ std::vector<DetectedLandmark> detect_landmarks(const facemesh::Mesh& mesh,
 /// top and nose. A low confidence is reported, not thrown (see AlignOptions::min_confidence).
 Alignment align_to_frame(const facemesh::Mesh& target, const facemesh::Mesh& source, const Eigen::Vector3d& source_top,
                          const Eigen::Vector3d& source_nose, const AlignOptions& options = {});
+
+/// Sets a.scale and a.translation for a.rotation (the rule of align_to_frame: top-of-head to nose-tip
+/// height as the source's, top of head on the source's centreline and height, nose at its depth).
+void place_in_frame(Alignment& a, const facemesh::Mesh& target, const Eigen::Vector3d& source_top,
+                    const Eigen::Vector3d& source_nose, bool scale = true);
 
 /// `count` area-weighted random points on the surface (#count by 3), stratified over the cumulative
 /// area and seeded: the same mesh and seed give the same points, and a rotated copy gives the rotated

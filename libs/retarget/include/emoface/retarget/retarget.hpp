@@ -61,6 +61,12 @@ struct RetargetOptions {
   /// default 0 (off): on the MakeHuman head a weight of 1 pulled the mouth corners down (docs/retarget.md).
   double prior_weight = 0.0;
   RefineOptions refine;
+  /// Beyond the thesis: with AlignMode::Auto, the alignment's pitch (about the thesis x axis) is
+  /// corrected within ±this many degrees (2° steps, then 0.5°) to minimise the error E (§3.5) of the
+  /// source deformed by the RBF on the detected landmarks alone (§3.3). The shape matching of
+  /// align_to_frame finds the left-right axis and up/front reliably, but its pitch follows the overall
+  /// head shape (a neck, a long jaw); E measures what the fit needs. [0, 60]; 0 = off.
+  double pitch_search_degrees = 30.0;
   void validate() const;
 };
 
