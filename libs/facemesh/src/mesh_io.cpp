@@ -2,13 +2,17 @@
 #include "emoface/facemesh/mesh_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
+#include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/ImporterT.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -43,7 +47,106 @@ struct MuteOpenMesh {
   ~MuteOpenMesh() { ::omerr().enable(); ::omlog().enable(); }
 };
 
+// Records the polygons as the file gives them (reader vertex handles), before OpenMesh's halfedge
+// structure splits the ones it cannot add (inconsistent winding) onto duplicated vertices.
+class RecordingImporter : public OpenMesh::IO::ImporterT<OmMesh> {
+ public:
+  using Base = OpenMesh::IO::ImporterT<OmMesh>;
+  explicit RecordingImporter(OmMesh& mesh) : Base(mesh) {}
+  OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& p) override { return record(Base::add_vertex(p)); }
+  OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3d& p) override { return record(Base::add_vertex(p)); }
+  OpenMesh::VertexHandle add_vertex() override { return record(Base::add_vertex()); }
+  OpenMesh::FaceHandle add_face(const OpenMesh::IO::BaseImporter::VHandles& ids) override {
+    const auto fh = Base::add_face(ids);
+    if (fh.is_valid()) {
+      polygons.emplace_back();
+      for (const auto& vh : ids) polygons.back().push_back(vh.idx());
+    }
+    return fh;
+  }
+  std::vector<int> reader_vertices;           // OpenMesh handles created by the file reader, in order
+  std::vector<std::vector<int>> polygons;     // accepted polygons, reader handles
+ private:
+  OpenMesh::VertexHandle record(OpenMesh::VertexHandle vh) {
+    reader_vertices.push_back(vh.idx());
+    return vh;
+  }
+};
+
+std::size_t count_obj_faces(const std::string& text) {
+  std::size_t declared_faces = 0;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::size_t s = pos;
+    while (s < end && (text[s] == ' ' || text[s] == '\t')) ++s;
+    if (s + 1 < end && text[s] == 'f' && (text[s + 1] == ' ' || text[s + 1] == '\t')) ++declared_faces;
+    pos = end + 1;
+  }
+  return declared_faces;
+}
+
 }  // namespace
+
+Mesh read_mesh(const std::string& path, const MeshReadOptions& options, MeshReadReport* report) {
+  if (!options.repair_orientation) {
+    Mesh m = read_mesh(path);
+    if (report) *report = MeshReadReport{};
+    return m;
+  }
+  const std::string ext = extension(path);
+  SourceLocation where;
+  where.file = path;
+  if (!known_extension(ext)) throw FormatError(where, "unknown mesh extension '" + ext + "' (use .obj, .ply or .off)");
+  if (!std::filesystem::is_regular_file(path)) throw IoError(path + ": cannot open mesh file");
+  const std::string text = core::read_file(path);
+  OmMesh om;
+  om.request_vertex_status();
+  om.request_face_status();
+  om.request_edge_status();
+  RecordingImporter importer(om);
+  bool ok = false;
+  {
+    MuteOpenMesh mute;
+    OpenMesh::IO::Options opt;
+    ok = OpenMesh::IO::IOManager().read(path, importer, opt);
+  }
+  if (!ok) throw FormatError(where, "OpenMesh could not parse the mesh");
+  if (ext == ".obj") {
+    const std::size_t declared = count_obj_faces(text);
+    if (importer.polygons.size() != declared)
+      throw FormatError(where, "the file declares " + std::to_string(declared) + " faces but only " +
+                                   std::to_string(importer.polygons.size()) + " are valid (repeated or out-of-range vertex ids)");
+  }
+  std::vector<int> index(om.n_vertices(), -1);
+  Mesh mesh;
+  mesh.vertices.resize(static_cast<long>(importer.reader_vertices.size()), 3);
+  for (std::size_t i = 0; i < importer.reader_vertices.size(); ++i) {
+    const int h = importer.reader_vertices[i];
+    index[static_cast<std::size_t>(h)] = static_cast<int>(i);
+    const auto& p = om.point(OpenMesh::VertexHandle(h));
+    mesh.vertices.row(static_cast<long>(i)) << p[0], p[1], p[2];
+  }
+  std::vector<std::array<int, 3>> tris;
+  for (const auto& poly : importer.polygons)
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+      tris.push_back({index[static_cast<std::size_t>(poly[0])], index[static_cast<std::size_t>(poly[k])],
+                      index[static_cast<std::size_t>(poly[k + 1])]});
+  mesh.faces.resize(static_cast<long>(tris.size()), 3);
+  for (std::size_t f = 0; f < tris.size(); ++f) mesh.faces.row(static_cast<long>(f)) << tris[f][0], tris[f][1], tris[f][2];
+  if (mesh.faces.rows() == 0) throw FormatError(where, "mesh has no triangles");
+  if (!mesh.vertices.allFinite()) validate_mesh(mesh, path);  // names the bad vertex
+  OrientationReport orientation;
+  try {
+    orientation = orient_consistently(mesh);
+  } catch (const InvalidInput& e) {
+    throw FormatError(where, std::string(e.what()).substr(std::string("orient_consistently: ").size()));
+  }
+  validate_mesh(mesh, path);
+  if (report) report->orientation = orientation;
+  return mesh;
+}
 
 Mesh read_mesh(const std::string& path) {
   const std::string ext = extension(path);

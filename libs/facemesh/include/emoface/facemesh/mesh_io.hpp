@@ -11,6 +11,20 @@ namespace emoface::facemesh {
 /// FormatError if the content is bad (unknown extension, non-manifold faces, NaN coordinates, ...).
 Mesh read_mesh(const std::string& path);
 
+struct MeshReadOptions {
+  /// Accept triangles whose winding disagrees with their neighbours' (common in scans) and make the
+  /// winding consistent and outward per component (orient_consistently). Edges shared by more than two
+  /// triangles are still rejected (FormatError).
+  bool repair_orientation = false;
+};
+
+struct MeshReadReport {
+  OrientationReport orientation;  ///< filled when repair_orientation is on
+};
+
+/// read_mesh with options; `report` (optional) says what was repaired.
+Mesh read_mesh(const std::string& path, const MeshReadOptions& options, MeshReadReport* report = nullptr);
+
 /// Writes a mesh atomically (temporary file + rename). PLY is written as ASCII.
 /// Throws InvalidInput for an unknown extension, IoError on failure.
 void write_mesh(const std::string& path, const Mesh& mesh);
