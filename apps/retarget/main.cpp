@@ -48,25 +48,37 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--refine", o.refine.enabled, "Refine the GA result locally (Levenberg-Marquardt, Ceres)");
   app.add_option("--prior", o.prior_weight, "Weight of the landmark prior (0 = off)")->check(CLI::NonNegativeNumber);
+  bool keep_all = false;
+  app.add_flag("--keep-all-components", keep_all, "Keep components outside the head's box (default: dropped)");
+  app.add_option("--pitch-search", o.pitch_search_degrees, "Pitch correction range on the initial error, degrees (0 = off)")
+      ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--no-png", no_png, "Skip the pictures");
   app.add_option("--tile-width", tile, "Width of one picture tile in pixels")->check(CLI::Range(64, 2048));
   app.add_flag("--quiet", quiet, "No progress on stderr");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("retarget", [&]() {
     o.align.mode = rt::align_mode_from_string(align_mode);
+    o.clean.enabled = !keep_all;
     if (!up.empty()) o.align.up = rt::axis_from_string(up);
     if (!front.empty()) o.align.front = rt::axis_from_string(front);
     o.ga.projection = rt::projection_mode_from_string(projection);
     if (rt::to_string(o.align.up.value_or(rt::Axis::PosY)).substr(1) == rt::to_string(o.align.front.value_or(rt::Axis::PosZ)).substr(1))
       throw emoface::cli::UsageError("--up and --front must be perpendicular axes");
     const fm::Face source = source_rig.empty() ? fm::make_default_face() : fm::load_face(source_rig);
-    const fm::Mesh target = fm::read_mesh(target_path);
+    fm::MeshReadReport read_report;
+    const fm::Mesh target = fm::read_mesh(target_path, fm::MeshReadOptions{true}, &read_report);
+    if (!quiet && read_report.orientation.flipped_faces > 0)
+      std::fprintf(stderr, "retarget: made the winding consistent: %zu faces flipped (%zu components)\n",
+                   read_report.orientation.flipped_faces, read_report.orientation.components);
     const auto progress = [&](const rt::GaProgress& p) {
       if (!quiet && (p.generation % 5 == 0 || p.generation == o.ga.generations))
         std::fprintf(stderr, "retarget: generation %d  best E %.6g  mutation %.2f  evaluations %ld\n", p.generation,
                      p.best_error, p.mutation_rate, p.evaluations);
     };
     const rt::RetargetResult r = rt::retarget_face(source, target, o, progress);
+    if (!quiet && r.cleaning.kept_components < r.cleaning.components)
+      std::fprintf(stderr, "retarget: dropped %zu of %zu components outside the head (%zu faces)\n",
+                   r.cleaning.components - r.cleaning.kept_components, r.cleaning.components, r.cleaning.dropped_faces);
     if (!quiet) std::fprintf(stderr, "retarget: alignment (%s): rotation %.1f deg about (%.3f, %.3f, %.3f), scale %.6g, confidence %.2f; %s\n",
                              rt::to_string(r.alignment.report.method).c_str(), r.alignment.report.angle_deg, r.alignment.report.axis.x(),
                              r.alignment.report.axis.y(), r.alignment.report.axis.z(), r.alignment.scale, r.alignment.report.confidence,

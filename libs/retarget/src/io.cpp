@@ -11,6 +11,11 @@ nlohmann::ordered_json vec(const Eigen::Vector3d& v) { return nlohmann::ordered_
 
 std::string format_report(const RetargetResult& r, bool include_time) {
   auto doc = core::make_envelope("retarget_report", {kReportFormatMajor, kReportFormatMinor});
+  auto& c = doc["cleaning"];
+  c["components"] = r.cleaning.components;
+  c["kept_components"] = r.cleaning.kept_components;
+  c["dropped_faces"] = r.cleaning.dropped_faces;
+  c["dropped_vertices"] = r.cleaning.dropped_vertices;
   auto& a = doc["alignment"];
   a["scale"] = r.alignment.scale;
   a["rotation"] = nlohmann::ordered_json::array();

@@ -27,6 +27,7 @@ void RefineOptions::validate() const {
 }
 
 void RetargetOptions::validate() const {
+  clean.validate();
   refine.validate();
   align.validate();
   rbf.validate();
@@ -69,10 +70,11 @@ facemesh::Face transfer_face(const facemesh::Face& source, const RbfNetwork& net
   return out;
 }
 
-RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh& target,
+RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh& input,
                              const RetargetOptions& options, const std::function<void(const GaProgress&)>& progress) {
   options.validate();
   RetargetResult r;
+  const facemesh::Mesh target = clean_target(input, options.clean, &r.cleaning);
   const auto& rig = source.rig;
   if (rig.retarget_landmarks.size() < 3) throw InvalidInput("the source rig needs at least three retarget landmarks");
   const int source_top = landmark_vertex(rig, "top_of_head");

@@ -20,6 +20,7 @@
 
 #include "emoface/facemesh/io.hpp"
 #include "emoface/retarget/align.hpp"
+#include "emoface/retarget/clean.hpp"
 #include "emoface/retarget/error.hpp"
 #include "emoface/retarget/ga.hpp"
 #include "emoface/retarget/rbf.hpp"
@@ -45,6 +46,7 @@ struct RefineReport {
 };
 
 struct RetargetOptions {
+  CleanOptions clean;  ///< stray components dropped before everything else
   AlignOptions align;
   RbfOptions rbf;
   /// bottom_y left at its default (−∞) is replaced by the height of the source's "chin" landmark.
@@ -72,8 +74,9 @@ struct RetargetOptions {
 
 struct RetargetResult {
   facemesh::Face face;                     ///< the deformed source face: mesh + complete rig
+  CleanReport cleaning;                    ///< what clean_target dropped
   Alignment alignment;                     ///< input target → thesis frame
-  facemesh::Mesh aligned_target;           ///< the target in the thesis frame
+  facemesh::Mesh aligned_target;           ///< the cleaned target in the thesis frame
   std::vector<std::string> landmark_names; ///< rig retarget landmarks, rig order
   std::vector<bool> detected;              ///< per landmark: auto-detected (fixed) or searched
   Eigen::MatrixX3d source_landmarks;       ///< #L by 3, m
