@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/rng.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/retarget/io.hpp"
 #include "emoface/retarget/retarget.hpp"
@@ -68,12 +70,19 @@ struct Case {
   rt::SyntheticWarp warp;
   bool subdivide = false;
   bool flip = false;
-  rt::Axis up = rt::Axis::PosY, front = rt::Axis::PosZ;
+  std::optional<rt::Axis> up, front;  // hints (the alignment is automatic)
+  double decimate = 1.0;              // fraction of the vertices kept
 };
 
 struct Outcome {
-  double mean_pct, p95_pct, landmark_pct, initial_error, final_error;
+  double mean_pct, p95_pct, landmark_pct, initial_error, final_error, rotation_error_deg, confidence;
+  std::size_t target_vertices;
 };
+
+Eigen::Matrix3d warp_rotation(const rt::SyntheticWarp& w) {
+  return (Eigen::AngleAxisd(w.rotation.x(), Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(w.rotation.y(), Eigen::Vector3d::UnitX()) *
+          Eigen::AngleAxisd(w.rotation.z(), Eigen::Vector3d::UnitZ())).toRotationMatrix();
+}
 
 // Front skin of the deformed face: skin material, z > 0, above the source chin.
 std::vector<std::uint8_t> front_mask(const fm::Face& f, double chin_y) {
@@ -92,6 +101,7 @@ Outcome run_case(const Case& c, const rt::RetargetOptions& options) {
     target = flip_edges(target);
     fm::validate_mesh(target, "flipped");
   }
+  if (c.decimate < 1.0) target = rt::decimate(target, c.decimate);
   rt::RetargetOptions o = options;
   o.align.up = c.up;
   o.align.front = c.front;
@@ -107,13 +117,15 @@ Outcome run_case(const Case& c, const rt::RetargetOptions& options) {
     lm += (truth - r.target_landmarks.row(static_cast<Eigen::Index>(i)).transpose()).norm();
     ++n;
   }
-  return {100 * d.mean / head, 100 * d.p95 / head, 100 * lm / n / head, r.ga.initial_error, r.ga.best_error};
+  return {100 * d.mean / head, 100 * d.p95 / head, 100 * lm / n / head, r.ga.initial_error, r.ga.best_error,
+          Eigen::AngleAxisd(r.alignment.rotation * warp_rotation(c.warp)).angle() * 180 / 3.14159265358979323846,
+          r.alignment.report.confidence, target.vertex_count()};
 }
 
 std::vector<Case> suite() {
   std::vector<Case> cases;
-  auto add = [&](const char* name, auto edit, bool subdivide = false, rt::Axis up = rt::Axis::PosY, rt::Axis front = rt::Axis::PosZ) {
-    Case c{name, {}, subdivide, false, up, front};
+  auto add = [&](const char* name, auto edit, bool subdivide = false) {
+    Case c{name, {}, subdivide, false, std::nullopt, std::nullopt, 1.0};
     edit(c.warp);
     cases.push_back(c);
   };
@@ -127,12 +139,28 @@ std::vector<Case> suite() {
   add("subdivided_wide", [](rt::SyntheticWarp& w) { w.width = 1.08; w.nose = 0.005; }, true);
   add("flipped_long_nose", [](rt::SyntheticWarp& w) { w.height = 1.05; w.nose = 0.006; });
   cases.back().flip = true;
+  add("decimated_wide_nose", [](rt::SyntheticWarp& w) { w.width = 1.06; w.nose = 0.005; });
+  cases.back().decimate = 0.4;
   add("z_up_scaled_moved", [](rt::SyntheticWarp& w) {
     w.width = 1.05;
     w.rotation = Eigen::Vector3d(0, -1.5707963267948966, 0);  // pitch −90°: top along −z, face along +y
     w.scale = 10.0;
     w.translation = Eigen::Vector3d(3, -2, 5);
-  }, false, rt::Axis::NegZ, rt::Axis::PosY);
+  });
+  cases.back().up = rt::Axis::NegZ;  // as hints
+  cases.back().front = rt::Axis::PosY;
+  // Random rotations (seeded), scales and moves, no hints.
+  emoface::core::Rng rng(6, 0);
+  auto random_pose = [&](rt::SyntheticWarp& w) {
+    w.rotation = Eigen::Vector3d(rng.uniform(-3.14159, 3.14159), rng.uniform(-1.5, 1.5), rng.uniform(-3.14159, 3.14159));
+    w.scale = std::exp(rng.uniform(-2, 3));
+    w.translation = Eigen::Vector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+  };
+  add("rotated_wide_chin", [&](rt::SyntheticWarp& w) { w.width = 1.08; w.chin = 0.006; random_pose(w); });
+  add("rotated_taper_nose", [&](rt::SyntheticWarp& w) { w.taper = 0.08; w.nose = 0.006; random_pose(w); });
+  add("rotated_decimated_long", [&](rt::SyntheticWarp& w) { w.height = 1.06; random_pose(w); });
+  cases.back().decimate = 0.35;
+  add("rotated_subdivided_narrow", [&](rt::SyntheticWarp& w) { w.width = 0.93; random_pose(w); }, true);
   return cases;
 }
 }  // namespace
@@ -143,8 +171,10 @@ TEST(ValidationSuite, SyntheticTargets) {
   const rt::RetargetOptions o;
   for (const auto& c : suite()) {
     const auto out = run_case(c, o);
-    std::printf("%-20s mean %.3f%%  p95 %.3f%%  landmarks %.3f%%  E %.3g -> %.3g\n", c.name, out.mean_pct, out.p95_pct,
-                out.landmark_pct, out.initial_error, out.final_error);
+    std::printf("%-26s V %5zu  rot.err %.2f deg (conf %.2f)  mean %.3f%%  p95 %.3f%%  landmarks %.3f%%  E %.3g -> %.3g\n", c.name,
+                out.target_vertices, out.rotation_error_deg, out.confidence, out.mean_pct, out.p95_pct, out.landmark_pct,
+                out.initial_error, out.final_error);
+    EXPECT_LT(out.rotation_error_deg, 5.0) << c.name;
     EXPECT_LE(out.final_error, out.initial_error) << c.name;
     EXPECT_LE(out.mean_pct, 0.5) << c.name;   // issue #6 targets, % of head height
     EXPECT_LE(out.p95_pct, 1.5) << c.name;

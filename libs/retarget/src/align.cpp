@@ -537,7 +537,9 @@ Eigen::Matrix3d auto_rotation(const facemesh::Mesh& target, const facemesh::Mesh
       }
   report.match_cost = best.cost;
   report.landmark_offset = fine.landmark_offset(f.rotation(best), best.scale, best.t);
-  report.orientation_margin = std::isfinite(runner_up) && runner_up > 0 ? std::clamp(1.0 - best.cost / runner_up, 0.0, 1.0) : 0.0;
+  // No grossly different pose left: only possible when the hints excluded them, so the hints decided.
+  report.orientation_margin = std::isfinite(runner_up) && runner_up > 0 ? std::clamp(1.0 - best.cost / runner_up, 0.0, 1.0)
+                                                                        : (report.hints_used ? 1.0 : 0.0);
   const Eigen::Matrix3d r = f.rotation(best);
   plane_normal = f.n;
   plane_point = t.centroid + t.rms * best_plane.offset * f.n;
