@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"off", "evaluate_only", "replace"}));
   app.add_option("--planes", o.error.planes, "Sampling planes m")->check(CLI::Range(2, 360));
   app.add_option("--samples", o.error.samples, "Samples per curve n")->check(CLI::Range(2, 10000));
+  app.add_option("--mouth-samples", o.mouth_samples, "Extra samples per curve between the source's chin and nose (0 = thesis)")
+      ->check(CLI::Range(0, 1000));
   app.add_option("--bottom-y", o.error.bottom_y, "Lowest sampled height, m in the source frame (default: source chin)");
   app.add_option("--top-y", o.error.top_y, "Highest sampled height, m in the source frame (default: top of head)");
   const auto axes = CLI::IsMember({"+x", "-x", "+y", "-y", "+z", "-z"});

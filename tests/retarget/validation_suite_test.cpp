@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <set>
@@ -14,6 +15,7 @@
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/mesh_io.hpp"
 #include "emoface/retarget/io.hpp"
 #include "emoface/retarget/retarget.hpp"
 #include "test_shapes.hpp"
@@ -238,5 +240,53 @@ TEST(ValidationSuite, VariantComparison) {
     }
     std::printf("%-22s mean %.3f%%  p95 %.3f%%  landmarks %.3f%%  (average of %d cases)\n", v.name, mean / n, p95 / n, lm / n, n);
     EXPECT_TRUE(std::isfinite(mean));
+  }
+}
+
+// Real heads from ../shared/meshes (only when the folder exists): the MakeHuman head with and without the
+// mouth band of the error function, and the MediaPipe face mask (refused: no top of head). Prints the
+// numbers quoted in docs/retarget.md: E, the landmarks' vertical positions, and the mean distance of the
+// fitted lips (and of the front skin) to the target surface.
+TEST(RealHeads, MakeHumanMouthBandAndFaceMask) {
+  const std::filesystem::path dir = std::filesystem::path(EMOFACE_SOURCE_DIR) / ".." / "shared" / "meshes";
+  const auto head = dir / "makehuman_head.obj";
+  if (!std::filesystem::exists(head)) GTEST_SKIP() << "no " << head;
+  const fm::Mesh target = fm::read_mesh(head.string(), fm::MeshReadOptions{true});
+  const double chin_y = rt::landmark_position(face(), "chin").y();
+  const double h = rt::landmark_position(face(), "top_of_head").y() - chin_y;
+  for (int mouth : {0, 12}) {
+    rt::RetargetOptions o;
+    o.mouth_samples = mouth;
+    const auto r = rt::retarget_face(face(), target, o);
+    std::vector<std::uint8_t> lips(r.face.mesh.vertex_count(), 0);
+    for (std::size_t i = 0; i < lips.size(); ++i) lips[i] = r.face.rig.materials[i] == fm::Material::Lip;
+    const auto dl = rt::surface_distance(r.face.mesh, r.aligned_target, lips);
+    const auto ds = rt::surface_distance(r.face.mesh, r.aligned_target, front_mask(r.face, chin_y));
+    auto y_of = [&](const char* name) {
+      for (std::size_t i = 0; i < r.landmark_names.size(); ++i)
+        if (r.landmark_names[i] == name) return r.target_landmarks(static_cast<Eigen::Index>(i), 1);
+      return 0.0;
+    };
+    auto x_of = [&](const char* name) {
+      for (std::size_t i = 0; i < r.landmark_names.size(); ++i)
+        if (r.landmark_names[i] == name) return r.target_landmarks(static_cast<Eigen::Index>(i), 0);
+      return 0.0;
+    };
+    std::printf("makehuman mouth_samples %2d: E %.4g -> %.4g  lips mean %.2f%% p95 %.2f%%  front skin mean %.2f%% p95 %.2f%%  "
+                "mouth corner y %.4f x %.4f  chin y %.4f  jaw x %.4f  (pitch %.1f deg, confidence %.2f)\n",
+                mouth, r.ga.initial_error, r.ga.best_error, 100 * dl.mean / h, 100 * dl.p95 / h, 100 * ds.mean / h, 100 * ds.p95 / h,
+                y_of("mouth_corner_l"), x_of("mouth_corner_l"), y_of("chin"), std::abs(x_of("jaw_l")),
+                r.alignment.report.pitch_correction_deg, r.alignment.report.confidence);
+    EXPECT_LT(r.ga.best_error, r.ga.initial_error);
+    EXPECT_NO_THROW(fm::validate_rig(r.face.rig));
+  }
+  const auto mask = dir / "mediapipe_canonical_face_model.obj";
+  if (std::filesystem::exists(mask)) {
+    try {
+      rt::retarget_face(face(), fm::read_mesh(mask.string(), fm::MeshReadOptions{true}));
+      ADD_FAILURE() << "the face mask was accepted";
+    } catch (const emoface::InvalidInput& e) {
+      std::printf("mediapipe: %s\n", e.what());
+    }
   }
 }

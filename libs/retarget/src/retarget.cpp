@@ -33,6 +33,7 @@ void RetargetOptions::validate() const {
   rbf.validate();
   error.validate();
   ga.validate();
+  if (mouth_samples < 0 || mouth_samples > 1000) throw InvalidInput("RetargetOptions::mouth_samples must be in [0, 1000]");
   if (!(pitch_search_degrees >= 0.0 && pitch_search_degrees <= 60.0)) throw InvalidInput("RetargetOptions::pitch_search_degrees must be in [0, 60]");
   if (!(prior_weight >= 0.0) || !std::isfinite(prior_weight)) throw InvalidInput("RetargetOptions::prior_weight must be finite and >= 0");
   if (std::find(detected.begin(), detected.end(), "top_of_head") == detected.end())
@@ -78,6 +79,20 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
   const auto& rig = source.rig;
   if (rig.retarget_landmarks.size() < 3) throw InvalidInput("the source rig needs at least three retarget landmarks");
   const int source_top = landmark_vertex(rig, "top_of_head");
+  // Error options of the pipeline: sampling down to the source chin (no neck), the mouth band.
+  const auto error_setup = [&](ErrorOptions eo) {
+    bool has_chin = false;
+    for (const auto& l : rig.retarget_landmarks) has_chin = has_chin || l.name == "chin";
+    if (!has_chin) return eo;
+    const double chin_y = landmark_position(source, "chin").y(), nose_y = landmark_position(source, "nose_tip").y();
+    if (eo.bottom_y <= -1e299) eo.bottom_y = chin_y;
+    if (eo.band_samples == 0 && options.mouth_samples > 0 && nose_y > chin_y) {
+      eo.band_samples = options.mouth_samples;
+      eo.band_bottom = chin_y;
+      eo.band_top = nose_y;
+    }
+    return eo;
+  };
   const Eigen::Vector3d top = landmark_position(source, "top_of_head"), nose = landmark_position(source, "nose_tip");
   r.alignment = align_to_frame(target, source.mesh, top, nose, options.align);
   const auto& ar = r.alignment.report;
@@ -87,11 +102,7 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
                        "): give --up/--front hints, or --align axes if the mesh is already axis-aligned");
   if (options.align.mode == AlignMode::Auto && options.pitch_search_degrees > 0) {
     // E of the source deformed by the RBF on the detected landmarks, for the target aligned by `a`.
-    ErrorOptions eo = options.error;
-    if (eo.bottom_y <= -1e299) {
-      for (const auto& l : rig.retarget_landmarks)
-        if (l.name == "chin") eo.bottom_y = landmark_position(source, "chin").y();
-    }
+    const ErrorOptions eo = error_setup(options.error);
     facemesh::Vertices deformed;
     auto initial_error = [&](const Alignment& a) {
       facemesh::Mesh aligned = target;
@@ -188,9 +199,7 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
     r.initial_landmarks.row(i) = p.transpose();
   }
 
-  ErrorOptions error_options = options.error;
-  if (error_options.bottom_y <= -1e299 && std::find(r.landmark_names.begin(), r.landmark_names.end(), "chin") != r.landmark_names.end())
-    error_options.bottom_y = landmark_position(source, "chin").y();
+  ErrorOptions error_options = error_setup(options.error);
   const ErrorFunction error(r.aligned_target, target_top, source.mesh.faces, source.mesh.vertex_count(), error_options);
 
   // Mirror partner of every searched landmark (index into `free`, −1 = on the symmetry plane).

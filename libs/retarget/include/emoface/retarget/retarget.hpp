@@ -69,6 +69,10 @@ struct RetargetOptions {
   /// align_to_frame finds the left-right axis and up/front reliably, but its pitch follows the overall
   /// head shape (a neck, a long jaw); E measures what the fit needs. [0, 60]; 0 = off.
   double pitch_search_degrees = 30.0;
+  /// Beyond the thesis, experimental: ErrorOptions::band_samples between the source's chin and nose tip
+  /// heights when error.band_samples is 0, so that E samples the lips more densely. Off by default: on the
+  /// MakeHuman head 12 band samples moved the mouth further down (docs/retarget.md). [0, 1000].
+  int mouth_samples = 0;
   void validate() const;
 };
 
