@@ -182,6 +182,31 @@ TEST_F(OrientationIo, RepairingReaderStillRejectsBadFiles) {
   EXPECT_THROW(read_mesh(path("deg.obj"), repair), FormatError);
   core::write_file_atomic(path("trunc.off"), "OFF\n3 1 0\n0 0 0\n1 0");
   EXPECT_THROW(read_mesh(path("trunc.off"), repair), FormatError);
+  // A PLY header without end_header (made OpenMesh loop forever; found by fuzz_facemesh_mesh).
+  core::write_file_atomic(path("noend.ply"),
+                          "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                          "element face 1\nproperty list uchar int vertex_indices\nend_heaXer\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_THROW(read_mesh(path("noend.ply"), repair), FormatError);
+  EXPECT_THROW(read_mesh(path("noend.ply")), FormatError);
+  core::write_file_atomic(path("badprop.ply"),
+                          "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nprportey float y\nproperty fndices\n"
+                          "end_header\n0 1 0\n1 0 0\n0 1 0\n");
+  try {
+    read_mesh(path("badprop.ply"));
+    ADD_FAILURE();
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find(":5"), std::string::npos) << e.what();  // names the line
+  }
+  // Damaged OFF headers (OpenMesh allocated 16 GB for the first one; found by fuzz_facemesh_mesh).
+  core::write_file_atomic(path("bad.off"), std::string("OFF2\0v 0 ", 10));
+  EXPECT_THROW(read_mesh(path("bad.off")), FormatError);
+  core::write_file_atomic(path("huge.off"), "OFF\n999999999 1 0\n0 0 0\n");
+  EXPECT_THROW(read_mesh(path("huge.off"), repair), FormatError);
+  core::write_file_atomic(path("huge.ply"), "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n");
+  EXPECT_THROW(read_mesh(path("huge.ply")), FormatError);
+  // Valid OFF variants still read.
+  core::write_file_atomic(path("c.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(read_mesh(path("c.off")).face_count(), 1u);
 }
 
 }  // namespace

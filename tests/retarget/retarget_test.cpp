@@ -74,7 +74,8 @@ TEST(Retarget, WarpedTargetImprovesAndTheRigAnimates) {
   fm::Mesh target = face().mesh;
   target.vertices = w.apply(target.vertices);
   auto o = quick();
-  o.ga.generations = 8;
+  o.ga.generations = 15;
+  o.ga.population = 16;
   const auto r = rt::retarget_face(face(), target, o);
   EXPECT_NEAR(r.alignment.scale, 1.0 / 3.0, 0.02);
   EXPECT_LT(r.ga.best_error, r.ga.initial_error);

@@ -73,6 +73,103 @@ class RecordingImporter : public OpenMesh::IO::ImporterT<OmMesh> {
   }
 };
 
+// OpenMesh 9's PLY header parser loops forever on some malformed headers (a missing "end_header", an
+// unknown keyword, a property line without a type; found by fuzz_facemesh_mesh): the header is checked
+// here, line by line, before OpenMesh sees the file.
+void check_ply_header(const std::string& text, const SourceLocation& where) {
+  static const char* types[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double",
+                                "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
+  auto is_type = [](const std::string& t) {
+    for (const char* k : types)
+      if (t == k) return true;
+    return false;
+  };
+  auto is_count = [](const std::string& t) {
+    return !t.empty() && t.size() <= 12 && t.find_first_not_of("0123456789") == std::string::npos;
+  };
+  std::size_t pos = 0, line_no = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    ++line_no;
+    std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    std::vector<std::string> tok;
+    for (std::size_t i = 0; i < line.size();) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      std::size_t j = i;
+      while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+      if (j > i) tok.push_back(line.substr(i, j - i));
+      i = j;
+    }
+    SourceLocation at = where;
+    at.line = line_no;
+    bool ok = false;
+    if (line_no == 1) {
+      ok = line == "ply";
+    } else if (tok.empty()) {
+      ok = false;
+    } else if (tok[0] == "end_header") {
+      if (tok.size() == 1) return;
+    } else if (tok[0] == "comment" || tok[0] == "obj_info") {
+      ok = true;
+    } else if (tok[0] == "format") {
+      ok = tok.size() == 3 && (tok[1] == "ascii" || tok[1] == "binary_little_endian" || tok[1] == "binary_big_endian") && tok[2] == "1.0";
+    } else if (tok[0] == "element") {
+      // Every element takes at least one byte: a larger count is a lie that OpenMesh would allocate for.
+      ok = tok.size() == 3 && is_count(tok[2]) && std::stoull(tok[2]) <= text.size();
+    } else if (tok[0] == "property") {
+      ok = (tok.size() == 3 && is_type(tok[1])) || (tok.size() == 5 && tok[1] == "list" && is_type(tok[2]) && is_type(tok[3]));
+    }
+    if (!ok) throw FormatError(at, "bad PLY header line \"" + line.substr(0, 80) + "\"");
+  }
+  throw FormatError(where, "PLY header has no end_header line");
+}
+
+// OFF: the keyword line ([ST][C][N][4][n]OFF, optionally BINARY) and counts that fit the file; OpenMesh 9
+// allocates for whatever counts a damaged header claims (found by fuzz_facemesh_mesh: 16 GB).
+void check_off_header(const std::string& text, const SourceLocation& where) {
+  std::size_t i = 0;
+  auto next_token = [&]() {
+    for (;;) {
+      while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+      if (i < text.size() && text[i] == '#') {
+        while (i < text.size() && text[i] != '\n') ++i;
+        continue;
+      }
+      break;
+    }
+    const std::size_t b = i;
+    while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    return text.substr(b, i - b);
+  };
+  std::string key = next_token();
+  std::size_t k = 0;
+  for (const char* prefix : {"ST", "C", "N", "4", "n"}) {
+    const std::string p(prefix);
+    if (key.compare(k, p.size(), p) == 0) k += p.size();
+  }
+  if (key.size() < 3 || key.compare(k, std::string::npos, "OFF") != 0)
+    throw FormatError(where, "OFF file must start with the OFF keyword (got \"" + key.substr(0, 20) + "\")");
+  const bool binary = text.compare(i, 7, " BINARY") == 0;
+  if (binary) i += 7;
+  if (key.find('4') != std::string::npos || key.find('n') != std::string::npos)
+    throw FormatError(where, "4-D / n-D OFF files are not supported");
+  if (binary) return;  // binary counts follow as integers; OpenMesh checks them against the stream
+  std::size_t counts[2] = {0, 0};
+  for (auto& c : counts) {
+    const std::string t = next_token();
+    if (t.empty() || t.size() > 12 || t.find_first_not_of("0123456789") != std::string::npos)
+      throw FormatError(where, "OFF header: bad vertex/face count \"" + t.substr(0, 20) + "\"");
+    c = std::stoull(t);
+  }
+  // At least 6 bytes per ASCII vertex ("0 0 0\n") and 8 per triangle ("3 0 1 2\n").
+  if (counts[0] * 6 > text.size() || counts[1] * 8 > text.size())
+    throw FormatError(where, "OFF header declares " + std::to_string(counts[0]) + " vertices and " + std::to_string(counts[1]) +
+                                 " faces, more than the file's " + std::to_string(text.size()) + " bytes can hold");
+}
+
 std::size_t count_obj_faces(const std::string& text) {
   std::size_t declared_faces = 0;
   std::size_t pos = 0;
@@ -101,6 +198,8 @@ Mesh read_mesh(const std::string& path, const MeshReadOptions& options, MeshRead
   if (!known_extension(ext)) throw FormatError(where, "unknown mesh extension '" + ext + "' (use .obj, .ply or .off)");
   if (!std::filesystem::is_regular_file(path)) throw IoError(path + ": cannot open mesh file");
   const std::string text = core::read_file(path);
+  if (ext == ".ply") check_ply_header(text, where);
+  if (ext == ".off") check_off_header(text, where);
   OmMesh om;
   om.request_vertex_status();
   om.request_face_status();
@@ -159,6 +258,8 @@ Mesh read_mesh(const std::string& path) {
   std::size_t declared_faces = 0;
   bool counted = false;
   const std::string text = core::read_file(path);
+  if (ext == ".ply") check_ply_header(text, where);
+  if (ext == ".off") check_off_header(text, where);
   if (ext == ".obj") {
     counted = true;
     std::size_t pos = 0;

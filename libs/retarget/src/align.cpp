@@ -317,7 +317,7 @@ struct Matcher {
   }
   // The source's face (front samples: nose, lips, eyes, chin) must find the target's surface: mean gap,
   // not trimmed, because the trimmed chamfer drops exactly these few distinctive points.
-  std::vector<int> source_front;
+  std::vector<int> source_front{};
   double front_gap(const Eigen::Matrix3d& r, double scale, const Eigen::Vector3d& t) const {
     if (source_front.empty()) return 0.0;
     double sum = 0;
