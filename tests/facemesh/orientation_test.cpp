@@ -204,6 +204,8 @@ TEST_F(OrientationIo, RepairingReaderStillRejectsBadFiles) {
   EXPECT_THROW(read_mesh(path("huge.off"), repair), FormatError);
   core::write_file_atomic(path("huge.ply"), "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n");
   EXPECT_THROW(read_mesh(path("huge.ply")), FormatError);
+  core::write_file_atomic(path("bin.off"), std::string("OFF BINARY\n\x0b\x30\x00\x32 4 0\n", 20));
+  EXPECT_THROW(read_mesh(path("bin.off")), FormatError);
   // Valid OFF variants still read.
   core::write_file_atomic(path("c.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   EXPECT_EQ(read_mesh(path("c.off")).face_count(), 1u);

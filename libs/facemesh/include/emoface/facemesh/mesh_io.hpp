@@ -8,7 +8,8 @@
 namespace emoface::facemesh {
 
 /// Reads a triangle mesh (polygons are fan-triangulated). Throws IoError if the file cannot be read,
-/// FormatError if the content is bad (unknown extension, non-manifold faces, NaN coordinates, ...).
+/// FormatError if the content is bad (unknown extension, non-manifold faces, NaN coordinates, a damaged
+/// PLY/OFF header, counts the file cannot hold, binary OFF, ...).
 Mesh read_mesh(const std::string& path);
 
 struct MeshReadOptions {
