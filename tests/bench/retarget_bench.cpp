@@ -3,6 +3,7 @@
 //   cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DEMOFACE_BUILD_BENCH=ON
 //   cmake --build build-bench --target retarget_bench -j2
 //   build-bench/tests/bench/retarget_bench --benchmark_min_time=1s
+#include <Eigen/Geometry>
 #include <benchmark/benchmark.h>
 
 #include "emoface/facemesh/default_face.hpp"
@@ -59,6 +60,16 @@ void BM_RbfFitAndDeform(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_RbfFitAndDeform)->Unit(benchmark::kMicrosecond);
+
+// Automatic alignment (symmetry plane + matching the source) of the 20k-vertex target, randomly rotated.
+void BM_Align(benchmark::State& state) {
+  fm::Mesh rotated = target();
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(2.1, Eigen::Vector3d(0.4, -0.8, 0.45).normalized()).toRotationMatrix();
+  rotated.vertices = (target().vertices * r.transpose()).eval();
+  const Eigen::Vector3d top = rt::landmark_position(face(), "top_of_head"), nose = rt::landmark_position(face(), "nose_tip");
+  for (auto _ : state) benchmark::DoNotOptimize(rt::align_to_frame(rotated, face().mesh, top, nose).scale);
+}
+BENCHMARK(BM_Align)->Unit(benchmark::kMillisecond);
 
 // One GA generation = what a fit with G generations costs beyond a fit with G − 1: measured here as a
 // whole fit with 1 generation (setup + initial population + 1 generation) and with 40 (the default).

@@ -118,3 +118,34 @@ TEST(ErrorFunction, RejectsBadOptions) {
   EXPECT_THROW(o.validate(), emoface::InvalidInput);
   EXPECT_THROW(rt::ErrorFunction(m, 999, m.faces, m.vertex_count()), emoface::InvalidInput);
 }
+
+TEST(ErrorFunction, BandSamplesAddTheirAnalyticTerm) {
+  // As above plus b_s band samples at y_k = top − (top − bottom)(k + ½)/b_s inside [bottom, top].
+  const double b = 0.1, r1 = 0.09, r2 = 0.08, y_end = -0.05, band_lo = -0.04, band_hi = 0.0;
+  const auto target = ellipsoid(r2, b, r2, 200, 256);
+  const auto source = ellipsoid(r1, b, r1, 200, 256);
+  rt::ErrorOptions o;
+  o.planes = 4;
+  o.samples = 11;
+  o.front_half_angle = 3.14159265358979323846;
+  o.bottom_y = y_end;
+  const double plain = rt::ErrorFunction(target, 0, source.faces, source.vertex_count(), o).evaluate(source.vertices, 0);
+  o.band_samples = 6;
+  o.band_bottom = band_lo;
+  o.band_top = band_hi;
+  const rt::ErrorFunction e(target, 0, source.faces, source.vertex_count(), o);
+  double band = 0.0;
+  for (int k = 0; k < o.band_samples; ++k) {
+    const double y = band_hi - (band_hi - band_lo) * (k + 0.5) / o.band_samples;
+    band += 8 * (r1 - r2) * (r1 - r2) * (1 - y * y / (b * b));
+  }
+  const double got = e.evaluate(source.vertices, 0);
+  EXPECT_NEAR(got - plain, band, 0.03 * band);
+  EXPECT_EQ(e.residual_count(), 8u * (11u + 6u + 1u));
+  // A band outside the common range contributes nothing; a band without extent is refused.
+  o.band_bottom = -0.5;
+  o.band_top = -0.3;
+  EXPECT_NEAR(rt::ErrorFunction(target, 0, source.faces, source.vertex_count(), o).evaluate(source.vertices, 0), plain, 1e-15);
+  o.band_top = o.band_bottom;
+  EXPECT_THROW(o.validate(), emoface::InvalidInput);
+}

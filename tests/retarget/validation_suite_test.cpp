@@ -4,14 +4,18 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/rng.hpp"
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/mesh_io.hpp"
 #include "emoface/retarget/io.hpp"
 #include "emoface/retarget/retarget.hpp"
 #include "test_shapes.hpp"
@@ -68,12 +72,19 @@ struct Case {
   rt::SyntheticWarp warp;
   bool subdivide = false;
   bool flip = false;
-  rt::Axis up = rt::Axis::PosY, front = rt::Axis::PosZ;
+  std::optional<rt::Axis> up, front;  // hints (the alignment is automatic)
+  double decimate = 1.0;              // fraction of the vertices kept
 };
 
 struct Outcome {
-  double mean_pct, p95_pct, landmark_pct, initial_error, final_error;
+  double mean_pct, p95_pct, landmark_pct, initial_error, final_error, rotation_error_deg, confidence;
+  std::size_t target_vertices;
 };
+
+Eigen::Matrix3d warp_rotation(const rt::SyntheticWarp& w) {
+  return (Eigen::AngleAxisd(w.rotation.x(), Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(w.rotation.y(), Eigen::Vector3d::UnitX()) *
+          Eigen::AngleAxisd(w.rotation.z(), Eigen::Vector3d::UnitZ())).toRotationMatrix();
+}
 
 // Front skin of the deformed face: skin material, z > 0, above the source chin.
 std::vector<std::uint8_t> front_mask(const fm::Face& f, double chin_y) {
@@ -92,6 +103,7 @@ Outcome run_case(const Case& c, const rt::RetargetOptions& options) {
     target = flip_edges(target);
     fm::validate_mesh(target, "flipped");
   }
+  if (c.decimate < 1.0) target = rt::decimate(target, c.decimate);
   rt::RetargetOptions o = options;
   o.align.up = c.up;
   o.align.front = c.front;
@@ -107,13 +119,15 @@ Outcome run_case(const Case& c, const rt::RetargetOptions& options) {
     lm += (truth - r.target_landmarks.row(static_cast<Eigen::Index>(i)).transpose()).norm();
     ++n;
   }
-  return {100 * d.mean / head, 100 * d.p95 / head, 100 * lm / n / head, r.ga.initial_error, r.ga.best_error};
+  return {100 * d.mean / head, 100 * d.p95 / head, 100 * lm / n / head, r.ga.initial_error, r.ga.best_error,
+          Eigen::AngleAxisd(r.alignment.rotation * warp_rotation(c.warp)).angle() * 180 / 3.14159265358979323846,
+          r.alignment.report.confidence, target.vertex_count()};
 }
 
 std::vector<Case> suite() {
   std::vector<Case> cases;
-  auto add = [&](const char* name, auto edit, bool subdivide = false, rt::Axis up = rt::Axis::PosY, rt::Axis front = rt::Axis::PosZ) {
-    Case c{name, {}, subdivide, false, up, front};
+  auto add = [&](const char* name, auto edit, bool subdivide = false) {
+    Case c{name, {}, subdivide, false, std::nullopt, std::nullopt, 1.0};
     edit(c.warp);
     cases.push_back(c);
   };
@@ -127,12 +141,28 @@ std::vector<Case> suite() {
   add("subdivided_wide", [](rt::SyntheticWarp& w) { w.width = 1.08; w.nose = 0.005; }, true);
   add("flipped_long_nose", [](rt::SyntheticWarp& w) { w.height = 1.05; w.nose = 0.006; });
   cases.back().flip = true;
+  add("decimated_wide_nose", [](rt::SyntheticWarp& w) { w.width = 1.06; w.nose = 0.005; });
+  cases.back().decimate = 0.4;
   add("z_up_scaled_moved", [](rt::SyntheticWarp& w) {
     w.width = 1.05;
     w.rotation = Eigen::Vector3d(0, -1.5707963267948966, 0);  // pitch −90°: top along −z, face along +y
     w.scale = 10.0;
     w.translation = Eigen::Vector3d(3, -2, 5);
-  }, false, rt::Axis::NegZ, rt::Axis::PosY);
+  });
+  cases.back().up = rt::Axis::NegZ;  // as hints
+  cases.back().front = rt::Axis::PosY;
+  // Random rotations (seeded), scales and moves, no hints.
+  emoface::core::Rng rng(6, 0);
+  auto random_pose = [&](rt::SyntheticWarp& w) {
+    w.rotation = Eigen::Vector3d(rng.uniform(-3.14159, 3.14159), rng.uniform(-1.5, 1.5), rng.uniform(-3.14159, 3.14159));
+    w.scale = std::exp(rng.uniform(-2, 3));
+    w.translation = Eigen::Vector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+  };
+  add("rotated_wide_chin", [&](rt::SyntheticWarp& w) { w.width = 1.08; w.chin = 0.006; random_pose(w); });
+  add("rotated_taper_nose", [&](rt::SyntheticWarp& w) { w.taper = 0.08; w.nose = 0.006; random_pose(w); });
+  add("rotated_decimated_long", [&](rt::SyntheticWarp& w) { w.height = 1.06; random_pose(w); });
+  cases.back().decimate = 0.35;
+  add("rotated_subdivided_narrow", [&](rt::SyntheticWarp& w) { w.width = 0.93; random_pose(w); }, true);
   return cases;
 }
 }  // namespace
@@ -143,8 +173,10 @@ TEST(ValidationSuite, SyntheticTargets) {
   const rt::RetargetOptions o;
   for (const auto& c : suite()) {
     const auto out = run_case(c, o);
-    std::printf("%-20s mean %.3f%%  p95 %.3f%%  landmarks %.3f%%  E %.3g -> %.3g\n", c.name, out.mean_pct, out.p95_pct,
-                out.landmark_pct, out.initial_error, out.final_error);
+    std::printf("%-26s V %5zu  rot.err %.2f deg (conf %.2f)  mean %.3f%%  p95 %.3f%%  landmarks %.3f%%  E %.3g -> %.3g\n", c.name,
+                out.target_vertices, out.rotation_error_deg, out.confidence, out.mean_pct, out.p95_pct, out.landmark_pct,
+                out.initial_error, out.final_error);
+    EXPECT_LT(out.rotation_error_deg, 5.0) << c.name;
     EXPECT_LE(out.final_error, out.initial_error) << c.name;
     EXPECT_LE(out.mean_pct, 0.5) << c.name;   // issue #6 targets, % of head height
     EXPECT_LE(out.p95_pct, 1.5) << c.name;
@@ -208,5 +240,53 @@ TEST(ValidationSuite, VariantComparison) {
     }
     std::printf("%-22s mean %.3f%%  p95 %.3f%%  landmarks %.3f%%  (average of %d cases)\n", v.name, mean / n, p95 / n, lm / n, n);
     EXPECT_TRUE(std::isfinite(mean));
+  }
+}
+
+// Real heads from ../shared/meshes (only when the folder exists): the MakeHuman head with and without the
+// mouth band of the error function, and the MediaPipe face mask (refused: no top of head). Prints the
+// numbers quoted in docs/retarget.md: E, the landmarks' vertical positions, and the mean distance of the
+// fitted lips (and of the front skin) to the target surface.
+TEST(RealHeads, MakeHumanMouthBandAndFaceMask) {
+  const std::filesystem::path dir = std::filesystem::path(EMOFACE_SOURCE_DIR) / ".." / "shared" / "meshes";
+  const auto head = dir / "makehuman_head.obj";
+  if (!std::filesystem::exists(head)) GTEST_SKIP() << "no " << head;
+  const fm::Mesh target = fm::read_mesh(head.string(), fm::MeshReadOptions{true});
+  const double chin_y = rt::landmark_position(face(), "chin").y();
+  const double h = rt::landmark_position(face(), "top_of_head").y() - chin_y;
+  for (int mouth : {0, 12}) {
+    rt::RetargetOptions o;
+    o.mouth_samples = mouth;
+    const auto r = rt::retarget_face(face(), target, o);
+    std::vector<std::uint8_t> lips(r.face.mesh.vertex_count(), 0);
+    for (std::size_t i = 0; i < lips.size(); ++i) lips[i] = r.face.rig.materials[i] == fm::Material::Lip;
+    const auto dl = rt::surface_distance(r.face.mesh, r.aligned_target, lips);
+    const auto ds = rt::surface_distance(r.face.mesh, r.aligned_target, front_mask(r.face, chin_y));
+    auto y_of = [&](const char* name) {
+      for (std::size_t i = 0; i < r.landmark_names.size(); ++i)
+        if (r.landmark_names[i] == name) return r.target_landmarks(static_cast<Eigen::Index>(i), 1);
+      return 0.0;
+    };
+    auto x_of = [&](const char* name) {
+      for (std::size_t i = 0; i < r.landmark_names.size(); ++i)
+        if (r.landmark_names[i] == name) return r.target_landmarks(static_cast<Eigen::Index>(i), 0);
+      return 0.0;
+    };
+    std::printf("makehuman mouth_samples %2d: E %.4g -> %.4g  lips mean %.2f%% p95 %.2f%%  front skin mean %.2f%% p95 %.2f%%  "
+                "mouth corner y %.4f x %.4f  chin y %.4f  jaw x %.4f  (pitch %.1f deg, confidence %.2f)\n",
+                mouth, r.ga.initial_error, r.ga.best_error, 100 * dl.mean / h, 100 * dl.p95 / h, 100 * ds.mean / h, 100 * ds.p95 / h,
+                y_of("mouth_corner_l"), x_of("mouth_corner_l"), y_of("chin"), std::abs(x_of("jaw_l")),
+                r.alignment.report.pitch_correction_deg, r.alignment.report.confidence);
+    EXPECT_LT(r.ga.best_error, r.ga.initial_error);
+    EXPECT_NO_THROW(fm::validate_rig(r.face.rig));
+  }
+  const auto mask = dir / "mediapipe_canonical_face_model.obj";
+  if (std::filesystem::exists(mask)) {
+    try {
+      rt::retarget_face(face(), fm::read_mesh(mask.string(), fm::MeshReadOptions{true}));
+      ADD_FAILURE() << "the face mask was accepted";
+    } catch (const emoface::InvalidInput& e) {
+      std::printf("mediapipe: %s\n", e.what());
+    }
   }
 }

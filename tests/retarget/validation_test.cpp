@@ -42,3 +42,29 @@ TEST(SyntheticWarp, IdentityByDefaultAndValidated) {
   EXPECT_THROW(bad.validate(), emoface::InvalidInput);
 }
 
+
+TEST(Decimate, HalvesTheVerticesAndStaysAValidSurface) {
+  const auto sphere = rt::test::ellipsoid(0.1, 0.12, 0.09, 30, 48);
+  const auto d = rt::decimate(sphere, 0.4);
+  EXPECT_NO_THROW(fm::validate_mesh(d, "decimated"));
+  EXPECT_NEAR(static_cast<double>(d.vertex_count()), 0.4 * static_cast<double>(sphere.vertex_count()), 2.0);
+  // Closed surface stays closed: V − E + F = 2 (Euler), i.e. F = 2V − 4.
+  EXPECT_EQ(d.face_count(), 2 * d.vertex_count() - 4);
+  // Close to the original surface (quadric placement): within 2 mm of a 10 cm ellipsoid.
+  const auto dist = rt::surface_distance(d, sphere);
+  EXPECT_LT(dist.max, 0.002);
+  EXPECT_EQ(rt::decimate(sphere, 1.0).faces, sphere.faces);
+  EXPECT_THROW(rt::decimate(sphere, 0.0), emoface::InvalidInput);
+  // Open boundaries are kept: a hemisphere keeps its rim vertices.
+  fm::Mesh half = sphere;
+  std::vector<Eigen::Index> top;
+  for (Eigen::Index f = 0; f < sphere.faces.rows(); ++f)
+    if (sphere.vertices(sphere.faces(f, 0), 1) + sphere.vertices(sphere.faces(f, 1), 1) + sphere.vertices(sphere.faces(f, 2), 1) > 0) top.push_back(f);
+  half.faces.resize(static_cast<Eigen::Index>(top.size()), 3);
+  for (std::size_t k = 0; k < top.size(); ++k) half.faces.row(static_cast<Eigen::Index>(k)) = sphere.faces.row(top[k]);
+  const auto dh = rt::decimate(half, 0.5);
+  EXPECT_NO_THROW(fm::validate_mesh(dh, "decimated half"));
+  double lowest = 1;
+  for (Eigen::Index i = 0; i < dh.vertices.rows(); ++i) lowest = std::min(lowest, dh.vertices(i, 1));
+  EXPECT_LT(lowest, 0.01);  // the rim near y = 0 is still there
+}

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <vector>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -66,6 +67,108 @@ void validate_mesh(const Mesh& mesh, const std::string& source) {
       }
     }
   }
+}
+
+OrientationReport orient_consistently(Mesh& mesh) {
+  const auto nf = static_cast<std::size_t>(mesh.faces.rows());
+  const auto nv = static_cast<long>(mesh.vertices.rows());
+  // Undirected edge (min, max) -> up to two (face, direction) entries; direction +1 = face runs min->max.
+  struct Slot {
+    int face[2] = {-1, -1};
+    int dir[2] = {0, 0};
+  };
+  std::unordered_map<std::uint64_t, Slot> edges;
+  edges.reserve(nf * 2);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto fi = static_cast<long>(f);
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces(fi, k), b = mesh.faces(fi, (k + 1) % 3);
+      if (a < 0 || a >= nv || b < 0 || b >= nv)
+        throw InvalidInput("orient_consistently: face " + std::to_string(f) + " references a vertex out of range");
+      if (a == b) throw InvalidInput("orient_consistently: face " + std::to_string(f) + " repeats a vertex");
+      Slot& s = edges[edge_key(std::min(a, b), std::max(a, b))];
+      const int slot = s.face[0] < 0 ? 0 : (s.face[1] < 0 ? 1 : 2);
+      if (slot == 2)
+        throw InvalidInput("orient_consistently: face " + std::to_string(f) + " makes edge " + std::to_string(a) + "-" +
+                           std::to_string(b) + " shared by more than two triangles (non-manifold: no consistent orientation exists)");
+      s.face[slot] = static_cast<int>(f);
+      s.dir[slot] = a < b ? 1 : -1;
+    }
+  }
+  auto key_of = [&](std::size_t f, int k) {
+    const int a = mesh.faces(static_cast<long>(f), k), b = mesh.faces(static_cast<long>(f), (k + 1) % 3);
+    return edge_key(std::min(a, b), std::max(a, b));
+  };
+  OrientationReport report;
+  std::vector<int> flip(nf, -1);  // -1 unvisited, 0 keep, 1 reverse
+  std::vector<std::size_t> queue, members;
+  for (std::size_t seed = 0; seed < nf; ++seed) {
+    if (flip[seed] >= 0) continue;
+    ++report.components;
+    members.clear();
+    queue.assign(1, seed);
+    flip[seed] = 0;
+    bool closed = true;
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const std::size_t f = queue[q];
+      members.push_back(f);
+      for (int k = 0; k < 3; ++k) {
+        const Slot& s = edges[key_of(f, k)];
+        if (s.face[1] < 0) {
+          closed = false;
+          continue;
+        }
+        const int self = s.face[0] == static_cast<int>(f) ? 0 : 1;
+        const auto g = static_cast<std::size_t>(s.face[1 - self]);
+        // Final directions must be opposite: dir_g·(−1)^flip_g = −dir_f·(−1)^flip_f.
+        const int dir_f = s.dir[self] * (flip[f] ? -1 : 1);
+        const int want = s.dir[1 - self] == -dir_f ? 0 : 1;
+        if (flip[g] < 0) {
+          flip[g] = want;
+          queue.push_back(g);
+        } else if (flip[g] != want) {
+          throw InvalidInput("orient_consistently: the component of face " + std::to_string(seed) +
+                             " is not orientable (a Moebius-like strip around face " + std::to_string(g) + ")");
+        }
+      }
+    }
+    // Fewest changes first (the majority winding wins), then outward.
+    std::size_t flips = 0;
+    for (auto f : members) flips += static_cast<std::size_t>(flip[f]);
+    if (2 * flips > members.size())
+      for (auto f : members) flip[f] = 1 - flip[f];
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double area_sum = 0.0;
+    for (auto f : members) {
+      const auto fi = static_cast<long>(f);
+      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(fi, 0)), b = mesh.vertices.row(mesh.faces(fi, 1)),
+                            c = mesh.vertices.row(mesh.faces(fi, 2));
+      const double area = 0.5 * (b - a).cross(c - a).norm();
+      centre += area * (a + b + c) / 3.0;
+      area_sum += area;
+    }
+    if (area_sum > 0) centre /= area_sum;
+    double outward = 0.0;  // closed: 6 × signed volume about `centre`; open: Σ area·n·(centroid − centre)
+    for (auto f : members) {
+      const auto fi = static_cast<long>(f);
+      Eigen::Vector3d a = Eigen::Vector3d(mesh.vertices.row(mesh.faces(fi, 0))) - centre;
+      Eigen::Vector3d b = Eigen::Vector3d(mesh.vertices.row(mesh.faces(fi, 1))) - centre;
+      Eigen::Vector3d c = Eigen::Vector3d(mesh.vertices.row(mesh.faces(fi, 2))) - centre;
+      if (flip[f]) std::swap(b, c);
+      outward += closed ? a.dot(b.cross(c)) : 0.5 * (b - a).cross(c - a).dot((a + b + c) / 3.0);
+    }
+    if (outward < 0) {
+      for (auto f : members) flip[f] = 1 - flip[f];
+      ++report.flipped_components;
+    }
+    if (closed) ++report.closed_components;
+  }
+  for (std::size_t f = 0; f < nf; ++f)
+    if (flip[f] == 1) {
+      std::swap(mesh.faces(static_cast<long>(f), 1), mesh.faces(static_cast<long>(f), 2));
+      ++report.flipped_faces;
+    }
+  return report;
 }
 
 Vertices face_normals(const Vertices& vertices, const Faces& faces) {

@@ -19,6 +19,9 @@ void ErrorOptions::validate() const {
   if (std::isnan(bottom_y) || std::isnan(top_y) || !(top_y > bottom_y))
     throw InvalidInput("ErrorOptions: bottom_y and top_y must not be NaN and top_y > bottom_y");
   if (!(penalty >= 0.0) || !std::isfinite(penalty)) throw InvalidInput("ErrorOptions::penalty must be finite and >= 0");
+  if (band_samples < 0 || band_samples > 10000) throw InvalidInput("ErrorOptions::band_samples must be in [0, 10000]");
+  if (band_samples > 0 && !(std::isfinite(band_bottom) && std::isfinite(band_top) && band_top > band_bottom))
+    throw InvalidInput("ErrorOptions: the sample band needs finite band_bottom < band_top");
 }
 
 bool sample_curve(const std::vector<Eigen::Vector2d>& curve, const std::vector<double>& heights,
@@ -78,21 +81,21 @@ const std::vector<double>& ErrorFunction::azimuths() const { return impl_->azimu
 const ErrorOptions& ErrorFunction::options() const { return impl_->options; }
 
 std::size_t ErrorFunction::residual_count() const {
-  return impl_->azimuths.size() * (static_cast<std::size_t>(impl_->options.samples) + 1);
+  return impl_->azimuths.size() * (static_cast<std::size_t>(impl_->options.samples + impl_->options.band_samples) + 1);
 }
 
 double ErrorFunction::evaluate(const facemesh::Vertices& deformed, int deformed_top, ErrorBreakdown* breakdown) const {
   std::vector<double> r;
   std::vector<char> sampled;
   impl_->compute(deformed, deformed_top, r, &sampled);
-  const auto n = static_cast<std::size_t>(impl_->options.samples);
+  const auto n = static_cast<std::size_t>(impl_->options.samples + impl_->options.band_samples);
   ErrorBreakdown out;
   out.half_planes = impl_->azimuths.size();
   for (std::size_t i = 0; i < out.half_planes; ++i) {
     const double* block = r.data() + i * (n + 1);
     for (std::size_t j = 0; j < n; ++j) out.distance_term += block[j] * block[j];
     out.penalty_term += block[n] * block[n];
-    if (sampled[i]) out.samples += n;
+    if (sampled[i]) out.samples += static_cast<std::size_t>(impl_->options.samples);
   }
   if (breakdown) *breakdown = out;
   return out.distance_term + out.penalty_term;
@@ -106,11 +109,12 @@ void ErrorFunction::Impl::compute(const facemesh::Vertices& deformed, int deform
                                   std::vector<char>* sampled) const {
   const auto& m = *this;
   const auto n = static_cast<std::size_t>(m.options.samples);
-  res.assign(azimuths.size() * (n + 1), 0.0);
+  const auto nb = static_cast<std::size_t>(m.options.band_samples);
+  res.assign(azimuths.size() * (n + nb + 1), 0.0);
   if (sampled) sampled->assign(azimuths.size(), 0);
-  std::vector<double> heights(n), rm, rt;
+  std::vector<double> heights(n), band(nb), rm, rt;
   for (std::size_t i = 0; i < m.azimuths.size(); ++i) {
-    double* block = res.data() + i * (n + 1);
+    double* block = res.data() + i * (n + nb + 1);
     const auto curve_m = m.source_walker.half_plane_curve(deformed, deformed_top, m.centre, m.azimuths[i], m.options.bottom_y);
     const auto& curve_t = m.target_curves[i];
     auto y_range = [&](const std::vector<Eigen::Vector2d>& c, double& hi, double& lo) {
@@ -125,7 +129,7 @@ void ErrorFunction::Impl::compute(const facemesh::Vertices& deformed, int deform
     y_range(curve_t, ht, lt);
     const double y_start = std::min(hm, ht), y_end = std::max(lm, lt);  // thesis §3.5: common range
     if (!(y_start > y_end)) {
-      block[n] = std::sqrt(m.options.penalty * static_cast<double>(n));
+      block[n + nb] = std::sqrt(m.options.penalty * static_cast<double>(n));
       continue;
     }
     const double spacing = (y_start - y_end) / static_cast<double>(n - 1);
@@ -140,7 +144,14 @@ void ErrorFunction::Impl::compute(const facemesh::Vertices& deformed, int deform
     } else {
       penalty += m.options.penalty * static_cast<double>(n);
     }
-    block[n] = std::sqrt(penalty);
+    // Band samples (beyond the thesis), inside the common range only.
+    const double b_hi = std::min(m.options.band_top, y_start), b_lo = std::max(m.options.band_bottom, y_end);
+    if (nb > 0 && b_hi > b_lo) {
+      for (std::size_t j = 0; j < nb; ++j) band[j] = b_hi - (b_hi - b_lo) * (static_cast<double>(j) + 0.5) / static_cast<double>(nb);
+      if (sample_curve(curve_m, band, rm) && sample_curve(curve_t, band, rt))
+        for (std::size_t j = 0; j < nb; ++j) block[n + j] = rm[j] - rt[j];
+    }
+    block[n + nb] = std::sqrt(penalty);
   }
 }
 

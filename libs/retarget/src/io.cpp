@@ -11,12 +11,33 @@ nlohmann::ordered_json vec(const Eigen::Vector3d& v) { return nlohmann::ordered_
 
 std::string format_report(const RetargetResult& r, bool include_time) {
   auto doc = core::make_envelope("retarget_report", {kReportFormatMajor, kReportFormatMinor});
+  auto& c = doc["cleaning"];
+  c["components"] = r.cleaning.components;
+  c["kept_components"] = r.cleaning.kept_components;
+  c["dropped_faces"] = r.cleaning.dropped_faces;
+  c["dropped_vertices"] = r.cleaning.dropped_vertices;
   auto& a = doc["alignment"];
   a["scale"] = r.alignment.scale;
   a["rotation"] = nlohmann::ordered_json::array();
   for (int i = 0; i < 3; ++i) a["rotation"].push_back(vec(r.alignment.rotation.row(i).transpose()));
   a["translation"] = vec(r.alignment.translation);
   a["meaning"] = "thesis-frame point = scale * rotation * input point + translation";
+  const auto& ar = r.alignment.report;
+  a["method"] = to_string(ar.method);
+  a["axis"] = vec(ar.axis);
+  a["angle_deg"] = ar.angle_deg;
+  a["confidence"] = ar.confidence;
+  a["symmetry_error"] = ar.symmetry_error;
+  a["symmetry_margin"] = ar.symmetry_margin;
+  a["match_cost"] = ar.match_cost;
+  a["orientation_margin"] = ar.orientation_margin;
+  a["landmark_offset"] = ar.landmark_offset;
+  a["nose_on_plane"] = ar.nose_on_plane;
+  a["top_on_plane"] = ar.top_on_plane;
+  a["hints_used"] = ar.hints_used;
+  a["snapped"] = ar.snapped;
+  a["pitch_correction_deg"] = ar.pitch_correction_deg;
+  a["message"] = ar.message;
   doc["length_scale"] = r.length_scale;
   auto& lm = doc["landmarks"];
   lm = nlohmann::ordered_json::array();

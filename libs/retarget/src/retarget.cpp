@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include <Eigen/Geometry>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/retarget/surface.hpp"
@@ -24,11 +27,14 @@ void RefineOptions::validate() const {
 }
 
 void RetargetOptions::validate() const {
+  clean.validate();
   refine.validate();
   align.validate();
   rbf.validate();
   error.validate();
   ga.validate();
+  if (mouth_samples < 0 || mouth_samples > 1000) throw InvalidInput("RetargetOptions::mouth_samples must be in [0, 1000]");
+  if (!(pitch_search_degrees >= 0.0 && pitch_search_degrees <= 60.0)) throw InvalidInput("RetargetOptions::pitch_search_degrees must be in [0, 60]");
   if (!(prior_weight >= 0.0) || !std::isfinite(prior_weight)) throw InvalidInput("RetargetOptions::prior_weight must be finite and >= 0");
   if (std::find(detected.begin(), detected.end(), "top_of_head") == detected.end())
     throw InvalidInput("RetargetOptions::detected must contain top_of_head (it defines the centreline, thesis §3.5)");
@@ -65,15 +71,88 @@ facemesh::Face transfer_face(const facemesh::Face& source, const RbfNetwork& net
   return out;
 }
 
-RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh& target,
+RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh& input,
                              const RetargetOptions& options, const std::function<void(const GaProgress&)>& progress) {
   options.validate();
   RetargetResult r;
+  const facemesh::Mesh target = clean_target(input, options.clean, &r.cleaning);
   const auto& rig = source.rig;
   if (rig.retarget_landmarks.size() < 3) throw InvalidInput("the source rig needs at least three retarget landmarks");
   const int source_top = landmark_vertex(rig, "top_of_head");
+  // Error options of the pipeline: sampling down to the source chin (no neck), the mouth band.
+  const auto error_setup = [&](ErrorOptions eo) {
+    bool has_chin = false;
+    for (const auto& l : rig.retarget_landmarks) has_chin = has_chin || l.name == "chin";
+    if (!has_chin) return eo;
+    const double chin_y = landmark_position(source, "chin").y(), nose_y = landmark_position(source, "nose_tip").y();
+    if (eo.bottom_y <= -1e299) eo.bottom_y = chin_y;
+    if (eo.band_samples == 0 && options.mouth_samples > 0 && nose_y > chin_y) {
+      eo.band_samples = options.mouth_samples;
+      eo.band_bottom = chin_y;
+      eo.band_top = nose_y;
+    }
+    return eo;
+  };
   const Eigen::Vector3d top = landmark_position(source, "top_of_head"), nose = landmark_position(source, "nose_tip");
-  r.alignment = align_to_frame(target, top, nose, options.align);
+  r.alignment = align_to_frame(target, source.mesh, top, nose, options.align);
+  const auto& ar = r.alignment.report;
+  if (options.align.mode == AlignMode::Auto && ar.confidence < options.align.min_confidence)
+    throw InvalidInput("cannot orient the target reliably (alignment confidence " + std::to_string(ar.confidence) + " < " +
+                       std::to_string(options.align.min_confidence) + "; " + ar.message +
+                       "): give --up/--front hints, or --align axes if the mesh is already axis-aligned");
+  if (options.align.mode == AlignMode::Auto && options.pitch_search_degrees > 0) {
+    // E of the source deformed by the RBF on the detected landmarks, for the target aligned by `a`.
+    const ErrorOptions eo = error_setup(options.error);
+    facemesh::Vertices deformed;
+    auto initial_error = [&](const Alignment& a) {
+      facemesh::Mesh aligned = target;
+      aligned.vertices = a.apply(target.vertices);
+      try {
+        const auto found = detect_landmarks(aligned, options.detected);
+        Eigen::MatrixX3d src(static_cast<Eigen::Index>(found.size()), 3), dst(static_cast<Eigen::Index>(found.size()), 3);
+        int top_vertex = -1;
+        for (std::size_t k = 0; k < found.size(); ++k) {
+          src.row(static_cast<Eigen::Index>(k)) = landmark_position(source, found[k].name).transpose();
+          dst.row(static_cast<Eigen::Index>(k)) = aligned.vertices.row(found[k].vertex);
+          if (found[k].name == "top_of_head") top_vertex = found[k].vertex;
+        }
+        const ErrorFunction e(aligned, top_vertex, source.mesh.faces, source.mesh.vertex_count(), eo);
+        fit_rbf(src, dst, options.rbf).evaluate(source.mesh.vertices, deformed);
+        const double v = e.evaluate(deformed, source_top);
+        return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
+      } catch (const InvalidInput&) {
+        return std::numeric_limits<double>::infinity();
+      }
+    };
+    const Alignment base = r.alignment;
+    double best_e = initial_error(base), best_deg = 0.0;
+    auto try_pitch = [&](double deg) {
+      Alignment a = base;
+      a.rotation = Eigen::AngleAxisd(deg * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix() * base.rotation;
+      try {
+        place_in_frame(a, target, top, nose, options.align.scale);
+      } catch (const InvalidInput&) {
+        return;
+      }
+      const double e = initial_error(a);
+      if (e < best_e) {
+        best_e = e;
+        best_deg = deg;
+        r.alignment = a;
+      }
+    };
+    const double range = options.pitch_search_degrees;
+    for (double deg = -range; deg <= range + 1e-9; deg += 2.0)
+      if (deg != 0.0) try_pitch(deg);
+    const double centre = best_deg;
+    for (double deg = centre - 1.5; deg <= centre + 1.5 + 1e-9; deg += 0.5)
+      if (deg != centre) try_pitch(deg);
+    r.alignment.report.pitch_correction_deg = best_deg;
+    const Eigen::AngleAxisd aa(r.alignment.rotation);
+    r.alignment.report.axis = aa.axis();
+    r.alignment.report.angle_deg = aa.angle() * 180.0 / 3.14159265358979323846;
+    if (best_deg != 0.0) r.alignment.report.message += "; pitch corrected by " + std::to_string(best_deg) + " deg on the initial error E";
+  }
   r.aligned_target = target;
   r.aligned_target.vertices = r.alignment.apply(target.vertices);
   const auto found = detect_landmarks(r.aligned_target, options.detected);
@@ -120,9 +199,7 @@ RetargetResult retarget_face(const facemesh::Face& source, const facemesh::Mesh&
     r.initial_landmarks.row(i) = p.transpose();
   }
 
-  ErrorOptions error_options = options.error;
-  if (error_options.bottom_y <= -1e299 && std::find(r.landmark_names.begin(), r.landmark_names.end(), "chin") != r.landmark_names.end())
-    error_options.bottom_y = landmark_position(source, "chin").y();
+  ErrorOptions error_options = error_setup(options.error);
   const ErrorFunction error(r.aligned_target, target_top, source.mesh.faces, source.mesh.vertex_count(), error_options);
 
   // Mirror partner of every searched landmark (index into `free`, −1 = on the symmetry plane).

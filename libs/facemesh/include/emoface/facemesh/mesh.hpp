@@ -28,6 +28,23 @@ struct Mesh {
 /// or a description) and the offending face or vertex as "line" (1-based element index).
 void validate_mesh(const Mesh& mesh, const std::string& source = "<mesh>");
 
+/// What orient_consistently did.
+struct OrientationReport {
+  std::size_t components = 0;         ///< edge-connected components of faces
+  std::size_t closed_components = 0;  ///< of which without boundary edges (oriented outward by signed volume)
+  std::size_t flipped_faces = 0;      ///< faces whose winding was reversed
+  std::size_t flipped_components = 0; ///< components turned inside out as a whole (after making them consistent)
+};
+
+/// Makes the winding of the triangles consistent inside each edge-connected component (breadth-first
+/// over shared edges, reversing a neighbour that runs a shared edge in the same direction), then points
+/// each component outward: a closed component by the sign of its enclosed volume, an open one (a scan
+/// with holes, a face mask) by the sign of Σ area·n·(centroid − component centroid). Throws InvalidInput
+/// naming the face for ids out of range, an edge shared by more than two triangles (non-manifold: no
+/// consistent orientation exists; remove the extra faces first) or a non-orientable component (a
+/// Möbius strip). Changes nothing else (vertices, face order).
+OrientationReport orient_consistently(Mesh& mesh);
+
 /// Unit normal of every face (#F by 3); a zero-area face gets (0,0,0).
 Vertices face_normals(const Vertices& vertices, const Faces& faces);
 

@@ -33,6 +33,14 @@ struct ErrorOptions {
   /// Penalty per missing sample, m² (Δ of thesis §3.5): the height by which a curve extends beyond
   /// the common range, divided by the sample spacing, times this. ≥ 0.
   double penalty = 4e-4;
+  /// Beyond the thesis: extra samples per curve at equal heights inside the band [band_bottom,
+  /// band_top] (m, thesis frame; clipped to the common range), so that a small feature there — the
+  /// lips, 1.5 cm tall, between one or two of the n samples of a whole head — is seen by E. 0 = none
+  /// (thesis §3.5 exactly); [0, 10000]. The retarget pipeline puts the band between the source's chin and
+  /// nose tip (RetargetOptions::mouth_samples).
+  int band_samples = 0;
+  double band_bottom = 0.0;
+  double band_top = 0.0;
   void validate() const;
 };
 
@@ -63,8 +71,9 @@ class ErrorFunction {
   double evaluate(const facemesh::Vertices& deformed, int deformed_top, ErrorBreakdown* breakdown = nullptr) const;
 
   /// The same E as a fixed-size residual vector (E = Σ r²) for least-squares refinement:
-  /// per half-plane, n sample differences r_M − r_T (m) then √Δ_i (the half-plane's penalty). A
-  /// half-plane without a common range contributes zeros and √(penalty·n). Size residual_count().
+  /// per half-plane, n sample differences r_M − r_T (m), the band_samples band differences, then √Δ_i
+  /// (the half-plane's penalty). A half-plane without a common range contributes zeros and √(penalty·n).
+  /// Size residual_count().
   void residuals(const facemesh::Vertices& deformed, int deformed_top, std::vector<double>& out) const;
   std::size_t residual_count() const;
 

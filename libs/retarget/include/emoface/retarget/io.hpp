@@ -9,7 +9,7 @@
 namespace emoface::retarget {
 
 inline constexpr int kReportFormatMajor = 1;
-inline constexpr int kReportFormatMinor = 0;
+inline constexpr int kReportFormatMinor = 1;  ///< 1.1: alignment report (method, axis/angle, confidence, cues)
 
 /// Deterministic JSON (ends with a newline). `include_time` = false drops GaReport::seconds so that two
 /// runs with the same seed give byte-identical files.

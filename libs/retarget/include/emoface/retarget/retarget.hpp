@@ -20,6 +20,7 @@
 
 #include "emoface/facemesh/io.hpp"
 #include "emoface/retarget/align.hpp"
+#include "emoface/retarget/clean.hpp"
 #include "emoface/retarget/error.hpp"
 #include "emoface/retarget/ga.hpp"
 #include "emoface/retarget/rbf.hpp"
@@ -45,6 +46,7 @@ struct RefineReport {
 };
 
 struct RetargetOptions {
+  CleanOptions clean;  ///< stray components dropped before everything else
   AlignOptions align;
   RbfOptions rbf;
   /// bottom_y left at its default (−∞) is replaced by the height of the source's "chin" landmark.
@@ -61,13 +63,24 @@ struct RetargetOptions {
   /// default 0 (off): on the MakeHuman head a weight of 1 pulled the mouth corners down (docs/retarget.md).
   double prior_weight = 0.0;
   RefineOptions refine;
+  /// Beyond the thesis: with AlignMode::Auto, the alignment's pitch (about the thesis x axis) is
+  /// corrected within ±this many degrees (2° steps, then 0.5°) to minimise the error E (§3.5) of the
+  /// source deformed by the RBF on the detected landmarks alone (§3.3). The shape matching of
+  /// align_to_frame finds the left-right axis and up/front reliably, but its pitch follows the overall
+  /// head shape (a neck, a long jaw); E measures what the fit needs. [0, 60]; 0 = off.
+  double pitch_search_degrees = 30.0;
+  /// Beyond the thesis, experimental: ErrorOptions::band_samples between the source's chin and nose tip
+  /// heights when error.band_samples is 0, so that E samples the lips more densely. Off by default: on the
+  /// MakeHuman head 12 band samples moved the mouth further down (docs/retarget.md). [0, 1000].
+  int mouth_samples = 0;
   void validate() const;
 };
 
 struct RetargetResult {
   facemesh::Face face;                     ///< the deformed source face: mesh + complete rig
+  CleanReport cleaning;                    ///< what clean_target dropped
   Alignment alignment;                     ///< input target → thesis frame
-  facemesh::Mesh aligned_target;           ///< the target in the thesis frame
+  facemesh::Mesh aligned_target;           ///< the cleaned target in the thesis frame
   std::vector<std::string> landmark_names; ///< rig retarget landmarks, rig order
   std::vector<bool> detected;              ///< per landmark: auto-detected (fixed) or searched
   Eigen::MatrixX3d source_landmarks;       ///< #L by 3, m

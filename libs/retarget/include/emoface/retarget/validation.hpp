@@ -43,6 +43,15 @@ struct SurfaceDistance {
 SurfaceDistance surface_distance(const facemesh::Mesh& from, const facemesh::Mesh& to,
                                  const std::vector<std::uint8_t>& mask = {});
 
+/// Re-tessellation for the validation suite: quadric-error edge collapse (Garland & Heckbert 1997)
+/// down to `keep_fraction` of the used vertices, each collapse moving the surviving vertex to the
+/// best of the two end points and the midpoint under the summed plane quadrics of both. An edge is
+/// collapsed only if neither end lies on an open boundary (holes and rims keep their shape), the link
+/// condition holds (exactly two common neighbours, so the result stays manifold) and no remaining
+/// triangle turns by more than ~78° or degenerates. Unused vertices are dropped. Throws InvalidInput
+/// for keep_fraction outside (0, 1] or a mesh that is not a valid triangle mesh.
+facemesh::Mesh decimate(const facemesh::Mesh& mesh, double keep_fraction);
+
 /// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection §5.1.5).
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c);
