@@ -6,26 +6,12 @@
 #include "emoface/channels/io.hpp"
 #include "emoface/channels/talking_head.hpp"
 #include "emoface/cli/cli.hpp"
-#include "emoface/fuzzyexpr/engine.hpp"
+#include "emoface/obie/pipeline.hpp"
 #include "plot.hpp"
 
 namespace ch = emoface::channels;
-namespace fx = emoface::fuzzyexpr;
 
 namespace {
-
-// Emotion display → muscle targets: fuzzyexpr's FMCV (thesis ch. 6), both sides.
-ch::EmotionMapper fuzzy_mapper() {
-  auto engine = std::make_shared<fx::Engine>(fx::default_rule_base());
-  return [engine](const std::array<double, 6>& e) {
-    fx::Esv esv{};
-    for (std::size_t k = 0; k < 6; ++k) esv[k] = e[k];  // same ESV order (sadness … surprise)
-    const auto sides = fx::expand_to_sides(engine->convert(esv));
-    std::vector<ch::Target> out;
-    for (std::size_t i = 0; i < sides.size(); ++i) out.push_back({std::string(fx::side_parameter_names()[i]), sides[i]});
-    return out;
-  };
-}
 
 std::vector<std::string> split_names(const std::string& s) {
   std::vector<std::string> out;
@@ -88,7 +74,7 @@ int main(int argc, char** argv) {
     const ch::VisemeSet visemes = visemes_path.empty() ? ch::default_viseme_set() : ch::read_visemes(visemes_path);
     const ch::ConflictTable conflicts =
         conflicts_path.empty() ? ch::default_conflict_table() : ch::read_conflicts(conflicts_path);
-    const ch::TalkingHead th = ch::run_talking_head(script, visemes, conflicts, fuzzy_mapper(), o);
+    const ch::TalkingHead th = ch::run_talking_head(script, visemes, conflicts, emoface::obie::fuzzy_emotion_mapper(), o);
 
     emoface::cli::Output out(out_path);
     out.write(ch::format_tracks(th.tracks, out_path));

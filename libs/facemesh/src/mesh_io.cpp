@@ -280,15 +280,7 @@ Mesh read_mesh(const std::string& path) {
   if (ext == ".off") check_off_header(text, where);
   if (ext == ".obj") {
     counted = true;
-    std::size_t pos = 0;
-    while (pos < text.size()) {
-      std::size_t end = text.find('\n', pos);
-      if (end == std::string::npos) end = text.size();
-      std::size_t s = pos;
-      while (s < end && (text[s] == ' ' || text[s] == '\t')) ++s;
-      if (s + 1 < end && text[s] == 'f' && (text[s + 1] == ' ' || text[s + 1] == '\t')) ++declared_faces;
-      pos = end + 1;
-    }
+    declared_faces = count_obj_faces(text);
   }
   OmMesh om;
   om.request_vertex_status();
