@@ -149,33 +149,8 @@ int crowd(Args& a) {
   const std::vector<mm::Event> events = mm::read_events(a.events);
 
   // Faces: --rig FILE for everyone, --rig NAME=FILE for one character; the default face otherwise.
-  std::map<std::string, std::string> rig_of;  // character -> rig file ("" = default face)
-  std::string everyone;
-  for (const auto& r : a.rigs) {
-    const auto eq = r.find('=');
-    const std::string name = eq == std::string::npos ? "" : r.substr(0, eq);
-    const bool named = std::any_of(maps.begin(), maps.end(), [&](const mm::MindMap& m) { return m.character == name; });
-    if (named) rig_of[name] = r.substr(eq + 1);
-    else if (everyone.empty()) everyone = r;
-    else throw cli::UsageError("--rig: only one rig may be given for everyone (use NAME=FILE for one character)");
-  }
-  std::vector<std::string> files_of;  // per character
-  for (const auto& m : maps) files_of.push_back(rig_of.count(m.character) ? rig_of[m.character] : everyone);
-  std::vector<std::string> distinct;
-  for (const auto& f : files_of)
-    if (std::find(distinct.begin(), distinct.end(), f) == distinct.end()) distinct.push_back(f);
-  std::vector<std::unique_ptr<emoface::muscles::FaceSolver>> solvers;
-  std::vector<std::unique_ptr<emoface::bridge::LandmarkFitter>> fitters;
-  std::map<std::string, mo::CrowdRig> by_file;
-  for (const auto& f : distinct) {
-    auto face = f.empty() ? fm::make_default_face() : fm::load_face(f);
-    solvers.push_back(std::make_unique<emoface::muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig)));
-    fitters.push_back(std::make_unique<emoface::bridge::LandmarkFitter>(*solvers.back()));
-    by_file[f] = {solvers.back().get(), fitters.back().get()};
-  }
-  std::vector<mo::CrowdRig> rigs;
-  if (distinct.size() == 1) rigs.push_back(by_file[distinct[0]]);
-  else for (const auto& f : files_of) rigs.push_back(by_file[f]);
+  const mo::CrowdFaces crowd_faces(maps, a.rigs);
+  const std::vector<mo::CrowdRig>& rigs = crowd_faces.rigs();
 
   mo::CrowdTimings timings;
   const mo::Crowd crowd = mo::animate_crowd(maps, events, graph, rigs, co, &timings);

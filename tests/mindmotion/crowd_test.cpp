@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <memory>
 
@@ -13,6 +14,7 @@
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/io.hpp"
 #include "emoface/mindmap/chart.hpp"
 #include "emoface/mindmap/io.hpp"
 
@@ -409,3 +411,28 @@ TEST(Crowd, BadOptionsAndInputsAreClearErrors) {
   none.key_moments.clear();
   expect_error([&] { mo::CrowdRenderer(none, rigs(), tiny()).key_moment_sheet(); }, "key moments");
 }
+
+namespace {
+
+TEST(CrowdFaces, RigSpecsAssignFacesPerCharacter) {
+  namespace fs = std::filesystem;
+  const auto maps = trio();
+  const mo::CrowdFaces shared(maps, {});
+  ASSERT_EQ(shared.rigs().size(), 1u);  // everyone the built-in face, one solver
+  EXPECT_NE(shared.rigs()[0].solver, nullptr);
+  EXPECT_NE(shared.rigs()[0].fitter, nullptr);
+  const std::string dir = ::testing::TempDir() + "emoface_crowd_faces";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  emoface::facemesh::save_face(dir + "/face.rig", emoface::facemesh::make_default_face());
+  const mo::CrowdFaces one(maps, {"tim=" + dir + "/face.rig"});
+  ASSERT_EQ(one.rigs().size(), 3u);  // per character, map order: hot, tim, zen
+  EXPECT_EQ(one.rigs()[0].solver, one.rigs()[2].solver);  // hot and zen share the default face
+  EXPECT_NE(one.rigs()[0].solver, one.rigs()[1].solver);
+  EXPECT_EQ(mo::CrowdFaces(maps, {dir + "/face.rig"}).rigs().size(), 1u);  // one file for everyone
+  EXPECT_THROW(mo::CrowdFaces(maps, {dir + "/face.rig", dir + "/face.rig"}), emoface::InvalidInput);
+  EXPECT_ANY_THROW(mo::CrowdFaces(maps, {dir + "/missing.rig"}));
+  fs::remove_all(dir);
+}
+
+}  // namespace

@@ -8,11 +8,13 @@
 #include <ctime>
 #include <exception>
 #include <limits>
+#include <map>
 #include <thread>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/io.hpp"
 #include "emoface/mindmap/chart.hpp"
 #include "emoface/motiongraph/layout.hpp"
 #include "emoface/motiongraph/preprocess.hpp"
@@ -27,6 +29,40 @@ mg::MotionGraph default_motion_graph(const mg::SyntheticOptions& database, const
   // The one place that picks the synthetic landmark model for a crowd without a graph (issue #9 §2).
   const mg::Database db = mg::generate_synthetic_database(mg::ParametricLandmarkModel(), database);
   return mg::build_graph(mg::preprocess(db, mg::default_layout()), graph);
+}
+
+CrowdFaces::CrowdFaces(const std::vector<mindmap::MindMap>& maps, const std::vector<std::string>& rig_specs) {
+  std::map<std::string, std::string> rig_of;  // character -> rig file
+  std::string everyone;                        // "" = the built-in default face
+  bool have_everyone = false;
+  for (const auto& spec : rig_specs) {
+    const auto eq = spec.find('=');
+    const std::string name = eq == std::string::npos ? "" : spec.substr(0, eq);
+    const bool named = std::any_of(maps.begin(), maps.end(), [&](const mindmap::MindMap& m) { return m.character == name; });
+    if (named) {
+      rig_of[name] = spec.substr(eq + 1);
+    } else if (!have_everyone) {
+      everyone = spec;
+      have_everyone = true;
+    } else {
+      throw InvalidInput("crowd rigs: only one rig may be given for everyone (use NAME=FILE for one character)");
+    }
+  }
+  std::vector<std::string> file_of;  // per character
+  for (const auto& m : maps) file_of.push_back(rig_of.count(m.character) ? rig_of[m.character] : everyone);
+  std::map<std::string, CrowdRig> by_file;
+  for (const auto& f : file_of) {
+    if (by_file.count(f)) continue;
+    auto face = f.empty() ? fm::make_default_face() : fm::load_face(f);
+    solvers_.push_back(std::make_unique<muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig)));
+    fitters_.push_back(std::make_unique<bridge::LandmarkFitter>(*solvers_.back()));
+    by_file[f] = {solvers_.back().get(), fitters_.back().get()};
+  }
+  if (by_file.size() <= 1) {
+    rigs_.push_back(by_file.empty() ? CrowdRig{} : by_file.begin()->second);
+  } else {
+    for (const auto& f : file_of) rigs_.push_back(by_file[f]);
+  }
 }
 
 void CrowdOptions::validate() const {

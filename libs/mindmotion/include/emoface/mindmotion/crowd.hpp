@@ -12,6 +12,7 @@
 //   facemesh::Image sheet = renderer.key_moment_sheet();   // one row per stimulus (Fig. 4 style)
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,24 @@ motiongraph::MotionGraph default_motion_graph(const motiongraph::SyntheticOption
 struct CrowdRig {
   const muscles::FaceSolver* solver = nullptr;
   const bridge::LandmarkFitter* fitter = nullptr;
+};
+
+/// The faces of a crowd: one muscle solver and landmark fitter per distinct rig file, built once.
+/// `rig_specs` are as on the command line: "FILE" gives everyone that rig, "NAME=FILE" gives it to the
+/// character NAME only (a spec whose part before '=' names no character is a FILE for everyone); characters
+/// without a rig get the built-in default face. Throws InvalidInput for two rigs for everyone, and what
+/// facemesh::load_face throws for a missing or bad rig.
+class CrowdFaces {
+ public:
+  CrowdFaces(const std::vector<mindmap::MindMap>& maps, const std::vector<std::string>& rig_specs);
+  /// One CrowdRig shared by everyone when all characters have the same face, else one per character in
+  /// map order — the form animate_crowd and CrowdRenderer take.
+  const std::vector<CrowdRig>& rigs() const noexcept { return rigs_; }
+
+ private:
+  std::vector<std::unique_ptr<muscles::FaceSolver>> solvers_;
+  std::vector<std::unique_ptr<bridge::LandmarkFitter>> fitters_;
+  std::vector<CrowdRig> rigs_;
 };
 
 struct CrowdOptions {
