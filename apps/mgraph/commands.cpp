@@ -79,7 +79,6 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
     vo.width = a.video_width;
     vo.height = a.video_height;
     vo.fps = a.fps > 0.0 ? a.fps : g.frame_rate;
-    vo.comment = "emoface mgraph";
     core::VideoWriter video(a.video, vo);
     const View view = fit_view(all, vo.width, vo.height);
     for (const Pose& pose : all) {

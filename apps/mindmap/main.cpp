@@ -123,13 +123,7 @@ int crowd(Args& a) {
   namespace mo = emoface::mindmotion;
   namespace fm = emoface::facemesh;
   a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
-  a.render.view = cli::parse_enum<fm::View>(
-      a.view, [](const std::string& v) -> std::optional<fm::View> {
-        if (v == "front") return fm::View::Front;
-        if (v == "threequarter") return fm::View::ThreeQuarter;
-        return std::nullopt;
-      },
-      "--view", "front|threequarter");
+  a.render.view = fm::view_from_string(a.view);  // checked by CLI11 (IsMember) when parsing
   mo::CrowdOptions co;
   co.simulation = a.sim;
   co.motion = a.motion;
@@ -190,7 +184,6 @@ int crowd(Args& a) {
     vo.width = renderer.width();
     vo.height = renderer.height();
     vo.fps = crowd.fps;
-    vo.comment = emoface::kGenerator;
     t0 = Clock::now();
     c0 = std::clock();
     emoface::core::VideoWriter writer(dir + "crowd.mp4", vo);
@@ -276,7 +269,9 @@ int main(int argc, char** argv) {
   cr->add_option("--width", a.render.face_width, "pixels per face (height = 7/6 of it)")->capture_default_str();
   cr->add_option("--strip-height", a.render.strip_height, "pixels of the mood strip under each face")->capture_default_str();
   cr->add_option("--columns", a.render.columns, "grid columns (0 = one row up to 4 characters)")->capture_default_str();
-  cr->add_option("--view", a.view, "front|threequarter")->capture_default_str();
+  cr->add_option("--view", a.view, "front|threequarter")
+      ->check(CLI::IsMember({"front", "threequarter"}))
+      ->capture_default_str();
   cr->add_flag("--video", a.video, "also write crowd.mp4 (needs the ffmpeg binary)");
   cr->add_option("--mood-form", a.mood_form, "sum|printed reading of eq. 4")->capture_default_str();
   cr->add_option("--duration", a.sim.duration, "seconds (0 = until the last decay ends)")->capture_default_str();

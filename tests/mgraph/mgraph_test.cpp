@@ -14,6 +14,7 @@
 
 #include "cli_harness.hpp"
 #include "emoface/core/csv.hpp"
+#include "emoface/core/version.hpp"
 #include "emoface/core/video.hpp"
 
 namespace {
@@ -216,6 +217,7 @@ TEST_F(Mgraph, WritesGifAndMp4) {
   const std::string mp4 = slurp(path("i.mp4"));
   ASSERT_GT(mp4.size(), 12u);
   EXPECT_EQ(mp4.substr(4, 4), "ftyp");
+  EXPECT_NE(mp4.find(emoface::kGenerator), std::string::npos);  // version stamp in the comment metadata
   // Same seed → the same GIF, byte for byte.
   r = run("synth --graph " + shared("graph.json") + " --labels surprise --out " + path("s2.json") +
           " --video " + path("s2.gif") + " --video-width 160 --video-height 120");
