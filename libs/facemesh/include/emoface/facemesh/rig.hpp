@@ -27,7 +27,7 @@ Region region_from_string(std::string_view name);
 inline int thesis_number(Region region) { return static_cast<int>(region) + 1; }
 
 /// Surface material per vertex, used only for rendering colours.
-enum class Material { Skin, Lip, EyeWhite, Iris, Pupil, Brow, Hair, MouthInterior };
+enum class Material { Skin, Lip, EyeWhite, Iris, Pupil, Brow, Hair, MouthInterior, Teeth, Tongue, Lash };
 std::string to_string(Material material);
 Material material_from_string(std::string_view name);
 
@@ -62,6 +62,19 @@ struct MuscleSpec {
 /// row kAcross-1 = inside the mouth). Sampled on a fixed (samples_around × samples_across) grid whose
 /// vertices occupy [first_vertex, first_vertex + samples_around*samples_across) in the mesh, index
 /// first_vertex + j*samples_around + i for sample column i (around) and row j (across).
+/// A mesh vertex driven by the lip surface instead of being one of the grid's samples (rigs transferred
+/// onto a user's mesh, rig format 1.1). After the muscles, the jaw and the lip actions the vertex moves to
+///   x = (1 − weight)·x_muscles + weight·(S(u, v) + offset),
+/// S the deformed lip B-spline surface (u ∈ [0, 1) around the mouth from column 0, v ∈ [0, 1] across,
+/// 0 = outer border row), `offset` the vertex's neutral offset from S(u, v) (rig frame, m).
+struct LipBinding {
+  int vertex = 0;
+  double u = 0.0;
+  double v = 0.0;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  double weight = 1.0;  ///< [0, 1]
+};
+
 struct LipGrid {
   static constexpr int kAround = 24;
   static constexpr int kAcross = 6;
@@ -70,6 +83,10 @@ struct LipGrid {
   int samples_across = 8;                       ///< [kAcross, 256]
   int first_vertex = 0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< mouth centre, m
+  /// true (the built-in face): the samples are mesh vertices [first_vertex, ...) as above. false (a
+  /// transferred rig): no grid sample is a mesh vertex; the lip surface drives the `bound` vertices.
+  bool samples_in_mesh = true;
+  std::vector<LipBinding> bound;  ///< vertices driven through (u, v, offset); may be used with either mode
   /// Column c sits at angle 2πc/kAround around the mouth, counter-clockwise seen from the front,
   /// starting at the subject's left corner; columns with sin < 0 belong to the lower lip.
 };
@@ -97,6 +114,33 @@ struct Eye {
   double pitch_limit = 0.4;
 };
 
+/// Separate parts of a user's mesh (found by the transfer, rig format 1.1). What moves them is expressed
+/// through the ordinary rig lists (an eyeball's vertices in Eye::eyeball_vertices, lower teeth and tongue
+/// in Jaw::vertices with weight 1, lashes in the lid lists); Part records what was found, for reports,
+/// colours and tools.
+enum class PartKind { Head, Eyeball, UpperTeeth, LowerTeeth, Tongue, Lashes, Brows, Other };
+std::string to_string(PartKind kind);
+PartKind part_kind_from_string(std::string_view name);
+
+struct Part {
+  std::string name;           ///< e.g. the OBJ group/object/material name, or "component_3"
+  PartKind kind = PartKind::Other;
+  int side = -1;              ///< −1 none/both, 0 right, 1 left (as Rig::eyes)
+  std::vector<int> vertices;  ///< ascending
+};
+
+/// Mesh frame → rig frame (rig format 1.1). The rig (muscles, pivots, eyes, lips) and FaceSolver live in
+/// the thesis frame (metres, +x subject's left, +y up, +z out of the face); a user's mesh file keeps its
+/// own frame and units: p_rig = scale·rotation·p_mesh + translation. Identity for the built-in face.
+struct Frame {
+  double scale = 1.0;                                          ///< > 0
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();      ///< proper rotation
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();       ///< m
+  Eigen::Vector3d to_rig(const Eigen::Vector3d& p) const { return scale * (rotation * p) + translation; }
+  Eigen::Vector3d to_mesh(const Eigen::Vector3d& p) const { return rotation.transpose() * (p - translation) / scale; }
+  bool is_identity() const { return scale == 1.0 && rotation == Eigen::Matrix3d::Identity() && translation.isZero(0.0); }
+};
+
 struct NamedLandmark {
   std::string name;
   int vertex = 0;
@@ -114,6 +158,8 @@ struct Rig {
   std::vector<int> ibug68;      ///< 68 landmark vertices, iBUG/CK+ order (0-based: jaw 0–16, brows 17–26, ...)
   std::vector<NamedLandmark> retarget_landmarks;  ///< chapter 3 landmarks, incl. "top_of_head", "nose_tip"
   std::vector<MuscleSpec> muscles;
+  Frame frame;                  ///< mesh file frame → this rig's frame (format 1.1; identity = absent)
+  std::vector<Part> parts;      ///< separate parts found by a transfer (format 1.1; may be empty)
 };
 
 /// Checks the rig on its own and against a mesh of `vertex_count` vertices: sizes, ids in range,

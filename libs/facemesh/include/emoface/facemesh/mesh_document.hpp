@@ -1,0 +1,92 @@
+#pragma once
+// A user's mesh file as a document: read once, keep everything the user made (UVs, normals, groups,
+// objects, materials, other meshes, morph targets, skins), expose the triangles emoface works on, and
+// write the same file back with new vertex positions. Used by `retarget --transfer` (the output rig's
+// mesh *is* the user's mesh) and by `faceanim` frames on a transferred rig.
+//
+//   MeshDocument doc = read_mesh_document("head.obj");   // .obj, .ply, .off, .gltf, .glb
+//   const Mesh& tri = doc.triangles();                   // input frame and units, vertex order kept
+//   doc.write("frame_0001.obj", deformed_vertices);      // everything else unchanged
+//
+// OBJ is parsed here (not through OpenMesh) so that the vertex order is exactly the file's `v` order and
+// every other line survives verbatim; polygons are fan-triangulated for triangles(). glTF 2.0 goes through
+// tinygltf: the first mesh, all of its triangle primitives (vertices of primitive k follow those of k−1).
+// PLY and OFF are read with read_mesh and written with write_mesh (no extra content to keep).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "emoface/facemesh/mesh.hpp"
+
+namespace emoface::facemesh {
+
+enum class MeshFormat { Obj, Ply, Off, Gltf, Glb };
+std::string to_string(MeshFormat format);
+/// From the extension (case-insensitive); throws InvalidInput naming the path for anything else.
+MeshFormat mesh_format_from_path(const std::string& path);
+
+/// One named group of triangles in the file: an OBJ `o`/`g` name and `usemtl` material, or a glTF
+/// primitive (mesh name + index, material name). Used to recognise parts (eyes, teeth, lashes).
+struct MeshGroup {
+  std::string object;    ///< OBJ `o` (or glTF mesh name), may be empty
+  std::string group;     ///< OBJ `g` (or "primitive_<k>"), may be empty
+  std::string material;  ///< OBJ `usemtl` / glTF material name, may be empty
+  std::vector<int> faces;  ///< ids into triangles().faces, ascending
+};
+
+class MeshDocument {
+ public:
+  MeshDocument();
+  ~MeshDocument();
+  MeshDocument(MeshDocument&&) noexcept;
+  MeshDocument& operator=(MeshDocument&&) noexcept;
+  MeshDocument(const MeshDocument&);
+  MeshDocument& operator=(const MeshDocument&);
+
+  MeshFormat format() const;
+  const std::string& path() const;
+  /// Positions (input frame and units, file order) and fan-triangulated faces. Faces that are
+  /// degenerate (repeated id, zero area) are left out here and listed in dropped_faces(); they stay in
+  /// the file. Not necessarily one connected component, not necessarily closed.
+  const Mesh& triangles() const;
+  /// Per triangle, the 0-based index of the polygon (OBJ `f` line / glTF triangle) it came from.
+  const std::vector<int>& polygon_of_triangle() const;
+  std::size_t dropped_faces() const;
+  const std::vector<MeshGroup>& groups() const;
+  /// Texture coordinates present (OBJ `vt` referenced by faces, glTF TEXCOORD_0).
+  bool has_uvs() const;
+  /// Per-vertex colours present (OBJ `v x y z r g b`, PLY colour properties, glTF COLOR_0), else empty.
+  const std::vector<Eigen::Vector3f>& vertex_colors() const;
+  /// OBJ `mtllib` files named by the document (paths as written, relative to the file's directory).
+  const std::vector<std::string>& material_libraries() const;
+
+  /// Writes the document with `positions` (#V by 3, input frame) in place of the original vertex
+  /// positions; everything else byte for byte where the format allows (OBJ: only the numbers of the `v`
+  /// lines change, colours on them kept; `vn` lines are recomputed from the new positions when
+  /// `recompute_normals`; glTF: POSITION (and NORMAL when recompute_normals) accessors of the first mesh
+  /// rewritten, min/max updated). `positions` equal to triangles().vertices reproduces the input file
+  /// byte for byte for OBJ. Copies the OBJ's material libraries next to `path` when `copy_materials`
+  /// and the target directory differs. Atomic (temporary file + rename); throws InvalidInput on a size
+  /// mismatch or non-finite positions, IoError on failure.
+  void write(const std::string& path, const Vertices& positions, bool recompute_normals = true,
+             bool copy_materials = true) const;
+
+  /// glTF/GLB only (InvalidInput otherwise): writes the document with extra named morph targets on the
+  /// first mesh's primitives (POSITION deltas per vertex of triangles(), #V by 3 each, input frame;
+  /// names in mesh.extras.targetNames after any existing ones), existing targets and skins kept.
+  void write_gltf_with_targets(const std::string& path, const std::vector<std::string>& names,
+                               const std::vector<Vertices>& deltas) const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+  friend MeshDocument read_mesh_document(const std::string& path);
+};
+
+/// Reads a mesh document. Throws IoError if unreadable, FormatError naming the file and line (OBJ) or
+/// JSON pointer / accessor (glTF) for malformed content, NaN/inf, ids out of range, no triangle at all,
+/// an edge shared by more than two triangles of one part, or counts the file cannot hold.
+MeshDocument read_mesh_document(const std::string& path);
+
+}  // namespace emoface::facemesh
