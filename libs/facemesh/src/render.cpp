@@ -53,6 +53,9 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
       case Material::Brow: out[v] = {0.33f, 0.22f, 0.16f}; break;
       case Material::Hair: out[v] = {0.28f, 0.19f, 0.13f}; break;
       case Material::MouthInterior: out[v] = {0.35f, 0.12f, 0.12f}; break;
+      case Material::Teeth: out[v] = {0.92f, 0.90f, 0.84f}; break;
+      case Material::Tongue: out[v] = {0.70f, 0.36f, 0.36f}; break;
+      case Material::Lash: out[v] = {0.10f, 0.08f, 0.07f}; break;
     }
   }
   return out;

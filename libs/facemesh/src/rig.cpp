@@ -14,7 +14,7 @@ constexpr const char* kRegionNames[kRegionCount] = {
     "right_upper_face", "left_lower_face",   "left_middle_face",   "left_lower_eyelid",
     "left_upper_eyelid", "left_upper_face",  "rest"};
 constexpr const char* kMaterialNames[] = {"skin", "lip", "eye_white", "iris", "pupil", "brow", "hair",
-                                          "mouth_interior"};
+                                          "mouth_interior", "teeth", "tongue", "lash"};
 constexpr const char* kKindNames[] = {"vector", "sphincter"};
 
 template <std::size_t N>
