@@ -13,11 +13,12 @@ namespace {
 
 TEST(Parameters, DefaultNames) {
   const auto& n = default_parameter_names();
-  ASSERT_EQ(n.size(), 40u);
+  ASSERT_EQ(n.size(), 42u);
   EXPECT_EQ(n[0], "zygomatic_major_l");
   EXPECT_EQ(n[1], "zygomatic_major_r");
   EXPECT_EQ(std::count(n.begin(), n.end(), "orbicularis_oris_funneler"), 1);
-  EXPECT_EQ(n.back(), "head_roll");
+  EXPECT_EQ(n[39], "head_roll");
+  EXPECT_EQ(n.back(), "eye_blink_r");
   EXPECT_TRUE(is_signed_parameter("eye_gaze_yaw"));
   EXPECT_FALSE(is_signed_parameter("masseter"));
   EXPECT_EQ(parameter_muscle("risorius_r"), "risorius");

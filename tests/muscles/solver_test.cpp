@@ -239,6 +239,30 @@ TEST(FaceSolver, EyelidsCloseOverTheEyeball) {
   EXPECT_GT((one.vertices - lid_only.vertices).cwiseAbs().maxCoeff(), 1e-4);
 }
 
+TEST(FaceSolver, BlinkClosesOnlyItsLidAndOverridesTheLevator) {
+  const auto& right = face().rig.eyes[0];
+  const auto& left = face().rig.eyes[1];
+  // eye_blink_r = 1: the right upper lid turns by the full close angle about the eye centre (linear in the
+  // blink level), the left eye and every non-lid vertex stay; no squeeze of the cheek (no coupling).
+  const auto d = solver().deform(values({{"eye_blink_r", 1.0}}));
+  const auto h = solver().deform(values({{"eye_blink_r", 0.5}}));
+  for (std::size_t k = 0; k < right.upper_lid.size(); ++k) {
+    const int v = right.upper_lid[k];
+    const Eigen::Vector3d p0 = face().mesh.vertices.row(v).transpose() - right.centre;
+    const Eigen::Vector3d p1 = d.vertices.row(v).transpose() - right.centre;
+    const Eigen::Vector3d ph = h.vertices.row(v).transpose() - right.centre;
+    const double a1 = std::atan2(p1.y(), p1.z()) - std::atan2(p0.y(), p0.z());
+    const double ah = std::atan2(ph.y(), ph.z()) - std::atan2(p0.y(), p0.z());
+    EXPECT_NEAR(a1, -right.close_angle * right.upper_lid_weights[k], 1e-9);  // rotate_x: + angle lowers
+    EXPECT_NEAR(ah, 0.5 * a1, 1e-9);
+  }
+  for (int v : left.upper_lid) ASSERT_EQ(d.vertices.row(v), face().mesh.vertices.row(v));
+  // with the levator fully on, a full blink still closes the lid exactly as alone
+  const auto both = solver().deform(values({{"eye_blink_r", 1.0}, {"levator_palpebrae_superioris_r", 1.0}}));
+  for (int v : right.upper_lid) EXPECT_NEAR((both.vertices.row(v) - d.vertices.row(v)).norm(), 0.0, 1e-12);
+  EXPECT_THROW(solver().deform(values({{"eye_blink_l", 1.5}})), InvalidInput);
+}
+
 TEST(FaceSolver, GazeRotatesEyeballsWithinTheLimit) {
   const auto& eye = face().rig.eyes[1];
   const int front = eye.eyeball_vertices[0];  // pole looking forward

@@ -25,7 +25,7 @@ std::vector<Movement> generate_blinks(double begin, double end, const BlinkOptio
   for (double t = begin + o.min_interval + rng.exponential(rate); t < end;
        t += o.min_interval + rng.exponential(rate)) {
     Movement m;
-    m.targets = {{"orbicularis_oculi_palpebralis_l", o.closure}, {"orbicularis_oculi_palpebralis_r", o.closure}};
+    m.targets = {{"eye_blink_l", o.closure}, {"eye_blink_r", o.closure}};
     m.timing = Timing{t, t + o.duration, o.onset, o.offset};
     m.label = "blink";
     out.push_back(std::move(m));

@@ -35,7 +35,8 @@ const std::vector<std::string>& default_parameter_names() {
     for (const auto& m : muscle_names()) {
       for (auto& p : muscle_parameters(m)) out.push_back(std::move(p));
     }
-    for (const char* extra : {"eye_gaze_yaw", "eye_gaze_pitch", "head_yaw", "head_pitch", "head_roll"})
+    for (const char* extra : {"eye_gaze_yaw", "eye_gaze_pitch", "head_yaw", "head_pitch", "head_roll",
+                              "eye_blink_l", "eye_blink_r"})
       out.emplace_back(extra);
     return out;
   }();

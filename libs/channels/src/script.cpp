@@ -277,7 +277,7 @@ class Parser {
       it.movement.timing = timing(n, b.duration, b.onset, b.offset);
       const double c = optional(n, "closure", b.closure);
       if (!(c > 0 && c <= 1)) fail(n, "closure must be in (0,1]");
-      it.movement.targets = {{"orbicularis_oculi_palpebralis_l", c}, {"orbicularis_oculi_palpebralis_r", c}};
+      it.movement.targets = {{"eye_blink_l", c}, {"eye_blink_r", c}};
       it.movement.label = label(n);
       it.where = where;
       s.movements.push_back(std::move(it));

@@ -44,10 +44,16 @@ const std::vector<std::string>& pose_parameter_names() {
   return names;
 }
 
+const std::vector<std::string>& eyelid_parameter_names() {
+  static const std::vector<std::string> names = {"eye_blink_l", "eye_blink_r"};
+  return names;
+}
+
 const std::vector<std::string>& parameter_names() {
   static const std::vector<std::string> names = [] {
     auto out = side_parameter_names();
     for (const auto& n : pose_parameter_names()) out.push_back(n);
+    for (const auto& n : eyelid_parameter_names()) out.push_back(n);
     return out;
   }();
   return names;
@@ -70,7 +76,7 @@ void validate_parameter_vector(const std::vector<double>& values) {
   for (std::size_t i = 0; i < values.size(); ++i) {
     const double v = values[i];
     if (!std::isfinite(v)) throw InvalidInput("parameter " + names[i] + " is not finite");
-    if (i < kSideParameterCount) {
+    if (is_level_parameter(i)) {
       if (v < 0.0 || v > 1.0) throw InvalidInput("parameter " + names[i] + " = " + std::to_string(v) + " outside [0, 1]");
     } else if (std::abs(v) > 3.14159265358979323846) {
       throw InvalidInput("angle " + names[i] + " = " + std::to_string(v) + " outside [-pi, pi]");

@@ -125,6 +125,7 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
     closing_param_[static_cast<std::size_t>(e)] = parameter_index("orbicularis_oculi_palpebralis" + s);
     squeezing_param_[static_cast<std::size_t>(e)] = parameter_index("orbicularis_oculi_orbitalis" + s);
     opening_param_[static_cast<std::size_t>(e)] = parameter_index("levator_palpebrae_superioris" + s);
+    blink_param_[static_cast<std::size_t>(e)] = parameter_index("eye_blink" + s);
   }
   funneler_param_ = parameter_index("orbicularis_oris_funneler");
   pressor_param_ = parameter_index("orbicularis_oris_pressor");
@@ -666,9 +667,11 @@ void FaceSolver::apply_lids_jaw_lips(const std::vector<double>& values, const st
   // weighted from the lid margin outwards; closing lowers the upper lid, the levator raises it.
   for (std::size_t e = 0; e < 2; ++e) {
     const auto& eye = rig_.eyes[e];
-    const double upper = std::pow(lids[e].closing, options_.lid_closing_exponent) * eye.close_angle -
-                         values[opening_param_[e]] * eye.open_angle;
-    const double lower = -0.2 * lids[e].closing * eye.close_angle;
+    // A blink (eye_blink, AU45) closes the lid linearly; the muscle's closing level as before.
+    const double blink = values[blink_param_[e]];
+    const double closure = std::max(std::pow(lids[e].closing, options_.lid_closing_exponent), blink);
+    const double upper = closure * eye.close_angle - (1.0 - blink) * values[opening_param_[e]] * eye.open_angle;
+    const double lower = -0.2 * std::max(lids[e].closing, blink) * eye.close_angle;
     if (upper != 0.0) {
       for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {
         const int v = eye.upper_lid[k];

@@ -387,7 +387,7 @@ ObieResult run_obie(const MatchScript& match, const parlee::AgentConfig& agent, 
     if (!need_mesh) return;
     for (std::size_t p = 0; p < muscles::kParameterCount; ++p) {
       double v = column_of[p] == SIZE_MAX ? 0.0 : tracks.at(f, column_of[p]);
-      if (p < muscles::kSideParameterCount) v = std::clamp(v, 0.0, 1.0);  // contractions; mixing keeps them in range
+      if (muscles::is_level_parameter(p)) v = std::clamp(v, 0.0, 1.0);  // contractions; mixing keeps them in range
       w.values[p] = v;
     }
     solver.deform(w.values, w.def);

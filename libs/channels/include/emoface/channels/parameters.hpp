@@ -15,9 +15,10 @@ const std::vector<std::string>& muscle_names();
 /// orbicularis_oris_pressor and masseter).
 bool is_paired_muscle(std::string_view muscle);
 
-/// The 40 default parameters: the 35 face parameters (each paired muscle as <name>_l, <name>_r in
-/// Table 2.1 order, the unpaired ones by their name), then eye_gaze_yaw, eye_gaze_pitch, head_yaw,
-/// head_pitch, head_roll (radians; + = subject's left / up).
+/// The 42 default parameters (muscles::parameter_names()): the 35 face parameters (each paired muscle
+/// as <name>_l, <name>_r in Table 2.1 order, the unpaired ones by their name), then eye_gaze_yaw,
+/// eye_gaze_pitch, head_yaw, head_pitch, head_roll (radians; + = subject's left / up), then
+/// eye_blink_l, eye_blink_r (lid closure, AU45, [0, 1]).
 const std::vector<std::string>& default_parameter_names();
 
 /// True for the signed angle parameters (eye_gaze_* and head_*); all others are contractions in

@@ -34,7 +34,7 @@ std::vector<ParameterFrame> parse_parameter_frames(std::string_view text, FrameF
                                                    const FrameReadOptions& options = {});
 std::vector<ParameterFrame> read_parameter_frames(const std::string& path, const FrameReadOptions& options = {});
 
-/// CSV with header "time,<40 parameter names>" (round-trips through parse_parameter_frames).
+/// CSV with header "time,<42 parameter names>" (round-trips through parse_parameter_frames).
 std::string format_parameter_frames_csv(const std::vector<ParameterFrame>& frames);
 /// JSON envelope "emoface.params" 1.0 (round-trips).
 std::string format_parameter_frames_json(const std::vector<ParameterFrame>& frames, double fps);

@@ -23,10 +23,22 @@ const std::vector<std::string>& side_parameter_names();
 /// subject's right, i.e. about +z out of the face).
 const std::vector<std::string>& pose_parameter_names();
 
-/// All 40: side parameters then pose parameters. This is the order of FaceSolver's value vector.
+/// Eyelid closure beyond the muscles (FACS AU45, a blink): eye_blink_l, eye_blink_r, levels in [0, 1]
+/// (1 = the upper lid meets the lower lid). Orbicularis oculi palpebralis stays the thesis' muscle
+/// parameter; blinks and deliberate closure use these.
+const std::vector<std::string>& eyelid_parameter_names();
+
+/// All 42: side parameters, then pose parameters, then eyelid parameters. This is the order of
+/// FaceSolver's value vector (indices 0–39 are those of the 40-parameter list of emoface ≤ 0.3).
 const std::vector<std::string>& parameter_names();
 inline constexpr std::size_t kSideParameterCount = 35;
-inline constexpr std::size_t kParameterCount = 40;
+inline constexpr std::size_t kPoseParameterCount = 5;
+inline constexpr std::size_t kEyelidParameterCount = 2;
+inline constexpr std::size_t kParameterCount = kSideParameterCount + kPoseParameterCount + kEyelidParameterCount;
+/// True for the parameters that are levels in [0, 1] (muscles and eyelids); the others are angles.
+inline constexpr bool is_level_parameter(std::size_t index) {
+  return index < kSideParameterCount || index >= kSideParameterCount + kPoseParameterCount;
+}
 
 /// Index of a name in parameter_names(); throws InvalidInput for an unknown name.
 std::size_t parameter_index(std::string_view name);
@@ -35,7 +47,7 @@ std::size_t parameter_index(std::string_view name);
 /// or muscle levels outside [0, 1]. Angles must be finite and within [-π, π].
 std::vector<double> to_parameter_vector(const std::map<std::string, double>& named);
 
-/// Checks a full vector (size, finite, ranges). Throws InvalidInput naming the parameter.
+/// Checks a full vector (size, finite, levels in [0, 1], angles in [-π, π]). Throws InvalidInput naming the parameter.
 void validate_parameter_vector(const std::vector<double>& values);
 
 }  // namespace emoface::muscles

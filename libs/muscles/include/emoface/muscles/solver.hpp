@@ -182,7 +182,7 @@ class FaceSolver {
   std::vector<Eigen::Vector3d> funnel_delta_, press_delta_;  // per control point, per unit contraction
   std::vector<double> lip_jaw_weight_;  // per control point
   std::vector<int> vertex_face_start_, vertex_faces_;  // vertex -> incident faces (CSR)
-  std::array<std::size_t, 2> closing_param_{}, squeezing_param_{}, opening_param_{};
+  std::array<std::size_t, 2> closing_param_{}, squeezing_param_{}, opening_param_{}, blink_param_{};
   std::size_t funneler_param_ = 0, pressor_param_ = 0, masseter_param_ = 0;
 };
 

@@ -122,7 +122,7 @@ struct ObieResult {
   std::vector<double> step_seconds;           ///< animation time of each timeline record
   channels::Script script;                    ///< emotion displays and utterances as channel input
   std::vector<PlannedUtterance> utterances;
-  channels::TalkingHead head;                 ///< channel timeline, tracks (fps, 40 parameters), audio
+  channels::TalkingHead head;                 ///< channel timeline, tracks (fps, 42 parameters), audio
   std::size_t frames = 0;                     ///< == head.tracks.frames()
   std::vector<facemesh::Vertices> gltf_frames;
   std::vector<double> gltf_times;             ///< seconds, strictly increasing
