@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numeric>
+#include <vector>
 
 #include "emoface/core/errors.hpp"
 
@@ -61,6 +63,34 @@ TEST(LipSampler, ReproducesAffineGrids) {
   EXPECT_THROW(LipSampler(10, 8), InvalidInput);
   EXPECT_THROW(s.evaluate(std::vector<Eigen::Vector3d>(10), out, 0), InvalidInput);
   EXPECT_THROW(s.evaluate(cps, out, 5), InvalidInput);
+}
+
+TEST(LipSurfaceTerms, MatchTheSamplerAtItsGridPointsAndRejectOutOfRange) {
+  const LipSampler sampler(48, 8);
+  std::vector<Eigen::Vector3d> cps(144);
+  for (std::size_t c = 0; c < cps.size(); ++c) cps[c] = Eigen::Vector3d(std::sin(0.3 * c), std::cos(0.7 * c), 0.01 * c);
+  Vertices grid(sampler.sample_count(), 3);
+  sampler.evaluate(cps, grid, 0);
+  for (int j = 0; j < 8; ++j) {
+    for (int i = 0; i < 48; ++i) {
+      const auto terms = lip_surface_terms(i / 48.0, j / 7.0);
+      EXPECT_LE(terms.size(), 16u);
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      double sum = 0.0;
+      for (const auto& t : terms) p += t.weight * cps[static_cast<std::size_t>(t.control)], sum += t.weight;
+      EXPECT_NEAR(sum, 1.0, 1e-14);  // partition of unity
+      EXPECT_LT((p - Eigen::Vector3d(grid.row(j * 48 + i).transpose())).norm(), 1e-13);
+    }
+  }
+  // just below u = 1 the surface closes on column 0 (periodic)
+  Eigen::Vector3d end = Eigen::Vector3d::Zero(), start = Eigen::Vector3d::Zero();
+  for (const auto& t : lip_surface_terms(std::nextafter(1.0, 0.0), 0.4)) end += t.weight * cps[static_cast<std::size_t>(t.control)];
+  for (const auto& t : lip_surface_terms(0.0, 0.4)) start += t.weight * cps[static_cast<std::size_t>(t.control)];
+  EXPECT_LT((end - start).norm(), 1e-12);
+  EXPECT_THROW(lip_surface_terms(1.0, 0.5), InvalidInput);
+  EXPECT_THROW(lip_surface_terms(-0.01, 0.5), InvalidInput);
+  EXPECT_THROW(lip_surface_terms(0.5, 1.01), InvalidInput);
+  EXPECT_THROW(lip_surface_terms(std::nan(""), 0.5), InvalidInput);
 }
 
 }  // namespace

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
+
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "emoface/core/errors.hpp"
@@ -83,7 +87,159 @@ TEST(RigIo, RejectsMalformedAndTruncatedText) {
   EXPECT_THROW(parse_rig("{\"format\": \"emoface.rig\", \"version\": \"1.0\", \"x\": NaN}", "t.rig"), FormatError);
 }
 
+// The default rig with every format 1.1 field set: a frame (mesh in decimetres, turned 90° about y and
+// shifted), lips driven through bindings only, two parts.
+Rig rig_1_1() {
+  Rig rig = default_face().rig;
+  rig.frame.scale = 0.1;
+  rig.frame.rotation = Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  rig.frame.translation = Eigen::Vector3d(0.01, -0.2, 0.03);
+  rig.lips.samples_in_mesh = false;
+  rig.lips.bound.push_back({7, 0.25, 0.5, Eigen::Vector3d(0.001, -0.002, 0.0005), 1.0});
+  rig.lips.bound.push_back({3, 0.0, 1.0, Eigen::Vector3d::Zero(), 0.5});
+  rig.parts.push_back({"eye_r", PartKind::Eyeball, 0, {1, 2, 5}});
+  rig.parts.push_back({"teeth lower", PartKind::LowerTeeth, -1, {9}});
+  return rig;
+}
+
+TEST(RigIo, RoundTripsFormat11Fields) {
+  const Rig rig = rig_1_1();
+  const std::string text = format_rig(rig);
+  EXPECT_NE(text.find("\"version\": \"1.1\""), std::string::npos);
+  const Rig back = parse_rig(text, "mem");
+  EXPECT_EQ(format_rig(back), text);
+  EXPECT_EQ(back.frame.scale, 0.1);
+  EXPECT_EQ(back.frame.rotation, rig.frame.rotation);  // shortest round-trip doubles: exact
+  EXPECT_EQ(back.frame.translation, rig.frame.translation);
+  EXPECT_FALSE(back.lips.samples_in_mesh);
+  ASSERT_EQ(back.lips.bound.size(), 2u);
+  EXPECT_EQ(back.lips.bound[0].vertex, 7);
+  EXPECT_EQ(back.lips.bound[0].u, 0.25);
+  EXPECT_EQ(back.lips.bound[0].v, 0.5);
+  EXPECT_EQ(back.lips.bound[0].offset, Eigen::Vector3d(0.001, -0.002, 0.0005));
+  EXPECT_EQ(back.lips.bound[1].weight, 0.5);
+  ASSERT_EQ(back.parts.size(), 2u);
+  EXPECT_EQ(back.parts[1].name, "teeth lower");
+  EXPECT_EQ(back.parts[1].kind, PartKind::LowerTeeth);
+  EXPECT_EQ(back.parts[0].side, 0);
+  EXPECT_EQ(back.parts[0].vertices, (std::vector<int>{1, 2, 5}));
+}
+
+TEST(RigIo, ReadsVersion10WithDefaultsAndIgnoresUnknownFields) {
+  Json doc = Json::parse(format_rig(default_face().rig));
+  EXPECT_FALSE(doc.contains("frame"));  // 1.1 fields at their defaults are not written
+  EXPECT_FALSE(doc.contains("parts"));
+  EXPECT_FALSE(doc["lips"].contains("bound"));
+  doc["version"] = "1.0";
+  doc["a_later_minor_field"] = Json::object({{"x", 1}});  // minor versions only add fields
+  doc["lips"]["another_one"] = 3;
+  const Rig rig = parse_rig(doc.dump(), "old.rig");
+  EXPECT_TRUE(rig.frame.is_identity());
+  EXPECT_TRUE(rig.lips.samples_in_mesh);
+  EXPECT_TRUE(rig.lips.bound.empty());
+  EXPECT_TRUE(rig.parts.empty());
+  EXPECT_TRUE(same_rig(rig, default_face().rig));
+}
+
+// As expect_bad, starting from rig_1_1().
+void expect_bad_11(const std::function<void(Json&)>& edit, const std::string& pointer) {
+  Json doc = Json::parse(format_rig(rig_1_1()));
+  edit(doc);
+  try {
+    parse_rig(doc.dump(), "bad.rig");
+    FAIL() << "accepted: " << pointer;
+  } catch (const FormatError& e) {
+    EXPECT_EQ(e.where().file, "bad.rig");
+    EXPECT_EQ(e.where().json_pointer.rfind(pointer, 0), 0u) << e.what() << " expected " << pointer;
+  }
+}
+
+TEST(RigIo, RejectsBadFormat11Content) {
+  expect_bad_11([](Json& d) { d["frame"]["scale"] = 0.0; }, "/frame/scale");
+  expect_bad_11([](Json& d) { d["frame"]["scale"] = -1.0; }, "/frame/scale");
+  expect_bad_11([](Json& d) { d["frame"]["scale"] = "big"; }, "/frame/scale");
+  expect_bad_11([](Json& d) { d["frame"].erase("translation"); }, "/frame/translation");
+  expect_bad_11([](Json& d) { d["frame"]["rotation"].erase(2); }, "/frame/rotation");
+  expect_bad_11([](Json& d) { d["frame"]["rotation"][1] = Json::array({0, 2, 0}); }, "/frame/rotation");
+  // a reflection is orthonormal but not a rotation
+  expect_bad_11([](Json& d) { d["frame"]["rotation"] = Json::parse("[[-1,0,0],[0,1,0],[0,0,1]]"); }, "/frame/rotation");
+  expect_bad_11([](Json& d) { d["frame"]["rotation"] = Json::parse("[[1,0,0],[0,1,0],[0,0,1.00001]]"); }, "/frame/rotation");
+  expect_bad_11([](Json& d) { d["frame"]["translation"][1] = nullptr; }, "/frame/translation/1");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0]["vertex"] = 99999999; }, "/lips/bound/0/vertex");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0]["vertex"] = -1; }, "/lips/bound/0/vertex");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][1]["vertex"] = 7; }, "/lips/bound/1/vertex");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0]["u"] = 1.0; }, "/lips/bound/0/u");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0]["u"] = -0.1; }, "/lips/bound/0/u");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0]["v"] = 1.5; }, "/lips/bound/0/v");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0]["weight"] = 1.01; }, "/lips/bound/0/weight");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0]["offset"][2] = "nan"; }, "/lips/bound/0/offset/2");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0].erase("weight"); }, "/lips/bound/0/weight");
+  expect_bad_11([](Json& d) { d["lips"]["bound"] = 3; }, "/lips/bound");
+  expect_bad_11([](Json& d) { d["lips"]["samples_in_mesh"] = "no"; }, "/lips/samples_in_mesh");
+  // with the grid in the mesh, a bound vertex may not also be a grid sample
+  expect_bad_11([](Json& d) {
+    d["lips"]["samples_in_mesh"] = true;
+    d["lips"]["bound"][0]["vertex"] = d["lips"]["first_vertex"].get<int>() + 3;
+  }, "/lips/bound/0/vertex");
+  expect_bad_11([](Json& d) { d["lips"]["control_points"] = Json::array(); }, "/lips/bound");
+  expect_bad_11([](Json& d) { d["parts"][0]["kind"] = "wing"; }, "/parts/0/kind");
+  expect_bad_11([](Json& d) { d["parts"][0]["side"] = 2; }, "/parts/0/side");
+  expect_bad_11([](Json& d) { d["parts"][0]["name"] = ""; }, "/parts/0/name");
+  expect_bad_11([](Json& d) { d["parts"][0]["vertices"] = Json::array({5, 2}); }, "/parts/0/vertices/1");
+  expect_bad_11([](Json& d) { d["parts"][0]["vertices"] = Json::array({5, 5}); }, "/parts/0/vertices/1");
+  expect_bad_11([](Json& d) { d["parts"][0]["vertices"][2] = 99999999; }, "/parts/0/vertices/2");
+  expect_bad_11([](Json& d) { d["parts"] = Json::object(); }, "/parts");
+}
+
+TEST(RigIo, FrameRotationToleranceIs1e6) {
+  Rig rig = rig_1_1();
+  rig.frame.rotation(0, 1) += 2e-7;  // |R^T R - I| ~ 2e-7: accepted
+  EXPECT_NO_THROW(validate_rig(rig));
+  rig.frame.rotation(0, 1) += 2e-5;
+  EXPECT_THROW(validate_rig(rig), FormatError);
+}
+
+TEST(RigIo, GridRangeIsNotCheckedWhenTheSamplesAreNotInTheMesh) {
+  Rig rig = default_face().rig;
+  rig.lips.first_vertex = static_cast<int>(rig.vertex_count);  // would exceed the mesh
+  EXPECT_THROW(validate_rig(rig), FormatError);
+  rig.lips.samples_in_mesh = false;
+  EXPECT_NO_THROW(validate_rig(rig));
+}
+
+TEST(Frame, MapsBothWaysByTheFormula) {
+  Frame f;
+  f.scale = 0.1;
+  f.rotation = Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  f.translation = Eigen::Vector3d(1, 2, 3);
+  // rotation by 90° about y takes (1, 0, 0) to (0, 0, -1): 0.1·(0, 0, -1) + (1, 2, 3)
+  EXPECT_TRUE(f.to_rig(Eigen::Vector3d(1, 0, 0)).isApprox(Eigen::Vector3d(1, 2, 2.9), 1e-15));
+  const Eigen::Vector3d p(0.3, -4, 7);
+  EXPECT_TRUE(f.to_mesh(f.to_rig(p)).isApprox(p, 1e-14));
+  EXPECT_FALSE(f.is_identity());
+  EXPECT_TRUE(Frame{}.is_identity());
+}
+
 class FaceIo : public testing::TempDirTest {};
+
+TEST_F(FaceIo, LoadFaceConvertsTheMeshFrameToTheRigFrame) {
+  Face face = default_face();
+  face.rig = rig_1_1();
+  save_face(path("face.rig"), face);
+  // the file holds the mesh frame: p_mesh = to_mesh(p_rig)
+  const Mesh file = read_mesh(path(face.rig.mesh_file));
+  const Eigen::Vector3d p0 = default_face().mesh.vertices.row(0).transpose();
+  EXPECT_TRUE(Eigen::Vector3d(file.vertices.row(0).transpose()).isApprox(face.rig.frame.to_mesh(p0), 1e-7));
+  // decimetres: the file is ten times larger than the rig
+  const double extent_rig = (default_face().mesh.vertices.colwise().maxCoeff() - default_face().mesh.vertices.colwise().minCoeff()).norm();
+  const double extent_file = (file.vertices.colwise().maxCoeff() - file.vertices.colwise().minCoeff()).norm();
+  EXPECT_NEAR(extent_file / extent_rig, 10.0, 1e-5);
+  const Face back = load_face(path("face.rig"));
+  EXPECT_LT((back.mesh.vertices - default_face().mesh.vertices).cwiseAbs().maxCoeff(), 1e-7);
+  EXPECT_EQ(back.mesh.faces, default_face().mesh.faces);
+  EXPECT_EQ(format_rig(back.rig), format_rig(face.rig));
+}
+
 
 TEST_F(FaceIo, SaveAndLoadFace) {
   save_face(path("face.rig"), default_face());
@@ -114,7 +270,13 @@ TEST(Enums, StringRoundTrips) {
   }
   EXPECT_EQ(to_string(Region::RightLowerFace), "right_lower_face");
   EXPECT_EQ(thesis_number(Region::Rest), 11);
-  for (int i = 0; i < 8; ++i) EXPECT_EQ(material_from_string(to_string(static_cast<Material>(i))), static_cast<Material>(i));
+  for (int i = 0; i < kMaterialCount; ++i) EXPECT_EQ(material_from_string(to_string(static_cast<Material>(i))), static_cast<Material>(i));
+  EXPECT_EQ(to_string(Material::Lash), "lash");
+  for (int i = 0; i <= static_cast<int>(PartKind::Other); ++i) {
+    EXPECT_EQ(part_kind_from_string(to_string(static_cast<PartKind>(i))), static_cast<PartKind>(i));
+  }
+  EXPECT_EQ(to_string(PartKind::LowerTeeth), "lower_teeth");
+  EXPECT_THROW(part_kind_from_string("wing"), InvalidInput);
   for (auto k : {MuscleKind::Vector, MuscleKind::Sphincter}) EXPECT_EQ(muscle_kind_from_string(to_string(k)), k);
   EXPECT_THROW(region_from_string("forehead"), InvalidInput);
   EXPECT_THROW(material_from_string(""), InvalidInput);

@@ -1,7 +1,9 @@
 // Lip B-spline surface (thesis §2.2.2, §2.3.2).
 #include "emoface/facemesh/bspline.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "emoface/core/errors.hpp"
 
@@ -70,6 +72,28 @@ LipSampler::LipSampler(int samples_around, int samples_across)
       }
     }
   }
+}
+
+std::vector<LipSampler::Term> lip_surface_terms(double u, double v) {
+  if (!(u >= 0.0 && u < 1.0) || !(v >= 0.0 && v <= 1.0)) {
+    throw InvalidInput("lip_surface_terms: (u, v) = (" + std::to_string(u) + ", " + std::to_string(v) +
+                       ") outside [0, 1) x [0, 1]");
+  }
+  constexpr int na = LipGrid::kAround;
+  const auto bv = clamped_cubic_basis(LipGrid::kAcross, v);
+  const double s = u * na;
+  const int seg = std::min(static_cast<int>(std::floor(s)), na - 1);
+  const auto bu = cubic_bspline_basis(s - seg);
+  std::vector<LipSampler::Term> terms;
+  terms.reserve(16);
+  for (int r = 0; r < LipGrid::kAcross; ++r) {
+    if (bv[static_cast<std::size_t>(r)] == 0.0) continue;
+    for (int k = 0; k < 4; ++k) {
+      const int col = ((seg - 1 + k) % na + na) % na;
+      terms.push_back({r * na + col, bv[static_cast<std::size_t>(r)] * bu[static_cast<std::size_t>(k)]});
+    }
+  }
+  return terms;
 }
 
 void LipSampler::evaluate(const std::vector<Eigen::Vector3d>& control_points, Vertices& out, int first_row) const {

@@ -150,6 +150,24 @@ Rig parse_rig(std::string_view text, const std::string& source) {
   rig.lips.samples_across = r.integer(r.field(lips, "samples_across", "/lips"), "/lips/samples_across");
   rig.lips.first_vertex = r.integer(r.field(lips, "first_vertex", "/lips"), "/lips/first_vertex");
   rig.lips.centre = r.vec3(r.field(lips, "centre", "/lips"), "/lips/centre");
+  // format 1.1 (absent in 1.0: the defaults)
+  if (lips.contains("samples_in_mesh")) rig.lips.samples_in_mesh = r.boolean(lips["samples_in_mesh"], "/lips/samples_in_mesh");
+  if (lips.contains("bound")) {
+    const Json& bound = r.array(lips["bound"], "/lips/bound");
+    if (bound.size() > kMaxVertices) r.fail("/lips/bound", "too many bound vertices");
+    rig.lips.bound.reserve(bound.size());
+    for (std::size_t i = 0; i < bound.size(); ++i) {
+      const std::string p = "/lips/bound/" + std::to_string(i);
+      const Json& j = bound[i];
+      LipBinding b;
+      b.vertex = r.integer(r.field(j, "vertex", p), p + "/vertex");
+      b.u = r.number(r.field(j, "u", p), p + "/u");
+      b.v = r.number(r.field(j, "v", p), p + "/v");
+      b.offset = r.vec3(r.field(j, "offset", p), p + "/offset");
+      b.weight = r.number(r.field(j, "weight", p), p + "/weight");
+      rig.lips.bound.push_back(b);
+    }
+  }
 
   const Json& jaw = r.field(doc, "jaw", "");
   rig.jaw.pivot = r.vec3(r.field(jaw, "pivot", "/jaw"), "/jaw/pivot");
@@ -218,6 +236,31 @@ Rig parse_rig(std::string_view text, const std::string& source) {
     m.wrinkle_height = r.number(r.field(j, "wrinkle_height", p), p + "/wrinkle_height");
     rig.muscles.push_back(std::move(m));
   }
+  if (doc.contains("frame")) {
+    const Json& f = doc["frame"];
+    rig.frame.scale = r.number(r.field(f, "scale", "/frame"), "/frame/scale");
+    const Json& rot = r.field(f, "rotation", "/frame");
+    if (!rot.is_array() || rot.size() != 3) r.fail("/frame/rotation", "expected 3 rows of 3 numbers");
+    for (int i = 0; i < 3; ++i) rig.frame.rotation.row(i) = r.vec3(rot[static_cast<std::size_t>(i)], "/frame/rotation/" + std::to_string(i)).transpose();
+    rig.frame.translation = r.vec3(r.field(f, "translation", "/frame"), "/frame/translation");
+  }
+  if (doc.contains("parts")) {
+    const Json& parts = r.array(doc["parts"], "/parts");
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      const std::string p = "/parts/" + std::to_string(i);
+      const Json& j = parts[i];
+      Part part;
+      part.name = r.string(r.field(j, "name", p), p + "/name");
+      try {
+        part.kind = part_kind_from_string(r.string(r.field(j, "kind", p), p + "/kind"));
+      } catch (const InvalidInput& e) {
+        r.fail(p + "/kind", e.what());
+      }
+      part.side = r.integer(r.field(j, "side", p), p + "/side");
+      part.vertices = r.ints(r.field(j, "vertices", p), p + "/vertices");
+      rig.parts.push_back(std::move(part));
+    }
+  }
   validate_rig(rig, source);
   return rig;
 }
@@ -227,7 +270,7 @@ std::string format_rig(const Rig& rig) {
   doc["mesh"] = rig.mesh_file;
   doc["vertex_count"] = rig.vertex_count;
   doc["regions"] = label_sets(rig.regions, kRegionCount);
-  doc["materials"] = label_sets(rig.materials, 8);
+  doc["materials"] = label_sets(rig.materials, kMaterialCount);
   doc["head_pivot"] = vec(rig.head_pivot);
   Json lips;
   Json cps = Json::array();
@@ -237,6 +280,20 @@ std::string format_rig(const Rig& rig) {
   lips["samples_across"] = rig.lips.samples_across;
   lips["first_vertex"] = rig.lips.first_vertex;
   lips["centre"] = vec(rig.lips.centre);
+  if (!rig.lips.samples_in_mesh) lips["samples_in_mesh"] = false;
+  if (!rig.lips.bound.empty()) {
+    Json bound = Json::array();
+    for (const auto& b : rig.lips.bound) {
+      Json j;
+      j["vertex"] = b.vertex;
+      j["u"] = b.u;
+      j["v"] = b.v;
+      j["offset"] = vec(b.offset);
+      j["weight"] = b.weight;
+      bound.push_back(j);
+    }
+    lips["bound"] = bound;
+  }
   doc["lips"] = lips;
   Json jaw;
   jaw["pivot"] = vec(rig.jaw.pivot);
@@ -292,6 +349,28 @@ std::string format_rig(const Rig& rig) {
     muscles.push_back(j);
   }
   doc["muscles"] = muscles;
+  // format 1.1: written only when they differ from the 1.0 defaults
+  if (!rig.frame.is_identity()) {
+    Json f;
+    f["scale"] = rig.frame.scale;
+    Json rot = Json::array();
+    for (int i = 0; i < 3; ++i) rot.push_back(vec(rig.frame.rotation.row(i).transpose()));
+    f["rotation"] = rot;
+    f["translation"] = vec(rig.frame.translation);
+    doc["frame"] = f;
+  }
+  if (!rig.parts.empty()) {
+    Json parts = Json::array();
+    for (const auto& part : rig.parts) {
+      Json j;
+      j["name"] = part.name;
+      j["kind"] = to_string(part.kind);
+      j["side"] = part.side;
+      j["vertices"] = part.vertices;
+      parts.push_back(j);
+    }
+    doc["parts"] = parts;
+  }
   return doc.dump(1) + "\n";
 }
 
@@ -314,6 +393,11 @@ Face load_face(const std::string& rig_path) {
     throw FormatError(where, "referenced mesh '" + mesh_path + "' does not exist");
   }
   face.mesh = read_mesh(mesh_path);
+  if (!face.rig.frame.is_identity()) {  // the mesh file is in its own frame; the Face lives in the rig's
+    for (long v = 0; v < face.mesh.vertices.rows(); ++v) {
+      face.mesh.vertices.row(v) = face.rig.frame.to_rig(face.mesh.vertices.row(v).transpose()).transpose();
+    }
+  }
   if (face.mesh.vertex_count() != face.rig.vertex_count) {
     throw FormatError(where, "mesh '" + mesh_path + "' has " + std::to_string(face.mesh.vertex_count()) +
                                  " vertices, the rig expects " + std::to_string(face.rig.vertex_count));
@@ -325,7 +409,15 @@ void save_face(const std::string& rig_path, const Face& face) {
   if (face.rig.mesh_file.empty()) throw InvalidInput("save_face: rig.mesh_file is empty");
   if (face.mesh.vertex_count() != face.rig.vertex_count) throw InvalidInput("save_face: mesh and rig disagree on the vertex count");
   const auto dir = std::filesystem::path(rig_path).parent_path();
-  write_mesh((dir / face.rig.mesh_file).string(), face.mesh);
+  if (face.rig.frame.is_identity()) {
+    write_mesh((dir / face.rig.mesh_file).string(), face.mesh);
+  } else {
+    Mesh file = face.mesh;
+    for (long v = 0; v < file.vertices.rows(); ++v) {
+      file.vertices.row(v) = face.rig.frame.to_mesh(face.mesh.vertices.row(v).transpose()).transpose();
+    }
+    write_mesh((dir / face.rig.mesh_file).string(), file);
+  }
   write_rig(rig_path, face.rig);
 }
 

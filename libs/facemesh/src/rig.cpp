@@ -3,6 +3,9 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <vector>
+
+#include <Eigen/LU>
 
 #include "emoface/core/errors.hpp"
 
@@ -16,6 +19,8 @@ constexpr const char* kRegionNames[kRegionCount] = {
 constexpr const char* kMaterialNames[] = {"skin", "lip", "eye_white", "iris", "pupil", "brow", "hair",
                                           "mouth_interior", "teeth", "tongue", "lash"};
 constexpr const char* kKindNames[] = {"vector", "sphincter"};
+constexpr const char* kPartKindNames[] = {"head",        "eyeball", "upper_teeth", "lower_teeth",
+                                          "tongue",      "lashes",  "brows",       "other"};
 
 template <std::size_t N>
 int find_name(const char* const (&names)[N], std::string_view name) {
@@ -77,6 +82,13 @@ MuscleKind muscle_kind_from_string(std::string_view name) {
   return static_cast<MuscleKind>(i);
 }
 
+std::string to_string(PartKind kind) { return kPartKindNames[static_cast<int>(kind)]; }
+PartKind part_kind_from_string(std::string_view name) {
+  const int i = find_name(kPartKindNames, name);
+  if (i < 0) throw InvalidInput("unknown part kind '" + std::string(name) + "'");
+  return static_cast<PartKind>(i);
+}
+
 void validate_rig(const Rig& rig, const std::string& source) {
   const Checker c{source};
   const std::size_t n = rig.vertex_count;
@@ -96,10 +108,52 @@ void validate_rig(const Rig& rig, const std::string& source) {
   if (lips.samples_across < LipGrid::kAcross || lips.samples_across > 256) c.fail("/lips/samples_across", "must be in [6, 256]");
   const long long lip_end = static_cast<long long>(lips.first_vertex) +
                             static_cast<long long>(lips.samples_around) * lips.samples_across;
-  if (!lips.control_points.empty() && (lips.first_vertex < 0 || lip_end > static_cast<long long>(n))) {
+  const bool grid_in_mesh = !lips.control_points.empty() && lips.samples_in_mesh;
+  if (grid_in_mesh && (lips.first_vertex < 0 || lip_end > static_cast<long long>(n))) {
     c.fail("/lips/first_vertex", "lip samples exceed the mesh");
   }
   c.finite(lips.centre, "/lips/centre");
+  if (!lips.bound.empty() && lips.control_points.empty()) c.fail("/lips/bound", "bound vertices need the lip control points");
+  {
+    std::vector<char> seen(n, 0);
+    for (std::size_t i = 0; i < lips.bound.size(); ++i) {
+      const auto& b = lips.bound[i];
+      const std::string p = "/lips/bound/" + std::to_string(i);
+      if (b.vertex < 0 || static_cast<std::size_t>(b.vertex) >= n) {
+        c.fail(p + "/vertex", "vertex id " + std::to_string(b.vertex) + " out of range (mesh has " + std::to_string(n) + ")");
+      }
+      if (seen[static_cast<std::size_t>(b.vertex)]) c.fail(p + "/vertex", "vertex " + std::to_string(b.vertex) + " bound twice");
+      seen[static_cast<std::size_t>(b.vertex)] = 1;
+      if (grid_in_mesh && b.vertex >= lips.first_vertex && b.vertex < lip_end) {
+        c.fail(p + "/vertex", "vertex " + std::to_string(b.vertex) + " is also a lip grid sample");
+      }
+      if (!(std::isfinite(b.u) && b.u >= 0.0 && b.u < 1.0)) c.fail(p + "/u", "u must be in [0, 1)");
+      c.number(b.v, 0.0, 1.0, p + "/v");
+      c.number(b.weight, 0.0, 1.0, p + "/weight");
+      c.finite(b.offset, p + "/offset");
+    }
+  }
+  // Frame (mesh file -> rig): scale > 0, a proper rotation.
+  {
+    const auto& f = rig.frame;
+    if (!(std::isfinite(f.scale) && f.scale > 0.0)) c.fail("/frame/scale", "scale must be a finite number > 0");
+    if (!f.rotation.allFinite()) c.fail("/frame/rotation", "non-finite rotation");
+    const double ortho = (f.rotation.transpose() * f.rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+    if (!(ortho <= 1e-6)) c.fail("/frame/rotation", "not orthonormal (|R^T R - I| = " + std::to_string(ortho) + ")");
+    if (!(std::abs(f.rotation.determinant() - 1.0) <= 1e-6)) c.fail("/frame/rotation", "not a proper rotation (det != +1)");
+    c.finite(f.translation, "/frame/translation");
+  }
+  // Parts.
+  for (std::size_t i = 0; i < rig.parts.size(); ++i) {
+    const auto& part = rig.parts[i];
+    const std::string p = "/parts/" + std::to_string(i);
+    if (part.name.empty()) c.fail(p + "/name", "empty part name");
+    if (part.side < -1 || part.side > 1) c.fail(p + "/side", "side must be -1 (none), 0 (right) or 1 (left)");
+    c.ids(part.vertices, n, p + "/vertices");
+    for (std::size_t k = 1; k < part.vertices.size(); ++k) {
+      if (part.vertices[k] <= part.vertices[k - 1]) c.fail(p + "/vertices/" + std::to_string(k), "vertex ids must be ascending and unique");
+    }
+  }
   // Jaw.
   c.finite(rig.jaw.pivot, "/jaw/pivot");
   c.number(rig.jaw.max_angle, 0.0, 1.5707963267948966, "/jaw/max_angle");

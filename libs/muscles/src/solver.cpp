@@ -105,6 +105,13 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
     }
   }
   const auto& cps = rig_.lips.control_points;
+  // Lip bindings: per bound vertex the ≤ 16 (control point, weight) terms of S(u, v) (CSR).
+  bound_start_.assign(1, 0);
+  bound_terms_.clear();
+  for (const auto& b : rig_.lips.bound) {
+    for (const auto& t : facemesh::lip_surface_terms(b.u, b.v)) bound_terms_.push_back(t);
+    bound_start_.push_back(static_cast<int>(bound_terms_.size()));
+  }
   for (const auto& spec : rig_.muscles) {
     Muscle m;
     m.kind = spec.kind;
@@ -290,16 +297,22 @@ void FaceSolver::build_fast_path() {
   }
 
   // Per-point candidate lists. The lip samples are skipped: LipSampler::evaluate overwrites them
-  // from the control points after the contraction (and the jaw), so moving them would be dead work.
+  // from the control points after the contraction (and the jaw), so moving them would be dead work;
+  // so are vertices bound to the lip surface with weight 1 (apply_lids_jaw_lips overwrites them).
   const std::size_t nv = mesh_.vertex_count();
   const auto& cps = rig_.lips.control_points;
-  const long lip_begin = cps.empty() ? 0 : rig_.lips.first_vertex;
-  const long lip_end = cps.empty() ? 0 : lip_begin + lip_sampler_.sample_count();
+  const long lip_begin = cps.empty() || !rig_.lips.samples_in_mesh ? 0 : rig_.lips.first_vertex;
+  const long lip_end = cps.empty() || !rig_.lips.samples_in_mesh ? 0 : lip_begin + lip_sampler_.sample_count();
+  std::vector<char> overwritten(nv, 0);
+  for (long v = lip_begin; v < lip_end; ++v) overwritten[static_cast<std::size_t>(v)] = 1;
+  for (const auto& b : rig_.lips.bound) {
+    if (b.weight == 1.0) overwritten[static_cast<std::size_t>(b.vertex)] = 1;
+  }
   auto build = [&](std::size_t points, auto&& ids_of, auto&& neutral, bool skip_lips, CandidateLists& lists, bool keep_empty) {
     std::vector<std::vector<int>> per(points);
     for (std::size_t i = 0; i < muscles_.size(); ++i) {
       for (int v : ids_of(muscles_[i])) {
-        if (skip_lips && v >= lip_begin && v < lip_end) continue;
+        if (skip_lips && overwritten[static_cast<std::size_t>(v)]) continue;
         per[static_cast<std::size_t>(v)].push_back(static_cast<int>(i));
       }
     }
@@ -692,7 +705,25 @@ void FaceSolver::apply_lids_jaw_lips(const std::vector<double>& values, const st
     for (std::size_t i = 0; i < C.size(); ++i) C[i] = rotate_x(C[i], rig_.jaw.pivot, jaw * lip_jaw_weight_[i]);
   }
   // Lips: re-polygonise the B-spline on its fixed sampling grid (thesis §2.3.2).
-  if (!C.empty()) lip_sampler_.evaluate(C, X, rig_.lips.first_vertex);
+  if (!C.empty() && rig_.lips.samples_in_mesh) lip_sampler_.evaluate(C, X, rig_.lips.first_vertex);
+  // Vertices bound to the lip surface (rig format 1.1): x = (1 − w)·x + w·(S(u, v) + offset), S from
+  // the precomputed ≤ 16 basis terms of each binding.
+  const auto& bound = rig_.lips.bound;
+  for (std::size_t b = 0; b < bound.size(); ++b) {
+    double sx = bound[b].offset.x(), sy = bound[b].offset.y(), sz = bound[b].offset.z();
+    for (int t = bound_start_[b]; t < bound_start_[b + 1]; ++t) {
+      const auto& term = bound_terms_[static_cast<std::size_t>(t)];
+      const Eigen::Vector3d& c = C[static_cast<std::size_t>(term.control)];
+      sx += term.weight * c.x(), sy += term.weight * c.y(), sz += term.weight * c.z();
+    }
+    double* p = X.data() + 3 * static_cast<std::ptrdiff_t>(bound[b].vertex);
+    const double w = bound[b].weight;
+    if (w == 1.0) {
+      p[0] = sx, p[1] = sy, p[2] = sz;
+    } else {
+      p[0] = (1.0 - w) * p[0] + w * sx, p[1] = (1.0 - w) * p[1] + w * sy, p[2] = (1.0 - w) * p[2] + w * sz;
+    }
+  }
 }
 
 void FaceSolver::apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const {

@@ -35,6 +35,13 @@ class LipSampler {
   std::vector<std::vector<Term>> terms_;  ///< per sample
 };
 
+/// The at most 16 (control point, weight) terms of the lip surface at (u, v): S(u, v) = Σ w·P[control],
+/// periodic uniform cubic around (u ∈ [0, 1) from column 0, one turn), clamped cubic across (v ∈ [0, 1],
+/// 0 = outer border row). The same basis LipSampler uses at its grid points (sample column i, row j is
+/// u = i/samples_around, v = j/(samples_across − 1)). Used for LipBinding vertices. Throws
+/// InvalidInput for u or v outside those ranges (or not finite).
+std::vector<LipSampler::Term> lip_surface_terms(double u, double v);
+
 /// Uniform cubic B-spline basis values at t ∈ [0,1) (the four weights of consecutive control points).
 std::array<double, 4> cubic_bspline_basis(double t);
 

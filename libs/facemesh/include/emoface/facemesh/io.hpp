@@ -1,5 +1,6 @@
 #pragma once
-// The rig file `emoface.rig` (JSON, envelope kind "rig", version 1.0) and loading a rigged face.
+// The rig file `emoface.rig` (JSON, envelope kind "rig", version 1.1; a 1.0 file reads with the 1.1
+// defaults) and loading a rigged face.
 // nlohmann-json stays behind this header's implementation.
 #include <string>
 #include <string_view>
@@ -11,7 +12,7 @@ namespace emoface::facemesh {
 
 /// Current rig format version.
 inline constexpr int kRigFormatMajor = 1;
-inline constexpr int kRigFormatMinor = 0;
+inline constexpr int kRigFormatMinor = 1;
 
 /// Parses rig JSON text; `source` names it in errors. Throws FormatError (with JSON pointer) on any
 /// problem, including validate_rig failures.

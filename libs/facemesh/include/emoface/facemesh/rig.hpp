@@ -28,6 +28,7 @@ inline int thesis_number(Region region) { return static_cast<int>(region) + 1; }
 
 /// Surface material per vertex, used only for rendering colours.
 enum class Material { Skin, Lip, EyeWhite, Iris, Pupil, Brow, Hair, MouthInterior, Teeth, Tongue, Lash };
+inline constexpr int kMaterialCount = 11;
 std::string to_string(Material material);
 Material material_from_string(std::string_view name);
 

@@ -6,7 +6,8 @@
 //   Deformation e = deform_face(mesh, rig, {{"zygomatic_major_l", 1.0}});   // one-off
 //
 // Per call: parallel contraction of all vector and sphincter muscles and the Orbicularis Oris lip
-// actions in steps δc (§2.4.1), eyelids (§2.4.3), jaw (§2.4.4), lip B-spline re-sampling (§2.3.2),
+// actions in steps δc (§2.4.1), eyelids (§2.4.3), jaw (§2.4.4), lip B-spline re-sampling (§2.3.2) and
+// the vertices bound to the lip surface (rig 1.1 LipBinding),
 // wrinkles along the normals (§2.4.1), eyeball rotation with the eye-hole limit (§2.4.5), head pose.
 #include <array>
 #include <cstdint>
@@ -179,6 +180,8 @@ class FaceSolver {
   std::vector<std::vector<WrinkleEntry>> wrinkles_;  // per muscle
   std::vector<int> wrinkle_vertices_;                // ascending
   facemesh::LipSampler lip_sampler_;
+  std::vector<int> bound_start_;                       // rig_.lips.bound -> bound_terms_ (CSR)
+  std::vector<facemesh::LipSampler::Term> bound_terms_;  // ≤ 16 basis terms of S(u, v) per binding
   std::vector<Eigen::Vector3d> funnel_delta_, press_delta_;  // per control point, per unit contraction
   std::vector<double> lip_jaw_weight_;  // per control point
   std::vector<int> vertex_face_start_, vertex_faces_;  // vertex -> incident faces (CSR)
