@@ -144,6 +144,11 @@ std::vector<double> geodesic(const fm::Vertices& x, const std::vector<std::vecto
   return d;
 }
 
+double wrap_u(double u) {
+  u -= std::floor(u);
+  return u >= 1.0 ? 0.0 : u;
+}
+
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -173,7 +178,6 @@ void UserLandmarks::validate(std::size_t vertex_count) const {
 void TransferOptions::validate() const {
   fit.validate();
   registration.validate();
-  if (!(lip_band >= 0.0 && lip_band <= 0.02)) throw InvalidInput("TransferOptions::lip_band must be in [0, 0.02] m");
   if (!(several_heads_area > 0.0 && several_heads_area <= 1.0))
     throw InvalidInput("TransferOptions::several_heads_area must be in (0, 1]");
   if (!(eyeball_tolerance > 0.0 && eyeball_tolerance <= 1.0))
@@ -181,21 +185,12 @@ void TransferOptions::validate() const {
 }
 
 Eigen::Vector3d lip_surface_point(const fm::LipGrid& lips, double u, double v) {
-  constexpr int na = fm::LipGrid::kAround, nr = fm::LipGrid::kAcross;
-  if (lips.control_points.size() != static_cast<std::size_t>(na * nr)) throw InvalidInput("lip_surface_point: no lip grid");
+  if (lips.control_points.size() != static_cast<std::size_t>(fm::LipGrid::kAround * fm::LipGrid::kAcross))
+    throw InvalidInput("lip_surface_point: no lip grid");
   u -= std::floor(u);
-  const double s = u * na;
-  const int seg = std::min(na - 1, static_cast<int>(std::floor(s)));
-  const auto bu = fm::cubic_bspline_basis(s - seg);
-  const auto bv = fm::clamped_cubic_basis(nr, std::clamp(v, 0.0, 1.0));
+  if (u >= 1.0) u = 0.0;
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int r = 0; r < nr; ++r) {
-    if (bv[static_cast<std::size_t>(r)] == 0.0) continue;
-    for (int k = 0; k < 4; ++k) {
-      const int col = ((seg - 1 + k) % na + na) % na;
-      p += bv[static_cast<std::size_t>(r)] * bu[static_cast<std::size_t>(k)] * lips.control_points[static_cast<std::size_t>(r * na + col)];
-    }
-  }
+  for (const auto& t : fm::lip_surface_terms(u, std::clamp(v, 0.0, 1.0))) p += t.weight * lips.control_points[static_cast<std::size_t>(t.control)];
   return p;
 }
 
@@ -313,14 +308,14 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   std::vector<std::uint8_t> eyeball(static_cast<std::size_t>(ng), 0);
   for (const auto& e : srig.eyes)
     for (int v : e.eyeball_vertices) eyeball[static_cast<std::size_t>(v)] = 1;
-  std::vector<std::uint8_t> data_mask(static_cast<std::size_t>(ng), 1);
+  std::vector<std::uint8_t> data_mask(static_cast<std::size_t>(ng), 1), socket(static_cast<std::size_t>(ng), 0);
   for (Eigen::Index v = 0; v < ng; ++v) {
     const auto m = srig.materials[static_cast<std::size_t>(v)];
     const Eigen::Vector3d p = source.mesh.vertices.row(v);
     bool in = !eyeball[static_cast<std::size_t>(v)] && m != fm::Material::MouthInterior;
     if (lip_sample(static_cast<int>(v)) && (static_cast<int>(v) - lip_first) / lip_na >= lip_nac - 2) in = false;
     for (const auto& e : srig.eyes)  // socket caps behind the eyeballs
-      if ((p - e.centre).norm() < 2.0 * e.radius && p.z() < e.centre.z()) in = false;
+      if ((p - e.centre).norm() < 2.0 * e.radius && p.z() < e.centre.z()) in = false, socket[static_cast<std::size_t>(v)] = 1;
     data_mask[static_cast<std::size_t>(v)] = in;
   }
   // Registration mesh: the generic without its eyeballs (they are not part of the target surface).
@@ -436,8 +431,15 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     const double u = face_uv(static_cast<int>(f), Eigen::Vector3d::Constant(1.0 / 3.0)).x();
     (std::sin(2 * kPi * u) >= 0.0 ? upper_face : lower_face)[static_cast<std::size_t>(f)] = 1;
   }
+  // The generic's mouth cavity (triangles touching a MouthInterior vertex): a target vertex near it is
+  // part of a mouth bag unless it lies on it (a remeshed copy of the generic itself).
+  std::vector<std::uint8_t> cavity_face(static_cast<std::size_t>(nf), 0);
+  for (Eigen::Index f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k)
+      if (srig.materials[static_cast<std::size_t>(gsurf.faces(f, k))] == fm::Material::MouthInterior) cavity_face[static_cast<std::size_t>(f)] = 1;
   const fm::Mesh Gmesh{G, gsurf.faces};
-  const detail::SurfaceIndex gindex(Gmesh), upper_index(Gmesh, upper_face), lower_index(Gmesh, lower_face);
+  const detail::SurfaceIndex gindex(Gmesh), upper_index(Gmesh, upper_face), lower_index(Gmesh, lower_face),
+      lip_index(Gmesh, lip_face);
   const fm::Vertices gnormals = fm::face_normals(G, gsurf.faces);
   const fm::Vertices tnormals = fm::vertex_normals(T, target.faces);
   std::vector<detail::SurfaceHit> hit(static_cast<std::size_t>(nv));
@@ -459,10 +461,19 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     auto& h = hit[static_cast<std::size_t>(v)];
     h = gindex.closest(p);
     if (h.face < 0) continue;
+    if (!lip_face[static_cast<std::size_t>(h.face)] && !lip_index.empty()) {
+      // ties on the edges shared by the lips and the skin or the mouth cavity go to the lips
+      const auto lh = lip_index.closest(p);
+      if (lh.face >= 0 && lh.distance <= h.distance + 1e-4 * head_height_rig) h = lh;
+    }
     const Eigen::Vector3d n = tnormals.row(v).transpose();
     const bool agree = n.dot(gnormals.row(h.face).transpose()) > 0.3;
-    if (lip_face[static_cast<std::size_t>(h.face)] && (agree || h.distance < outer_distance)) on_lip[static_cast<std::size_t>(v)] = 1;
-    else if (!lip_face[static_cast<std::size_t>(h.face)] && agree && h.distance < outer_distance) outer[static_cast<std::size_t>(v)] = 1;
+    // On the generic's surface (within 0.1 % of the head height: a remeshed copy, whose normals at a
+    // cone's apex may disagree), or near it and facing the same way; a mouth bag faces into the mouth.
+    const bool on_surface = h.distance < 0.001 * head_height_rig;
+    if (lip_face[static_cast<std::size_t>(h.face)] && (agree || h.distance < 0.0025 * head_height_rig)) on_lip[static_cast<std::size_t>(v)] = 1;
+    else if (cavity_face[static_cast<std::size_t>(h.face)] ? on_surface : (on_surface || (agree && h.distance < outer_distance)))
+      outer[static_cast<std::size_t>(v)] = 1;
   }
   // Adjacency of the target.
   std::vector<std::vector<int>> adjacency(static_cast<std::size_t>(nv));
@@ -479,7 +490,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     std::vector<int> stack;
     for (int v : head.vertices)
       if (on_lip[static_cast<std::size_t>(v)]) stack.push_back(v);
-    const Eigen::Vector3d mouth = rig.lips.centre;
+    Eigen::Vector3d mouth = Eigen::Vector3d::Zero();  // mean lip control point (LipGrid::centre may lie deep inside)
+    for (const auto& c : rig.lips.control_points) mouth += c / static_cast<double>(rig.lips.control_points.size());
     std::vector<std::uint8_t> seen(static_cast<std::size_t>(nv), 0);
     for (int v : stack) seen[static_cast<std::size_t>(v)] = 1;
     while (!stack.empty()) {
@@ -522,15 +534,20 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       detail::SurfaceHit lh = h;
       const double s = std::sin(2 * kPi * face_uv(h.face, h.bary).x());
       const auto uq = du[static_cast<std::size_t>(v)], lq = dl[static_cast<std::size_t>(v)];
-      if (std::isfinite(uq) || std::isfinite(lq)) {
+      // A closed mouth's two lips touch in space, not on the mesh: a vertex of one lip may project onto
+      // the other. Where the mesh says clearly which lip the vertex belongs to (geodesic distances
+      // through the lips and the bag) and that lip's surface is about as near, it is used instead.
+      if ((std::isfinite(uq) || std::isfinite(lq)) && std::abs(s) > 0.3 && std::min(uq, lq) < 0.8 * std::max(uq, lq)) {
         const bool is_upper = uq <= lq;
-        if (is_upper && s < 0.0 && !upper_index.empty()) lh = upper_index.closest(T.row(v).transpose());
-        if (!is_upper && s > 0.0 && !lower_index.empty()) lh = lower_index.closest(T.row(v).transpose());
+        detail::SurfaceHit alt;
+        if (is_upper && s < 0.0 && !upper_index.empty()) alt = upper_index.closest(T.row(v).transpose());
+        if (!is_upper && s > 0.0 && !lower_index.empty()) alt = lower_index.closest(T.row(v).transpose());
+        if (alt.face >= 0 && alt.distance < h.distance + 0.005 * head_height_rig) lh = alt;
       }
       const Eigen::Vector2d uv = face_uv(lh.face, lh.bary);
       fm::LipBinding b;
       b.vertex = v;
-      b.u = uv.x(), b.v = uv.y();
+      b.u = wrap_u(uv.x()), b.v = uv.y();
       b.offset = T.row(v).transpose() - lip_surface_point(rig.lips, b.u, b.v);
       b.weight = 1.0;
       rig.lips.bound.push_back(b);
@@ -540,42 +557,52 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     }
     if (bag[static_cast<std::size_t>(v)]) {
       const double a = du[static_cast<std::size_t>(v)], b = dl[static_cast<std::size_t>(v)];
-      jaw_w[static_cast<std::size_t>(v)] = std::isfinite(a) && std::isfinite(b) && a + b > 0 ? a / (a + b) : std::isfinite(b) ? 1.0 : 0.0;
+      // the share of the way from the upper lip to the lower, sharpened: the upper half of the bag stays
+      // with the skull, the lower half follows the jaw, with a smooth fold at the back
+      const double share = std::isfinite(a) && std::isfinite(b) && a + b > 0 ? a / (a + b) : std::isfinite(b) ? 1.0 : 0.0;
+      jaw_w[static_cast<std::size_t>(v)] = smoothstep(0.35, 0.65, share);
       rig.materials[static_cast<std::size_t>(v)] = fm::Material::MouthInterior;
       continue;
     }
-    rig.regions[static_cast<std::size_t>(v)] = srig.regions[static_cast<std::size_t>(gv)];
-    const auto m = srig.materials[static_cast<std::size_t>(gv)];
-    rig.materials[static_cast<std::size_t>(v)] = m == fm::Material::Lip ? fm::Material::Skin : m;
-    double j = 0.0;
-    for (int k = 0; k < 3; ++k) j += h.bary(k) * gjaw[static_cast<std::size_t>(gsurf.faces(h.face, k))];
-    jaw_w[static_cast<std::size_t>(v)] = j;
-  }
-  // Fade band: skin vertices near the lip border follow the border row with fading weights.
-  if (options.lip_band > 0.0) {
-    fm::Vertices border(lip_na, 3);
-    for (int i = 0; i < lip_na; ++i) border.row(i) = G.row(lip_first + i);
-    for (int v : head.vertices) {
-      if (on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)]) continue;
-      const Eigen::Vector3d p = T.row(v).transpose();
-      double best = std::numeric_limits<double>::infinity(), bu = 0.0;
-      for (int i = 0; i < lip_na; ++i) {
-        const Eigen::Vector3d a = border.row(i), b = border.row((i + 1) % lip_na);
-        const Eigen::Vector3d ab = b - a;
-        const double t = std::clamp(ab.squaredNorm() > 0 ? (p - a).dot(ab) / ab.squaredNorm() : 0.0, 0.0, 1.0);
-        const double d = (a + t * ab - p).norm();
-        if (d < best) best = d, bu = (i + t) / lip_na;
+    // Skin. On the strip between the mouth rim and the lip border row (triangles with both skin and
+    // lip-sample corners) the vertex is bound to the lip border with the interpolated lip share as its
+    // weight, and its muscle-side attributes come from the skin corners alone: the weight falls from 1
+    // at the border row to 0 at the rim, so the lips and the skin meet without a seam, and a vertex on
+    // the strip of the built-in face moves as the strip itself does.
+    double lip_share = 0.0, skin_share = 0.0, j = 0.0;
+    Eigen::Index skin_arg = -1;
+    Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+    double u_ref = -1.0;
+    for (int k = 0; k < 3; ++k) {
+      const int g = gsurf.faces(h.face, k);
+      if (lip_sample(g)) {
+        Eigen::Vector2d q = lip_uv(g);
+        if (u_ref < 0.0) u_ref = q.x();
+        q.x() -= std::round(q.x() - u_ref);
+        uv += h.bary(k) * q;
+        lip_share += h.bary(k);
+      } else {
+        j += h.bary(k) * gjaw[static_cast<std::size_t>(g)];
+        if (skin_arg < 0 || h.bary(k) > h.bary(skin_arg)) skin_arg = k;
+        skin_share += h.bary(k);
       }
-      if (best >= options.lip_band) continue;
+    }
+    const int sv = skin_arg >= 0 ? gsurf.faces(h.face, static_cast<int>(skin_arg)) : gv;
+    rig.regions[static_cast<std::size_t>(v)] = srig.regions[static_cast<std::size_t>(sv)];
+    const auto m = srig.materials[static_cast<std::size_t>(sv)];
+    rig.materials[static_cast<std::size_t>(v)] = m == fm::Material::Lip ? fm::Material::Skin : m;
+    jaw_w[static_cast<std::size_t>(v)] = skin_share > 0.0 ? j / skin_share : 0.0;
+    if (lip_share > 1e-3) {
       fm::LipBinding b;
       b.vertex = v;
-      b.u = bu - std::floor(bu), b.v = 0.0;
-      b.offset = p - lip_surface_point(rig.lips, b.u, b.v);
-      b.weight = 1.0 - smoothstep(0.0, options.lip_band, best);
-      if (b.weight > 1e-3) rig.lips.bound.push_back(b);
+      b.u = wrap_u(uv.x() / lip_share);
+      b.v = uv.y() / lip_share;
+      b.offset = T.row(v).transpose() - lip_surface_point(rig.lips, b.u, b.v);
+      b.weight = std::min(1.0, lip_share);
+      rig.lips.bound.push_back(b);
     }
-    std::sort(rig.lips.bound.begin(), rig.lips.bound.end(), [](const fm::LipBinding& a, const fm::LipBinding& b) { return a.vertex < b.vertex; });
   }
+  std::sort(rig.lips.bound.begin(), rig.lips.bound.end(), [](const fm::LipBinding& a, const fm::LipBinding& b) { return a.vertex < b.vertex; });
   for (const auto& b : rig.lips.bound) {
     ++rep.lip_bound;
     if (b.weight >= 1.0) ++rep.lip_full;
@@ -586,12 +613,18 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     for (int v : head.vertices) {
       const auto& h = hit[static_cast<std::size_t>(v)];
       if (h.face < 0 || on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)]) continue;
-      double up = 0.0, lo = 0.0;
+      // socket-cap corners (behind the eyeball, no lid weight of their own) are left out, so the
+      // inside of a closed eye socket follows the lid margin instead of tearing from it
+      double up = 0.0, lo = 0.0, sum = 0.0;
       for (int k = 0; k < 3; ++k) {
         const auto gv = static_cast<std::size_t>(gsurf.faces(h.face, k));
+        if (socket[gv]) continue;
         up += h.bary(k) * glid[static_cast<std::size_t>(2 * e)][gv];
         lo += h.bary(k) * glid[static_cast<std::size_t>(2 * e + 1)][gv];
+        sum += h.bary(k);
       }
+      if (!(sum > 1e-9)) continue;
+      up /= sum, lo /= sum;
       if (up > 1e-3) te.upper_lid.push_back(v), te.upper_lid_weights.push_back(std::min(1.0, up));
       if (lo > 1e-3) te.lower_lid.push_back(v), te.lower_lid_weights.push_back(std::min(1.0, lo));
     }

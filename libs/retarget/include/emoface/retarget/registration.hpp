@@ -26,7 +26,7 @@ namespace emoface::retarget {
 struct RegistrationOptions {
   /// Stiffness α per stage (dimensionless: weight of the edge term relative to one data vertex),
   /// decreasing; each > 0, at most 20 stages.
-  std::vector<double> stiffness = {50.0, 20.0, 8.0, 3.0, 1.5};
+  std::vector<double> stiffness = {50.0, 20.0, 8.0, 3.0, 1.5, 0.5};
   int iterations_per_stage = 4;    ///< correspondence updates per stage, [1, 50]
   double landmark_weight = 20.0;   ///< β, relative to one data vertex, [0, 1e6]
   /// Correspondences farther than this are rejected, as a fraction of the source's bounding-box

@@ -9,8 +9,8 @@
 //   3. dense registration of the fitted generic face onto the head (registration.hpp);
 //   4. every head vertex takes the attributes of its closest point on the registered generic surface
 //      (triangle + barycentrics): region, material, jaw weight, lid weights; lip vertices are bound to
-//      the lip B-spline surface by (u, v, offset) with weights fading to 0 over a band around the lip
-//      border; a mouth bag behind closed lips gets jaw weights from geodesic distances to the two lips;
+//      the lip B-spline surface by (u, v, offset); on the generic's strip between mouth rim and lip
+//      border row the weight is the interpolated lip share, fading from 1 to 0 (no seam); a mouth bag behind closed lips gets jaw weights from geodesic distances to the two lips;
 //   5. muscle ends, lip grid, pivots and eye centres are mapped with the fit's RBF plus the
 //      registration's residual field; lengths scale with the fit.
 // The rig lives in the rig (thesis) frame; Rig::frame maps the input frame into it (p_rig =
@@ -54,9 +54,6 @@ struct UserLandmarks {
 struct TransferOptions {
   RetargetOptions fit;                  ///< the thesis fit on the head component
   RegistrationOptions registration;     ///< dense registration of the fitted face onto the head
-  /// Width of the skin band outside the lip border over which lip-binding weights fade from 1 to 0,
-  /// m in the rig frame, [0, 0.02].
-  double lip_band = 0.003;
   /// A component is a second head (error) when its area is at least this fraction of the largest
   /// component's and its centre lies outside the largest one's bounding box; (0, 1].
   double several_heads_area = 0.3;
