@@ -1,12 +1,16 @@
 // Muscle deformation vs a dense 35-blendshape baseline, on the default face and on a ~20k-vertex
-// midpoint-subdivided copy (thesis §2.4.1 performance; issue #3 §4).
+// midpoint-subdivided copy (thesis §2.4.1 performance; issue #3 §4). Issue #13: a rig whose lips are
+// driven through LipBinding (samples_in_mesh = false, every lip vertex bound, as a transferred rig)
+// on the ~20k and ~80k subdivisions vs a dense 52-target blendshape evaluation on the same meshes.
 //   cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DEMOFACE_BUILD_BENCH=ON
 //   cmake --build build-bench --target muscles_bench -j2
 //   build-bench/tests/bench/muscles_bench --benchmark_min_time=1s
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <vector>
 
+#include "emoface/facemesh/bspline.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/muscles/solver.hpp"
 
@@ -18,7 +22,7 @@ namespace mu = emoface::muscles;
 // Subdivides the face once and extends the rig: new vertices inherit region/material of their first
 // parent, jaw/lid weights are averaged when both parents are listed. The lip B-spline still drives
 // only the original lip samples (the benchmark measures cost, not looks).
-fm::Face subdivided(const fm::Face& f) {
+fm::Face subdivided(const fm::Face& f, std::vector<std::pair<int, int>>* parents_out = nullptr) {
   std::vector<std::pair<int, int>> parents;
   fm::Face out;
   out.mesh = fm::subdivide_midpoint(f.mesh, &parents);
@@ -46,7 +50,59 @@ fm::Face subdivided(const fm::Face& f) {
     extend(eye.upper_lid, &eye.upper_lid_weights);
     extend(eye.lower_lid, &eye.lower_lid_weights);
   }
+  if (parents_out) *parents_out = parents;
   return out;
+}
+
+// Subdivided `levels` times with every lip vertex (the samples and midpoints between two of them) bound
+// to the lip surface through LipBinding at its own (u, v): a transferred rig's lips.
+fm::Face bound_lips(int levels) {
+  fm::Face f = fm::make_default_face();
+  const auto& lips = f.rig.lips;
+  std::vector<Eigen::Vector2d> uv(f.mesh.vertex_count(), Eigen::Vector2d(-1.0, -1.0));
+  for (int j = 0; j < lips.samples_across; ++j) {
+    for (int i = 0; i < lips.samples_around; ++i) {
+      uv[static_cast<std::size_t>(lips.first_vertex + j * lips.samples_around + i)] =
+          Eigen::Vector2d(static_cast<double>(i) / lips.samples_around, static_cast<double>(j) / (lips.samples_across - 1));
+    }
+  }
+  for (int l = 0; l < levels; ++l) {
+    std::vector<std::pair<int, int>> parents;
+    fm::Face next = subdivided(f, &parents);
+    for (const auto& [a, b] : parents) {
+      Eigen::Vector2d ua = uv[static_cast<std::size_t>(a)], ub = uv[static_cast<std::size_t>(b)];
+      if (ua.x() < 0.0 || ub.x() < 0.0) {
+        uv.emplace_back(-1.0, -1.0);
+        continue;
+      }
+      if (std::abs(ua.x() - ub.x()) > 0.5) (ua.x() < ub.x() ? ua : ub).x() += 1.0;  // across u = 0
+      Eigen::Vector2d m = 0.5 * (ua + ub);
+      if (m.x() >= 1.0) m.x() -= 1.0;
+      uv.push_back(m);
+    }
+    f = std::move(next);
+  }
+  f.rig.lips.samples_in_mesh = false;
+  for (std::size_t v = 0; v < uv.size(); ++v) {
+    if (uv[v].x() < 0.0) continue;
+    fm::LipBinding b;
+    b.vertex = static_cast<int>(v);
+    b.u = uv[v].x();
+    b.v = uv[v].y();
+    b.offset = f.mesh.vertices.row(static_cast<long>(v)).transpose() - [&] {
+      Eigen::Vector3d s = Eigen::Vector3d::Zero();
+      for (const auto& t : fm::lip_surface_terms(b.u, b.v)) s += t.weight * f.rig.lips.control_points[static_cast<std::size_t>(t.control)];
+      return s;
+    }();
+    f.rig.lips.bound.push_back(b);
+  }
+  return f;
+}
+
+const fm::Face& bound_face(int levels) {
+  static const fm::Face one = bound_lips(1);
+  static const fm::Face two = bound_lips(2);
+  return levels == 1 ? one : two;
 }
 
 const fm::Face& face(bool big) {
@@ -102,7 +158,53 @@ void BM_BlendshapeBaseline(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(f.mesh.vertex_count());
 }
 
+// Issue #13: a transferred-style rig (lips through bindings) vs 52 dense blendshape targets, same mesh.
+void BM_BoundLipsDeformation(benchmark::State& state) {
+  const auto& f = bound_face(static_cast<int>(state.range(0)));
+  const mu::FaceSolver solver(f.mesh, f.rig);
+  const auto values = all_muscles();
+  mu::Deformation out;
+  mu::DeformWorkspace workspace;
+  for (auto _ : state) {
+    solver.deform(values, out, workspace);
+    benchmark::DoNotOptimize(out.vertices.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["vertices"] = static_cast<double>(f.mesh.vertex_count());
+  state.counters["bound"] = static_cast<double>(f.rig.lips.bound.size());
+}
+
+void BM_Blendshape52(benchmark::State& state) {
+  const auto& f = bound_face(static_cast<int>(state.range(0)));
+  // 52 dense targets (ARKit-sized): the 35 single-muscle deltas, then 17 of them again scaled, so
+  // every target is a full #V×3 array as in a blendshape rig
+  const mu::FaceSolver solver(f.mesh, f.rig);
+  const long n = f.mesh.vertices.rows() * 3;
+  std::vector<Eigen::VectorXd> deltas;
+  for (std::size_t i = 0; i < 52; ++i) {
+    std::vector<double> v(mu::kParameterCount, 0.0);
+    v[i % mu::kSideParameterCount] = i < mu::kSideParameterCount ? 1.0 : 0.5;
+    const auto d = solver.deform(v);
+    deltas.push_back(Eigen::Map<const Eigen::VectorXd>(d.vertices.data(), n) -
+                     Eigen::Map<const Eigen::VectorXd>(f.mesh.vertices.data(), n));
+  }
+  const Eigen::Map<const Eigen::VectorXd> neutral(f.mesh.vertices.data(), n);
+  std::vector<double> weights(52);
+  for (std::size_t i = 0; i < weights.size(); ++i) weights[i] = 0.5 + 0.01 * static_cast<double>(i);
+  fm::Vertices out(f.mesh.vertices.rows(), 3);
+  Eigen::Map<Eigen::VectorXd> x(out.data(), n);
+  for (auto _ : state) {
+    x = neutral;
+    for (std::size_t i = 0; i < deltas.size(); ++i) x += weights[i] * deltas[i];
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["vertices"] = static_cast<double>(f.mesh.vertex_count());
+}
+
 BENCHMARK(BM_MuscleDeformation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BoundLipsDeformation)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Blendshape52)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BlendshapeBaseline)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -392,7 +392,20 @@ Face load_face(const std::string& rig_path) {
   if (face.rig.mesh_file.empty() || !std::filesystem::is_regular_file(mesh_path)) {
     throw FormatError(where, "referenced mesh '" + mesh_path + "' does not exist");
   }
-  face.mesh = read_mesh(mesh_path);
+  MeshFormat format;
+  try {
+    format = mesh_format_from_path(mesh_path);
+  } catch (const InvalidInput& e) {
+    throw FormatError(where, e.what());
+  }
+  if (format == MeshFormat::Ply || format == MeshFormat::Off) {
+    face.mesh = read_mesh(mesh_path);
+  } else {
+    auto document = std::make_shared<MeshDocument>(read_mesh_document(mesh_path));
+    face.mesh = document->triangles();
+    validate_mesh(face.mesh, mesh_path);
+    face.document = std::move(document);
+  }
   if (!face.rig.frame.is_identity()) {  // the mesh file is in its own frame; the Face lives in the rig's
     for (long v = 0; v < face.mesh.vertices.rows(); ++v) {
       face.mesh.vertices.row(v) = face.rig.frame.to_rig(face.mesh.vertices.row(v).transpose()).transpose();
@@ -405,18 +418,43 @@ Face load_face(const std::string& rig_path) {
   return face;
 }
 
+Vertices to_mesh_frame(const Rig& rig, const Vertices& positions, const Vertices* original) {
+  if (rig.frame.is_identity()) return positions;
+  if (original && original->rows() != positions.rows()) throw InvalidInput("to_mesh_frame: original has another vertex count");
+  Vertices out(positions.rows(), 3);
+  for (long v = 0; v < positions.rows(); ++v) {
+    const Eigen::Vector3d p = positions.row(v).transpose();
+    if (original) {
+      const Eigen::Vector3d o = original->row(v).transpose();
+      const Eigen::Vector3d r = rig.frame.to_rig(o);
+      if (r.x() == p.x() && r.y() == p.y() && r.z() == p.z()) {
+        out.row(v) = o.transpose();
+        continue;
+      }
+    }
+    out.row(v) = rig.frame.to_mesh(p).transpose();
+  }
+  return out;
+}
+
 void save_face(const std::string& rig_path, const Face& face) {
   if (face.rig.mesh_file.empty()) throw InvalidInput("save_face: rig.mesh_file is empty");
   if (face.mesh.vertex_count() != face.rig.vertex_count) throw InvalidInput("save_face: mesh and rig disagree on the vertex count");
   const auto dir = std::filesystem::path(rig_path).parent_path();
-  if (face.rig.frame.is_identity()) {
-    write_mesh((dir / face.rig.mesh_file).string(), face.mesh);
+  const std::string mesh_path = (dir / face.rig.mesh_file).string();
+  const MeshFormat format = mesh_format_from_path(mesh_path);
+  const bool gltf = format == MeshFormat::Gltf || format == MeshFormat::Glb;
+  const auto* doc = face.document.get();
+  const bool doc_fits = doc && doc->triangles().vertices.rows() == face.mesh.vertices.rows();
+  const Vertices positions = to_mesh_frame(face.rig, face.mesh.vertices, doc_fits ? &doc->triangles().vertices : nullptr);
+  const bool same_kind = doc_fits && doc->triangles().faces.rows() == face.mesh.faces.rows() &&
+                         doc->triangles().faces == face.mesh.faces &&
+                         ((doc->format() == MeshFormat::Obj && format == MeshFormat::Obj) ||
+                          ((doc->format() == MeshFormat::Gltf || doc->format() == MeshFormat::Glb) && gltf));
+  if (same_kind) {
+    doc->write(mesh_path, positions);
   } else {
-    Mesh file = face.mesh;
-    for (long v = 0; v < file.vertices.rows(); ++v) {
-      file.vertices.row(v) = face.rig.frame.to_mesh(face.mesh.vertices.row(v).transpose()).transpose();
-    }
-    write_mesh((dir / face.rig.mesh_file).string(), file);
+    write_mesh(mesh_path, Mesh{positions, face.mesh.faces});
   }
   write_rig(rig_path, face.rig);
 }
