@@ -464,7 +464,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     if (!lip_face[static_cast<std::size_t>(h.face)] && !lip_index.empty()) {
       // ties on the edges shared by the lips and the skin or the mouth cavity go to the lips
       const auto lh = lip_index.closest(p);
-      if (lh.face >= 0 && lh.distance <= h.distance + 1e-4 * head_height_rig) h = lh;
+      const double tie = (cavity_face[static_cast<std::size_t>(h.face)] ? 0.002 : 1e-4) * head_height_rig;
+      if (lh.face >= 0 && lh.distance <= h.distance + tie) h = lh;
     }
     const Eigen::Vector3d n = tnormals.row(v).transpose();
     const bool agree = n.dot(gnormals.row(h.face).transpose()) > 0.3;
@@ -522,6 +523,21 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   }
   const auto du = geodesic(T, adjacency, upper_seeds, mouth_allowed);
   const auto dl = geodesic(T, adjacency, lower_seeds, mouth_allowed);
+  // Jaw weights of the bag: geodesic distances through the bag alone from every vertex of each lip (so
+  // no path runs round a mouth corner through the lips), by the side of its projection.
+  std::vector<std::uint8_t> bag_only(static_cast<std::size_t>(nv), 0);
+  std::vector<int> upper_lip, lower_lip;
+  for (int v : head.vertices) {
+    bag_only[static_cast<std::size_t>(v)] = bag[static_cast<std::size_t>(v)];
+    if (!on_lip[static_cast<std::size_t>(v)]) continue;
+    const double s = std::sin(2 * kPi * face_uv(hit[static_cast<std::size_t>(v)].face, hit[static_cast<std::size_t>(v)].bary).x());
+    const bool labelled_upper = std::isfinite(du[static_cast<std::size_t>(v)]) || std::isfinite(dl[static_cast<std::size_t>(v)])
+                                    ? du[static_cast<std::size_t>(v)] <= dl[static_cast<std::size_t>(v)] : s >= 0.0;
+    if (std::abs(s) < 0.25) continue;  // corners belong to both
+    (labelled_upper ? upper_lip : lower_lip).push_back(v);
+  }
+  const auto bu = geodesic(T, adjacency, upper_lip, bag_only);
+  const auto bl = geodesic(T, adjacency, lower_lip, bag_only);
   // ---- lips: bindings ----
   std::vector<double> jaw_w(static_cast<std::size_t>(nv), 0.0);
   for (int v : head.vertices) {
@@ -556,7 +572,7 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       continue;
     }
     if (bag[static_cast<std::size_t>(v)]) {
-      const double a = du[static_cast<std::size_t>(v)], b = dl[static_cast<std::size_t>(v)];
+      const double a = bu[static_cast<std::size_t>(v)], b = bl[static_cast<std::size_t>(v)];
       // the share of the way from the upper lip to the lower, sharpened: the upper half of the bag stays
       // with the skull, the lower half follows the jaw, with a smooth fold at the back
       const double share = std::isfinite(a) && std::isfinite(b) && a + b > 0 ? a / (a + b) : std::isfinite(b) ? 1.0 : 0.0;
@@ -638,7 +654,10 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   head_report.found_by = "head";
   rep.parts.push_back(head_report);
   rig.parts.push_back({head_report.name, fm::PartKind::Head, -1, head.vertices});
-  const double mouth_y = rig.lips.centre.y();
+  Eigen::Vector3d mouth_point = Eigen::Vector3d::Zero();  // mean lip control point
+  for (const auto& c : rig.lips.control_points) mouth_point += c / static_cast<double>(rig.lips.control_points.size());
+  const double mouth_y = mouth_point.y();
+  const double mouth_width = (rig.lips.control_points[0] - rig.lips.control_points[fm::LipGrid::kAround / 2]).norm();
   std::array<bool, 2> eye_fitted{false, false};
   std::array<double, 2> eye_part_size{0.0, 0.0};
   std::vector<int> lid_candidates;
@@ -684,8 +703,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       if (kind == fm::PartKind::Other && is_teeth_name(comp_name[c]))
         kind = centroid.y() < mouth_y ? fm::PartKind::LowerTeeth : fm::PartKind::UpperTeeth;
       if (kind == fm::PartKind::Head) {  // unnamed: by position
-        const bool in_mouth = (centroid - rig.lips.centre).norm() < 0.35 * (rig.lips.control_points[0] - rig.lips.centre).norm() * 4.0 &&
-                              centroid.z() < rig.lips.centre.z() + 0.005;
+        // inside the mouth: within a mouth width of the lips and behind their front
+        const bool in_mouth = (centroid - mouth_point).norm() < mouth_width && centroid.z() < mouth_point.z();
         double lid_d = std::numeric_limits<double>::infinity();
         for (int v : comp.vertices)
           for (int l : lid_candidates) lid_d = std::min(lid_d, (T.row(v) - T.row(l)).norm());
@@ -753,14 +772,14 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   rep.jaw_vertices = rig.jaw.vertices.size();
   for (int v : head.vertices) rep.mouth_bag += bag[static_cast<std::size_t>(v)];
 
-  // ---- landmarks ----
+  // ---- landmarks ----  (the iBUG ids are chosen below; the lid closing angles use them at the end)
   fm::Vertices head_T(static_cast<Eigen::Index>(head.vertices.size()), 3);
   for (std::size_t k = 0; k < head.vertices.size(); ++k) head_T.row(static_cast<Eigen::Index>(k)) = T.row(head.vertices[k]);
   const detail::PointIndex head_index(head_T);
-  auto nearest_head = [&](const Eigen::Vector3d& p, double& d) {
+  auto nearest_head = [&](const Eigen::Vector3d& p, double& d) {  // nearest vertex of the head component
     double d2 = 0.0;
     const int k = head_index.nearest(p, d2);
-    d = std::sqrt(std::max(0.0, d2));
+    d = (T.row(head.vertices[static_cast<std::size_t>(k)]).transpose() - p).norm();
     return head.vertices[static_cast<std::size_t>(k)];
   };
   std::vector<int> user_vertex(68, -1);
@@ -793,6 +812,32 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   for (const auto& l : srig.retarget_landmarks) {
     double d = 0.0;
     rig.retarget_landmarks.push_back({l.name, nearest_head(G.row(l.vertex).transpose(), d)});
+  }
+  // Lid closing angle per eye: the source's angle scaled by the target's own opening, measured about
+  // the eye's x axis (thesis §2.4.3 rotates the upper lid about the eye centre) between the mean points
+  // of the upper and the lower lid margins (lid vertices of weight ≥ 0.9), so a taller or shorter eye
+  // opening than the built-in one still closes.
+  {
+    auto margin = [](const fm::Vertices& x, const std::vector<int>& ids, const std::vector<double>& w, Eigen::Vector3d& m) {
+      m.setZero();
+      int c = 0;
+      for (std::size_t k = 0; k < ids.size(); ++k)
+        if (w[k] >= 0.9) m += x.row(ids[k]).transpose(), ++c;
+      if (c) m /= c;
+      return c > 0;
+    };
+    auto opening = [&](const fm::Vertices& x, const fm::Eye& eye, double& angle) {
+      Eigen::Vector3d up, lo;
+      if (!margin(x, eye.upper_lid, eye.upper_lid_weights, up) || !margin(x, eye.lower_lid, eye.lower_lid_weights, lo)) return false;
+      angle = std::atan2(up.y() - eye.centre.y(), up.z() - eye.centre.z()) - std::atan2(lo.y() - eye.centre.y(), lo.z() - eye.centre.z());
+      return true;
+    };
+    for (int e = 0; e < 2; ++e) {
+      double src = 0.0, dst = 0.0;
+      auto& te = rig.eyes[static_cast<std::size_t>(e)];
+      if (opening(source.mesh.vertices, srig.eyes[static_cast<std::size_t>(e)], src) && opening(T, te, dst) && src > 1e-3 && dst > 1e-3)
+        te.close_angle = std::min(1.5, srig.eyes[static_cast<std::size_t>(e)].close_angle * dst / src);
+    }
   }
 
   // ---- residuals per region ----
