@@ -23,7 +23,8 @@ namespace rt = emoface::retarget;
 
 namespace {
 
-// The six emotions (thesis ch. 6 fuzzy rules, ESV 0.9) on a face, front view, one contact sheet.
+// The six emotions (thesis ch. 6 fuzzy rules, ESV 0.9; anger, disgust, fear, happiness, sadness,
+// surprise) on a face: front views in the first row, three-quarter views in the second.
 fm::Image emotion_sheet(const fm::Face& face, int tile) {
   fm::RenderOptions ro;
   ro.width = tile;
@@ -31,17 +32,21 @@ fm::Image emotion_sheet(const fm::Face& face, int tile) {
   const auto colors = fm::material_colors(face.rig, face.mesh);
   const emoface::muscles::FaceSolver solver(face.mesh, face.rig);
   const fx::Engine engine;
-  std::vector<fm::Image> tiles;
+  std::vector<emoface::muscles::Deformation> shapes;
   for (std::size_t e = 0; e < fx::kEmotionCount; ++e) {
     fx::Esv esv{};
     esv[e] = 0.9;
     const auto sides = fx::expand_to_sides(engine.convert(esv));
     std::map<std::string, double> named;
     for (std::size_t i = 0; i < sides.size(); ++i) named[std::string(fx::side_parameter_names()[i])] = sides[i];
-    const auto d = solver.deform(named);
-    tiles.push_back(fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, ro));
+    shapes.push_back(solver.deform(named));
   }
-  return fm::contact_sheet(tiles, 3);
+  std::vector<fm::Image> tiles;
+  for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
+    ro.view = view;
+    for (const auto& d : shapes) tiles.push_back(fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, ro));
+  }
+  return fm::contact_sheet(tiles, static_cast<int>(fx::kEmotionCount));
 }
 
 // --mode transfer: everything is computed first; the files are then written one by one (each
@@ -77,10 +82,7 @@ int run_transfer(const fm::Face& source, const std::string& target_path, const s
     if (fs::exists(in_dir / rel)) extra.emplace_back(rel.lexically_normal().string(), emoface::core::read_file((in_dir / rel).string()));
   }
   fm::Image sheet;
-  if (!no_png) {
-    fm::Face shown = r.face;
-    sheet = emotion_sheet(shown, tile);
-  }
+  if (!no_png) sheet = emotion_sheet(r.face, tile);
   const fs::path dir(out_dir);
   std::vector<fs::path> written;
   try {

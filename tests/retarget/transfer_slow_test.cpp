@@ -1,5 +1,7 @@
 // transfer_rig, the slower cases: a rotated decimetre copy, the iBUG landmarks on a finer remesh, user
 // landmarks (label "slow": a few seconds each).
+#include <cstdlib>
+
 #include "transfer_fixtures.hpp"
 
 TEST(Transfer, RotatedDecimetreCopyKeepsItsFrameAndMoves) {
@@ -9,6 +11,9 @@ TEST(Transfer, RotatedDecimetreCopyKeepsItsFrameAndMoves) {
   fm::Mesh input = f.remeshed;
   for (Eigen::Index v = 0; v < input.vertices.rows(); ++v)
     input.vertices.row(v) = (scale * (rot * Eigen::Vector3d(f.remeshed.vertices.row(v))) + Eigen::Vector3d(1, 2, 3)).transpose();
+  // With EMOFACE_TRANSFER_DEMO_DIR set, the input is also written there as remeshed_head.obj (the
+  // remeshed head of the pictures in docs/retarget.md, scripts/transfer_pictures.sh).
+  if (const char* dir = std::getenv("EMOFACE_TRANSFER_DEMO_DIR")) fm::write_mesh(std::string(dir) + "/remeshed_head.obj", input);
   const auto r = rt::transfer_rig(f.source, input, {}, quick_options());
   // the frame maps the file's own positions into the rig frame and back
   const auto& fr = r.face.rig.frame;

@@ -623,12 +623,73 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     ++rep.lip_bound;
     if (b.weight >= 1.0) ++rep.lip_full;
   }
+  // Eye-hole surfaces: a head that closes its eye openings with a surface of its own (no separate
+  // eyeballs, like the MakeHuman head's sockets) has vertices inside the generic's eye opening (seen
+  // from the front). They stand in for the eyeball: no lid weights, turned by gaze.
+  // The generic's eye opening per eye: its rim (skin vertices sharing a triangle with the socket cap)
+  // as a polygon in x/y (registered positions), shrunk to 85 % about its centroid.
+  std::array<std::vector<Eigen::Vector2d>, 2> hole_outline;
+  std::array<Eigen::Vector2d, 2> hole_centre{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  {
+    std::array<std::set<int>, 2> rim;
+    for (Eigen::Index f = 0; f < gsurf.faces.rows(); ++f) {
+      int sock = -1;
+      for (int k = 0; k < 3; ++k)
+        if (socket[static_cast<std::size_t>(gsurf.faces(f, k))]) sock = gsurf.faces(f, k);
+      if (sock < 0) continue;
+      const Eigen::Vector3d sp = source.mesh.vertices.row(sock);
+      const int e = (sp - srig.eyes[0].centre).norm() <= (sp - srig.eyes[1].centre).norm() ? 0 : 1;
+      for (int k = 0; k < 3; ++k)
+        if (!socket[static_cast<std::size_t>(gsurf.faces(f, k))]) rim[static_cast<std::size_t>(e)].insert(gsurf.faces(f, k));
+    }
+    for (int e = 0; e < 2; ++e) {
+      auto& out_e = hole_outline[static_cast<std::size_t>(e)];
+      if (rim[static_cast<std::size_t>(e)].size() < 3) continue;
+      Eigen::Vector2d c = Eigen::Vector2d::Zero();
+      for (int v : rim[static_cast<std::size_t>(e)]) c += G.row(v).head<2>().transpose();
+      c /= static_cast<double>(rim[static_cast<std::size_t>(e)].size());
+      for (int v : rim[static_cast<std::size_t>(e)]) out_e.push_back(c + 0.85 * (G.row(v).head<2>().transpose() - c));
+      std::sort(out_e.begin(), out_e.end(), [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+        return std::atan2(a.y() - c.y(), a.x() - c.x()) < std::atan2(b.y() - c.y(), b.x() - c.x());
+      });
+      hole_centre[static_cast<std::size_t>(e)] = c;
+    }
+  }
+  auto inside = [](const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& q) {
+    bool in = false;
+    for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+      if ((poly[i].y() > q.y()) != (poly[j].y() > q.y()) &&
+          q.x() < (poly[j].x() - poly[i].x()) * (q.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) + poly[i].x())
+        in = !in;
+    return in;
+  };
+  std::vector<std::uint8_t> eye_hole(static_cast<std::size_t>(nv), 0);
+  for (int v : head.vertices) {
+    if (on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)]) continue;
+    for (int e = 0; e < 2; ++e) {
+      const auto& poly = hole_outline[static_cast<std::size_t>(e)];
+      if (poly.size() < 3 || !inside(poly, T.row(v).head<2>().transpose())) continue;
+      // not the generic's own socket cap (a remeshed copy of the generic), nor far in front of the eye
+      const auto& h = hit[static_cast<std::size_t>(v)];
+      bool socket_face = false;
+      for (int k = 0; k < 3 && h.face >= 0; ++k) socket_face = socket_face || socket[static_cast<std::size_t>(gsurf.faces(h.face, k))];
+      if (socket_face && h.distance < 0.001 * head_height_rig) continue;
+      const double dz = T(v, 2) - rig.eyes[static_cast<std::size_t>(e)].centre.z(), r = gen.rig.eyes[static_cast<std::size_t>(e)].radius;
+      if (dz > 2.0 * r || dz < -2.0 * r) continue;  // the lids' front, the back of the head
+      eye_hole[static_cast<std::size_t>(v)] = 1;
+      rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices.push_back(v);
+      rig.materials[static_cast<std::size_t>(v)] = fm::Material::EyeWhite;
+      rig.regions[static_cast<std::size_t>(v)] = fm::Region::Rest;
+      jaw_w[static_cast<std::size_t>(v)] = 0.0;
+    }
+  }
+  for (int e = 0; e < 2; ++e) rep.eye_hole_vertices[static_cast<std::size_t>(e)] = rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices.size();
   // Eyelids.
   for (int e = 0; e < 2; ++e) {
     auto& te = rig.eyes[static_cast<std::size_t>(e)];
     for (int v : head.vertices) {
       const auto& h = hit[static_cast<std::size_t>(v)];
-      if (h.face < 0 || on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)]) continue;
+      if (h.face < 0 || on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)] || eye_hole[static_cast<std::size_t>(v)]) continue;
       // socket-cap corners (behind the eyeball, no lid weight of their own) are left out, so the
       // inside of a closed eye socket follows the lid margin instead of tearing from it
       double up = 0.0, lo = 0.0, sum = 0.0;

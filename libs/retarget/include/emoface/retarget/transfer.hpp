@@ -108,6 +108,9 @@ struct TransferReport {
   std::size_t jaw_vertices = 0;
   std::size_t mouth_bag = 0;           ///< vertices of a mouth bag (jaw weights from geodesic distances)
   std::array<std::size_t, 2> lid_vertices{};  ///< per eye, upper + lower
+  /// per eye: head vertices closing the eye opening in front of the eye centre (a head without separate
+  /// eyeballs); they are turned by gaze like an eyeball (Eye::eyeball_vertices), not moved by the lids
+  std::array<std::size_t, 2> eye_hole_vertices{};
   bool user_landmarks = false;
   double fit_seconds = 0.0;            ///< wall times (non-deterministic)
   double registration_seconds = 0.0;
