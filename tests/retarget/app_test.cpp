@@ -1,7 +1,10 @@
 // End-to-end: the retarget CLI writes a loadable rig, mesh, report and pictures; exit codes.
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <sys/wait.h>
@@ -9,10 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <sstream>
-
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/gltf.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 
@@ -152,4 +153,22 @@ TEST(RetargetApp, TransferWritesNothingOnBadInput) {
   // --landmarks without transfer is a usage error
   EXPECT_EQ(run("--mode deform-source --target " + (in / "head.obj").string() + " --out " + out.string() + " --landmarks " +
                 (in / "lm.json").string()), 1);
+}
+
+TEST(RetargetApp, TransferOfGltfWritesGlb) {
+  TempDir t;
+  const auto face = emoface::facemesh::make_default_face();
+  const auto in = t.path / "head.gltf";
+  emoface::facemesh::write_animated_gltf(in.string(), face.mesh, {face.mesh.vertices}, {0.0});
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + in.string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
+  ASSERT_TRUE(fs::exists(out / "face.glb"));
+  const auto rigged = emoface::facemesh::load_face((out / "face.rig").string());
+  EXPECT_EQ(rigged.rig.mesh_file, "face.glb");
+  ASSERT_EQ(rigged.mesh.vertices.rows(), face.mesh.vertices.rows());
+  // the glTF's positions come back (through the rig frame) where they were
+  double worst = 0.0;
+  for (Eigen::Index v = 0; v < face.mesh.vertices.rows(); ++v)
+    worst = std::max(worst, (rigged.rig.frame.to_mesh(rigged.mesh.vertices.row(v).transpose()) - face.mesh.vertices.row(v).transpose()).norm());
+  EXPECT_LT(worst, 1e-6);  // glTF stores float32
 }
