@@ -20,13 +20,16 @@ int main(int argc, char** argv) {
   CLI::App app{"Deform a face by muscle parameters, one mesh per frame (thesis ch. 2 muscle model).\n"
                "Example: faceanim --params expressions.csv --out frames --gltf anim.gltf\n"
                "         faceanim --write-default-face data/face   (regenerates the built-in face files)"};
-  std::string rig_path, params, out_dir, format = "obj", gltf, default_dir, shard_text;
+  std::string rig_path, params, out_dir, format, gltf, default_dir, shard_text;
   double fps = 25.0, delta_c = 0.2;
   bool no_wrinkles = false, ignore_unknown = false;
   app.add_option("--rig", rig_path, "Rig file (emoface.rig JSON); default: the built-in face");
   app.add_option("--params", params, "Parameter frames: .csv, .ndjson/.jsonl or .json");
   app.add_option("--out", out_dir, "Directory for frame_0000.<format> ...");
-  app.add_option("--format", format, "Mesh format of the frames")->check(CLI::IsMember({"obj", "ply", "off"}));
+  app.add_option("--format", format,
+                 "Mesh format of the frames (default: the rig's mesh kind, obj or glb). Frames are in the mesh\n"
+                 "file's own frame; obj/glb/gltf of an OBJ/glTF mesh keep its UVs, groups and materials")
+      ->check(CLI::IsMember({"obj", "ply", "off", "glb", "gltf"}));
   app.add_option("--gltf", gltf, "Also write an animated glTF 2.0 (.gltf or .glb)");
   app.add_option("--fps", fps, "Frame rate for inputs without times")->check(CLI::Range(0.001, 1000.0));
   app.add_option("--delta-c", delta_c, "Contraction step (thesis: 0.2)")->check(CLI::Range(0.001, 1.0));
@@ -44,6 +47,11 @@ int main(int argc, char** argv) {
     if (params.empty() || (out_dir.empty() && gltf.empty())) throw emoface::InvalidInput("give --params FILE and --out DIR and/or --gltf FILE");
     const auto shard = shard_text.empty() ? emoface::cli::Shard{} : emoface::cli::parse_shard(shard_text);
     fm::Face face = rig_path.empty() ? fm::make_default_face() : fm::load_face(rig_path);
+    if (format.empty()) {
+      const bool gltf_doc = face.document && (face.document->format() == fm::MeshFormat::Gltf ||
+                                              face.document->format() == fm::MeshFormat::Glb);
+      format = gltf_doc ? "glb" : "obj";
+    }
     mu::SolverOptions options;
     options.delta_c = delta_c;
     options.wrinkles = !no_wrinkles;
@@ -63,10 +71,11 @@ int main(int argc, char** argv) {
       if (!out_dir.empty()) {
         char name[64];
         std::snprintf(name, sizeof name, "frame_%04zu.%s", i, format.c_str());
-        fm::write_mesh((std::filesystem::path(out_dir) / name).string(), fm::Mesh{d.vertices, face.mesh.faces});
+        // in the mesh file's frame; through the user's document when the format is its kind
+        fm::write_face_mesh((std::filesystem::path(out_dir) / name).string(), face, d.vertices);
       }
       if (!gltf.empty()) {
-        meshes.push_back(d.vertices);
+        meshes.push_back(fm::to_mesh_frame(face.rig, d.vertices));
         times.push_back(frames[i].time);
       }
     }
@@ -78,7 +87,7 @@ int main(int argc, char** argv) {
           break;
         }
       }
-      fm::write_animated_gltf(gltf, face.mesh, meshes, times);
+      fm::write_animated_gltf(gltf, fm::Mesh{fm::to_mesh_frame(face.rig, face.mesh.vertices), face.mesh.faces}, meshes, times);
     }
     return 0;
   });

@@ -9,6 +9,7 @@
 #include "emoface/core/video.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/io.hpp"
+#include "emoface/facemesh/mesh_document.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 #include "emoface/facemesh/render.hpp"
 
@@ -21,11 +22,18 @@ int main(int argc, char** argv) {
   std::string out, view = "front", rig_path, video, audio;
   int sheet = 0, width = 480, height = 560, fps = 25;
   double yaw = 0.0;
-  app.add_option("meshes", meshes, "Mesh files (OBJ/PLY/OFF)")->required();
+  std::string camera = "auto";
+  app.add_option("meshes", meshes, "Mesh files (OBJ/PLY/OFF/glTF/GLB)")->required();
+  app.add_option("--camera", camera,
+                 "auto: keep the face framing when the meshes fill it, else fit the camera to their bounding\n"
+                 "box (any frame and units); fixed: the face framing, refused when a mesh would not be visible")
+      ->check(CLI::IsMember({"auto", "fixed"}));
   app.add_option("--out", out, "Output PNG; with several meshes and no --sheet, NAME_0000.png ... are written");
   app.add_option("--view", view, "front or threequarter")->check(CLI::IsMember({"front", "threequarter"}));
   app.add_option("--sheet", sheet, "Tile all meshes into one contact sheet with this many columns")->check(CLI::Range(1, 64));
-  app.add_option("--rig", rig_path, "Rig for material colours (default: built-in face when the vertex count matches)");
+  app.add_option("--rig", rig_path,
+                 "Rig for material colours and its mesh frame (default: the built-in face when the vertex count\n"
+                 "matches; otherwise the mesh's own vertex colours, else uniform skin)");
   app.add_option("--width", width, "Image width in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--height", height, "Image height in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--yaw", yaw, "Extra camera yaw in radians")->check(CLI::Range(-3.14159, 3.14159));
@@ -43,14 +51,45 @@ int main(int argc, char** argv) {
     options.width = width;
     options.height = height;
     options.yaw = yaw;
-    std::vector<fm::Image> images;
+    struct Input {
+      fm::Mesh mesh;
+      std::vector<Eigen::Vector3f> colors;
+    };
+    std::vector<Input> inputs;
+    fm::Vertices box(2, 3);  // bounding box of all meshes (rows: min, max)
     for (const auto& path : meshes) {
-      const auto mesh = fm::read_mesh(path);
-      const bool fits = mesh.vertex_count() == rig.vertex_count;
+      const fm::MeshDocument doc = fm::read_mesh_document(path);
+      Input in{doc.triangles(), {}};
+      const bool fits = in.mesh.vertex_count() == rig.vertex_count;
       if (!rig_path.empty() && !fits) throw emoface::InvalidInput(path + ": mesh does not fit the rig's vertex count");
-      if (fits && colors.empty()) colors = fm::material_colors(rig, mesh);
-      images.push_back(fm::render(mesh, fits ? colors : std::vector<Eigen::Vector3f>{}, {}, options));
+      if (fits) {
+        // a rig's mesh files are in the mesh frame: render in the rig frame, where the rig's colours live
+        for (long v = 0; v < in.mesh.vertices.rows(); ++v) {
+          if (!rig.frame.is_identity()) in.mesh.vertices.row(v) = rig.frame.to_rig(in.mesh.vertices.row(v).transpose()).transpose();
+        }
+        if (colors.empty()) colors = fm::material_colors(rig, in.mesh);
+        in.colors = colors;
+      } else {
+        in.colors = doc.vertex_colors();  // the file's own colours, else uniform skin
+      }
+      const Eigen::RowVector3d lo = in.mesh.vertices.colwise().minCoeff(), hi = in.mesh.vertices.colwise().maxCoeff();
+      box.row(0) = inputs.empty() ? lo : box.row(0).cwiseMin(lo);
+      box.row(1) = inputs.empty() ? hi : box.row(1).cwiseMax(hi);
+      inputs.push_back(std::move(in));
     }
+    if (camera == "auto") {
+      fm::Vertices corners(8, 3);  // of the common bounding box: one camera for all, frames stay comparable
+      for (int c = 0; c < 8; ++c) corners.row(c) << box((c & 1), 0), box((c >> 1) & 1, 1), box((c >> 2) & 1, 2);
+      options = fm::frame_camera(corners, options);
+    } else {
+      for (std::size_t i = 0; i < inputs.size(); ++i) {
+        if (fm::visible_fraction(inputs[i].mesh.vertices, options) == 0.0) {
+          throw emoface::InvalidInput(meshes[i] + ": nothing of the mesh would be visible with the fixed camera (try --camera auto)");
+        }
+      }
+    }
+    std::vector<fm::Image> images;
+    for (const auto& in : inputs) images.push_back(fm::render(in.mesh, in.colors, {}, options));
     auto numbered = [](const std::string& base, std::size_t i) {
       const std::filesystem::path p(base);
       char suffix[32];

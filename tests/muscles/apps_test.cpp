@@ -3,12 +3,19 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <cmath>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 
 #include "emoface/core/io.hpp"
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/gltf.hpp"
+#include "emoface/facemesh/io.hpp"
+#include "emoface/facemesh/mesh_document.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
+#include "emoface/facemesh/render.hpp"
+#include "emoface/muscles/solver.hpp"
 
 namespace {
 
@@ -73,6 +80,131 @@ TEST_F(Apps, FacerenderPngAndSheet) {
   EXPECT_EQ(run(std::string(FACERENDER_EXE) + " " + p("a.obj") + " --view side --out " + p("x.png")), 1);
   EXPECT_EQ(run(std::string(FACERENDER_EXE) + " " + p("nope.obj") + " --out " + p("x.png")), 2);
   EXPECT_FALSE(fs::exists(p("x.png")));
+}
+
+namespace fm = emoface::facemesh;
+
+// A user's rig: the built-in face's rig on an OBJ in decimetres with UVs, a group, a material library.
+std::string user_obj_rig(const std::string& dir) {
+  const auto face = fm::make_default_face();
+  std::string obj = "# the user's head\nmtllib head.mtl\no head\n";
+  char line[160];
+  for (long v = 0; v < face.mesh.vertices.rows(); ++v) {
+    std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", 10 * face.mesh.vertices(v, 0), 10 * face.mesh.vertices(v, 1), 10 * face.mesh.vertices(v, 2));
+    obj += line;
+  }
+  for (long v = 0; v < face.mesh.vertices.rows(); ++v) {
+    std::snprintf(line, sizeof line, "vt %.6f %.6f\n", face.mesh.vertices(v, 0) + 0.5, face.mesh.vertices(v, 1) + 0.5);
+    obj += line;
+  }
+  obj += "usemtl skin\n";
+  for (long f = 0; f < face.mesh.faces.rows(); ++f) {
+    const int a = face.mesh.faces(f, 0) + 1, b = face.mesh.faces(f, 1) + 1, c = face.mesh.faces(f, 2) + 1;
+    std::snprintf(line, sizeof line, "f %d/%d %d/%d %d/%d\n", a, a, b, b, c, c);
+    obj += line;
+  }
+  emoface::core::write_file_atomic(dir + "/head.obj", obj);
+  emoface::core::write_file_atomic(dir + "/head.mtl", "newmtl skin\nKd 0.9 0.7 0.6\n");
+  fm::Rig rig = face.rig;
+  rig.mesh_file = "head.obj";
+  rig.frame.scale = 0.1;  // decimetres -> metres
+  fm::write_rig(dir + "/user.rig", rig);
+  return dir + "/user.rig";
+}
+
+TEST_F(Apps, FaceanimWritesFramesThroughTheUsersObjInItsOwnFrame) {
+  const std::string rig = user_obj_rig(dir_.string());
+  emoface::core::write_file_atomic(p("p.csv"), "id,masseter,zygomatic_major_l\nneutral,0,0\nsmile,0.3,1\n");
+  ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --rig " + rig + " --params " + p("p.csv") + " --out " + p("out") + " --gltf " + p("a.glb")), 0);
+  const std::string in = emoface::core::read_file(p("head.obj"));
+  const std::string neutral = emoface::core::read_file(p("out/frame_0000.obj"));
+  // every line but the re-sampled lip vertices is the user's own text
+  auto lines = [](const std::string& t) {
+    std::vector<std::string> out;
+    std::size_t a = 0;
+    while (a < t.size()) {
+      const std::size_t b = t.find('\n', a);
+      out.push_back(t.substr(a, b - a));
+      a = b + 1;
+    }
+    return out;
+  };
+  const auto a = lines(in), b = lines(neutral);
+  ASSERT_EQ(a.size(), b.size());
+  const auto face = fm::load_face(rig);
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] != b[i]) {
+      ++changed;
+      EXPECT_EQ(a[i].rfind("v ", 0), 0u) << a[i];
+    }
+  }
+  EXPECT_LE(changed, static_cast<std::size_t>(face.rig.lips.samples_around * face.rig.lips.samples_across));
+  EXPECT_EQ(emoface::core::read_file(p("out/head.mtl")), "newmtl skin\nKd 0.9 0.7 0.6\n");
+  // the smile, read back in the mesh frame (decimetres), is the solver's deformation scaled by 10
+  const fm::MeshDocument smile = fm::read_mesh_document(p("out/frame_0001.obj"));
+  EXPECT_TRUE(smile.has_uvs());
+  ASSERT_EQ(smile.groups().size(), 1u);
+  EXPECT_EQ(smile.groups()[0].material, "skin");
+  const auto d = emoface::muscles::deform_face(face.mesh, face.rig, {{"masseter", 0.3}, {"zygomatic_major_l", 1.0}});
+  EXPECT_LT((smile.triangles().vertices - 10.0 * d.vertices).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_GT((smile.triangles().vertices - fm::read_mesh_document(p("head.obj")).triangles().vertices).cwiseAbs().maxCoeff(), 0.01);
+  // the animation is in the mesh frame too
+  const fm::MeshDocument anim = fm::read_mesh_document(p("a.glb"));
+  EXPECT_LT((anim.triangles().vertices - fm::read_mesh_document(p("head.obj")).triangles().vertices).cwiseAbs().maxCoeff(), 1e-5);
+  // ply frames: mesh frame, no document
+  ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --rig " + rig + " --params " + p("p.csv") + " --out " + p("ply") + " --format ply"), 0);
+  EXPECT_LT((fm::read_mesh(p("ply/frame_0001.ply")).vertices - 10.0 * d.vertices).cwiseAbs().maxCoeff(), 1e-5);
+  EXPECT_EQ(run(std::string(FACEANIM_EXE) + " --rig " + rig + " --params " + p("p.csv") + " --out " + p("g") + " --format glb"), 2);
+}
+
+TEST_F(Apps, FaceanimWritesGlbFramesForAGltfRig) {
+  const auto face = fm::make_default_face();
+  fm::write_animated_gltf(p("head.glb"), face.mesh, {face.mesh.vertices}, {0.0});
+  fm::Rig rig = face.rig;
+  rig.mesh_file = "head.glb";
+  fm::write_rig(p("g.rig"), rig);
+  emoface::core::write_file_atomic(p("p.csv"), "id,zygomatic_major_r\nsmile,1\n");
+  ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --rig " + p("g.rig") + " --params " + p("p.csv") + " --out " + p("out")), 0);
+  const fm::MeshDocument frame = fm::read_mesh_document(p("out/frame_0000.glb"));
+  const auto loaded = fm::load_face(p("g.rig"));
+  const auto d = emoface::muscles::deform_face(loaded.mesh, loaded.rig, {{"zygomatic_major_r", 1.0}});
+  EXPECT_LT((frame.triangles().vertices - d.vertices).cwiseAbs().maxCoeff(), 1e-6);  // float storage
+  EXPECT_GT((frame.triangles().vertices - loaded.mesh.vertices).cwiseAbs().maxCoeff(), 1e-3);
+}
+
+// Size of a PNG of a uniform background (what a blank render compresses to).
+std::size_t blank_png_size(int w, int h) {
+  fm::Image image;
+  image.width = w, image.height = h;
+  const fm::RenderOptions o;
+  image.rgb.resize(static_cast<std::size_t>(w) * h * 3);
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(std::lround(o.background[static_cast<long>(i % 3)] * 255));
+  return fm::encode_png(image).size();
+}
+
+TEST_F(Apps, FacerenderFramesAMeshInAnyFrame) {
+  const auto face = fm::make_default_face();
+  fm::Mesh far = face.mesh;
+  far.vertices *= 10.0;  // decimetres, moved off the default view
+  far.vertices.col(1).array() += 15.0;
+  fm::write_mesh(p("far.obj"), far);
+  ASSERT_EQ(run(std::string(FACERENDER_EXE) + " " + p("far.obj") + " --width 96 --height 112 --out " + p("far.png")), 0);
+  EXPECT_GT(emoface::core::read_file(p("far.png")).size(), 4 * blank_png_size(96, 112));
+  EXPECT_EQ(run(std::string(FACERENDER_EXE) + " " + p("far.obj") + " --camera fixed --out " + p("x.png")), 2);
+  EXPECT_FALSE(fs::exists(p("x.png")));
+  // a user's rig: mesh-frame files rendered in the rig frame with the rig's colours and the usual camera
+  const std::string rig = user_obj_rig(dir_.string());
+  ASSERT_EQ(run(std::string(FACERENDER_EXE) + " " + p("head.obj") + " --rig " + rig + " --width 96 --height 112 --out " + p("u.png")), 0);
+  ASSERT_EQ(run(std::string(FACERENDER_EXE) + " " + p("head.obj") + " --rig " + rig + " --camera fixed --width 96 --height 112 --out " + p("uf.png")), 0);
+  EXPECT_EQ(emoface::core::read_file(p("u.png")), emoface::core::read_file(p("uf.png")));
+  fm::write_mesh(p("m.obj"), face.mesh);
+  ASSERT_EQ(run(std::string(FACERENDER_EXE) + " " + p("m.obj") + " --width 96 --height 112 --out " + p("m.png")), 0);
+  EXPECT_EQ(emoface::core::read_file(p("u.png")), emoface::core::read_file(p("m.png")));  // same face, same picture
+  const std::string mh = std::string(EMOFACE_SOURCE_DIR) + "/../shared/meshes/makehuman_head.obj";
+  if (!fs::exists(mh)) GTEST_SKIP() << "../shared/meshes not present";
+  ASSERT_EQ(run(std::string(FACERENDER_EXE) + " " + mh + " --width 96 --height 112 --out " + p("mh.png")), 0);
+  EXPECT_GT(emoface::core::read_file(p("mh.png")).size(), 4 * blank_png_size(96, 112));
 }
 
 }  // namespace

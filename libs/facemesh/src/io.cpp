@@ -437,25 +437,28 @@ Vertices to_mesh_frame(const Rig& rig, const Vertices& positions, const Vertices
   return out;
 }
 
+void write_face_mesh(const std::string& path, const Face& face, const Vertices& positions) {
+  if (positions.rows() != face.mesh.vertices.rows()) throw InvalidInput("write_face_mesh: positions and face differ in vertex count");
+  const MeshFormat format = mesh_format_from_path(path);
+  const bool gltf = format == MeshFormat::Gltf || format == MeshFormat::Glb;
+  const auto* doc = face.document.get();
+  const bool doc_fits = doc && doc->triangles().vertices.rows() == positions.rows() && doc->triangles().faces == face.mesh.faces;
+  const bool doc_gltf = doc_fits && (doc->format() == MeshFormat::Gltf || doc->format() == MeshFormat::Glb);
+  const Vertices file = to_mesh_frame(face.rig, positions, doc_fits ? &doc->triangles().vertices : nullptr);
+  if (doc_fits && ((doc->format() == MeshFormat::Obj && format == MeshFormat::Obj) || (doc_gltf && gltf))) {
+    doc->write(path, file);
+  } else if (gltf) {
+    throw InvalidInput("'" + path + "': a .gltf/.glb mesh file needs a face whose mesh is a glTF document");
+  } else {
+    write_mesh(path, Mesh{file, face.mesh.faces});
+  }
+}
+
 void save_face(const std::string& rig_path, const Face& face) {
   if (face.rig.mesh_file.empty()) throw InvalidInput("save_face: rig.mesh_file is empty");
   if (face.mesh.vertex_count() != face.rig.vertex_count) throw InvalidInput("save_face: mesh and rig disagree on the vertex count");
   const auto dir = std::filesystem::path(rig_path).parent_path();
-  const std::string mesh_path = (dir / face.rig.mesh_file).string();
-  const MeshFormat format = mesh_format_from_path(mesh_path);
-  const bool gltf = format == MeshFormat::Gltf || format == MeshFormat::Glb;
-  const auto* doc = face.document.get();
-  const bool doc_fits = doc && doc->triangles().vertices.rows() == face.mesh.vertices.rows();
-  const Vertices positions = to_mesh_frame(face.rig, face.mesh.vertices, doc_fits ? &doc->triangles().vertices : nullptr);
-  const bool same_kind = doc_fits && doc->triangles().faces.rows() == face.mesh.faces.rows() &&
-                         doc->triangles().faces == face.mesh.faces &&
-                         ((doc->format() == MeshFormat::Obj && format == MeshFormat::Obj) ||
-                          ((doc->format() == MeshFormat::Gltf || doc->format() == MeshFormat::Glb) && gltf));
-  if (same_kind) {
-    doc->write(mesh_path, positions);
-  } else {
-    write_mesh(mesh_path, Mesh{positions, face.mesh.faces});
-  }
+  write_face_mesh((dir / face.rig.mesh_file).string(), face, face.mesh.vertices);
   write_rig(rig_path, face.rig);
 }
 

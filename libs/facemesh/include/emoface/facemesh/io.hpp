@@ -46,6 +46,13 @@ Face load_face(const std::string& rig_path);
 /// other line/attribute kept), otherwise with write_mesh.
 void save_face(const std::string& rig_path, const Face& face);
 
+/// Writes `positions` (#V by 3, rig frame: face.mesh or a deformation of it) as a mesh file in the
+/// mesh frame (to_mesh_frame, unmoved vertices bit for bit): through face.document when `path` is of
+/// the document's kind (.obj for an OBJ, .gltf/.glb for a glTF document: UVs, groups, materials, other
+/// meshes kept, normals recomputed, .mtl copied), else with write_mesh (.obj/.ply/.off). Throws
+/// InvalidInput for a size mismatch, or .gltf/.glb without a glTF document.
+void write_face_mesh(const std::string& path, const Face& face, const Vertices& positions);
+
 /// The face's positions (#V by 3, rig frame) in the mesh file's frame (rig.frame.to_mesh; the same
 /// matrix, bit for bit, when the frame is the identity). With `original` (#V by 3, the file's own
 /// positions, mesh frame): a vertex whose position is to_rig(original) bit for bit gets its original

@@ -50,6 +50,18 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig, const Mesh& mesh, i
 Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
              const std::vector<std::uint8_t>& crease, const RenderOptions& options);
 
+/// Fits the camera to `vertices` (#V by 3, any frame and units, +y up): target = bounding-box centre,
+/// distance such that the projected vertices span about `fill` ∈ (0, 1] of the image (from the
+/// bounding sphere, then two rounds of rescaling; never inside the sphere). View, yaw and field of
+/// view as in `options`. Throws InvalidInput for no vertices, non-finite coordinates or a zero extent.
+RenderOptions fit_camera(const Vertices& vertices, RenderOptions options, double fill = 0.9);
+/// Fraction of `vertices` that project inside the image, in front of the camera (0: nothing visible).
+double visible_fraction(const Vertices& vertices, const RenderOptions& options);
+/// `options` unchanged when the bounding box of `vertices` is in front of its camera, its centre in the
+/// middle half of the image and its projected height in [min_fill, 2] image heights (a face in the
+/// thesis frame keeps the usual framing); otherwise fit_camera. Throws like fit_camera.
+RenderOptions frame_camera(const Vertices& vertices, const RenderOptions& options, double min_fill = 0.3);
+
 /// Tiles equally sized images into `columns` columns (white gaps of `gap` px). Throws InvalidInput
 /// for no images, mismatched sizes or columns < 1.
 Image contact_sheet(const std::vector<Image>& images, int columns, int gap = 4);
