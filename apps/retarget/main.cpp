@@ -1,6 +1,7 @@
 // retarget: fit the built-in face (or a given rig) to any head mesh and write a complete rig for it.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -13,20 +14,138 @@
 #include "emoface/retarget/io.hpp"
 #include "emoface/retarget/plot.hpp"
 #include "emoface/retarget/retarget.hpp"
+#include "emoface/retarget/transfer.hpp"
+#include "emoface/core/io.hpp"
 
 namespace fm = emoface::facemesh;
 namespace fx = emoface::fuzzyexpr;
 namespace rt = emoface::retarget;
 
+namespace {
+
+// The six emotions (thesis ch. 6 fuzzy rules, ESV 0.9; anger, disgust, fear, happiness, sadness,
+// surprise) on a face: front views in the first row, three-quarter views in the second.
+fm::Image emotion_sheet(const fm::Face& face, int tile) {
+  fm::RenderOptions ro;
+  ro.width = tile;
+  ro.height = tile * 19 / 16;
+  const auto colors = fm::material_colors(face.rig, face.mesh);
+  const emoface::muscles::FaceSolver solver(face.mesh, face.rig);
+  const fx::Engine engine;
+  std::vector<emoface::muscles::Deformation> shapes;
+  for (std::size_t e = 0; e < fx::kEmotionCount; ++e) {
+    fx::Esv esv{};
+    esv[e] = 0.9;
+    const auto sides = fx::expand_to_sides(engine.convert(esv));
+    std::map<std::string, double> named;
+    for (std::size_t i = 0; i < sides.size(); ++i) named[std::string(fx::side_parameter_names()[i])] = sides[i];
+    shapes.push_back(solver.deform(named));
+  }
+  std::vector<fm::Image> tiles;
+  for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
+    ro.view = view;
+    for (const auto& d : shapes) tiles.push_back(fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, ro));
+  }
+  return fm::contact_sheet(tiles, static_cast<int>(fx::kEmotionCount));
+}
+
+// --mode transfer: everything is computed first; the files are then written one by one (each
+// atomically) and removed again if a later one fails, so the output set appears all or nothing.
+int run_transfer(const fm::Face& source, const std::string& target_path, const std::string& out_dir,
+                 const std::string& landmarks_path, const rt::RetargetOptions& fit, bool no_png, bool quiet, int tile) {
+  namespace fs = std::filesystem;
+  const fm::MeshDocument doc = fm::read_mesh_document(target_path);
+  rt::UserLandmarks landmarks;
+  if (!landmarks_path.empty()) landmarks = rt::read_landmarks(landmarks_path);
+  rt::TransferOptions o;
+  o.fit = fit;
+  const auto progress = [&](const rt::GaProgress& p) {
+    if (!quiet && (p.generation % 5 == 0 || p.generation == fit.ga.generations))
+      std::fprintf(stderr, "retarget: generation %d  best E %.6g\n", p.generation, p.best_error);
+  };
+  rt::TransferResult r = rt::transfer_rig(source, doc.triangles(), doc.groups(), o, landmarks, progress);
+  const fm::MeshFormat format = doc.format();
+  const bool gltf = format == fm::MeshFormat::Gltf || format == fm::MeshFormat::Glb;
+  const std::string ext = gltf ? "glb" : fm::to_string(format);
+  const std::string mesh_name = "face." + ext;
+  r.face.rig.mesh_file = mesh_name;
+  const std::string rig_text = fm::format_rig(r.face.rig);
+  const std::string report_text = rt::format_transfer_report(r);
+  // The input bytes (non-glTF) and the material libraries, read before anything is written.
+  std::string mesh_bytes;
+  std::vector<std::pair<std::string, std::string>> extra;  // relative path, bytes
+  if (!gltf) mesh_bytes = emoface::core::read_file(target_path);
+  const fs::path in_dir = fs::path(target_path).parent_path();
+  for (const auto& lib : doc.material_libraries()) {
+    const fs::path rel(lib);
+    if (rel.is_absolute() || rel.lexically_normal().string().rfind("..", 0) == 0) continue;  // stays where it is
+    if (fs::exists(in_dir / rel)) extra.emplace_back(rel.lexically_normal().string(), emoface::core::read_file((in_dir / rel).string()));
+  }
+  fm::Image sheet;
+  if (!no_png) sheet = emotion_sheet(r.face, tile);
+  const fs::path dir(out_dir);
+  std::vector<fs::path> written;
+  try {
+    fs::create_directories(dir);
+    if (gltf) {
+      doc.write((dir / mesh_name).string(), doc.triangles().vertices, false, false);
+    } else {
+      emoface::core::write_file_atomic((dir / mesh_name).string(), mesh_bytes);
+    }
+    written.push_back(dir / mesh_name);
+    for (const auto& [rel, bytes] : extra) {
+      fs::create_directories((dir / rel).parent_path());
+      emoface::core::write_file_atomic((dir / rel).string(), bytes);
+      written.push_back(dir / rel);
+    }
+    emoface::core::write_file_atomic((dir / "face.rig").string(), rig_text);
+    written.push_back(dir / "face.rig");
+    emoface::core::write_file_atomic((dir / "report.json").string(), report_text);
+    written.push_back(dir / "report.json");
+    if (!no_png) {
+      fm::write_png((dir / "emotions.png").string(), sheet);
+      written.push_back(dir / "emotions.png");
+    }
+  } catch (...) {
+    std::error_code ec;
+    for (const auto& p : written) fs::remove(p, ec);
+    throw;
+  }
+  if (!quiet) {
+    const auto& rep = r.report;
+    std::fprintf(stderr, "retarget: transfer onto %ld vertices (%zu components): registration RMS %.4g -> %.4g (input units), "
+                 "%zu lip-bound, %zu jaw, %zu mouth bag; parts:", static_cast<long>(r.face.mesh.vertices.rows()), rep.components,
+                 rep.registration.initial_rms / rep.scale, rep.registration.final_rms / rep.scale, rep.lip_bound, rep.jaw_vertices,
+                 rep.mouth_bag);
+    for (const auto& p : rep.parts) std::fprintf(stderr, " %s=%s", p.name.c_str(), fm::to_string(p.kind).c_str());
+    for (const auto& w : rep.warnings) std::fprintf(stderr, "\nretarget: warning: %s", w.c_str());
+    std::fprintf(stderr, "\nretarget: wrote %s\n", out_dir.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  CLI::App app{"Fit a rigged face to a head mesh (thesis ch. 3: RBF networks + GA) and write its rig.\n"
-               "Example: retarget --target head.obj --out fitted --seed 7 --generations 40 --refine"};
+  CLI::App app{"Rig a head mesh with the built-in face's muscles (thesis ch. 3 fit + dense registration).\n"
+               "--mode transfer (default): OUT/face.<ext> is the input file itself (copied byte for byte, .mtl too;\n"
+               "glTF input gives face.glb), OUT/face.rig rigs it in its own frame and units, OUT/report.json.\n"
+               "--mode deform-source: the thesis' literal export (the built-in face bent into the target's shape).\n"
+               "Example: retarget --target head.obj --out rigged --seed 7 --generations 40"};
   std::string target_path, out_dir, source_rig, up, front, align_mode = "auto", projection = "evaluate_only";
   rt::RetargetOptions o;
   bool no_png = false, quiet = false;
   int tile = 320;
-  app.add_option("--target", target_path, "Target head mesh (OBJ/PLY/OFF)")->required();
-  app.add_option("--out", out_dir, "Output directory (face.rig, face.obj, target_aligned.obj, report.json, PNGs)")->required();
+  std::string mode = "transfer", landmarks_path;
+  bool transfer_flag = false;
+  app.add_option("--target", target_path, "Target head mesh (OBJ/PLY/OFF; glTF/GLB in --mode transfer)")->required();
+  app.add_option("--out", out_dir, "Output directory (transfer: face.<ext>, face.rig, report.json, emotions.png; "
+                 "deform-source: face.rig, face.obj, target_aligned.obj, report.json, PNGs)")->required();
+  app.add_option("--mode", mode, "transfer (rig the target mesh itself, default) or deform-source (thesis export)")
+      ->check(CLI::IsMember({"transfer", "deform-source"}));
+  app.add_flag("--transfer", transfer_flag, "Short for --mode transfer");
+  app.add_option("--landmarks", landmarks_path, "iBUG-68 landmarks of the target (emoface.landmarks JSON: vertex ids or "
+                 "points in the input frame; transfer mode)");
   app.add_option("--source", source_rig, "Source rig (default: the built-in face)");
   app.add_option("--seed", o.ga.seed, "GA seed (same seed + inputs = same output)");
   app.add_option("--generations", o.ga.generations, "GA generations")->check(CLI::Range(0, 100000));
@@ -67,6 +186,9 @@ int main(int argc, char** argv) {
     if (rt::to_string(o.align.up.value_or(rt::Axis::PosY)).substr(1) == rt::to_string(o.align.front.value_or(rt::Axis::PosZ)).substr(1))
       throw emoface::cli::UsageError("--up and --front must be perpendicular axes");
     const fm::Face source = source_rig.empty() ? fm::make_default_face() : fm::load_face(source_rig);
+    if (transfer_flag) mode = "transfer";
+    if (mode == "transfer") return run_transfer(source, target_path, out_dir, landmarks_path, o, no_png, quiet, tile);
+    if (!landmarks_path.empty()) throw emoface::cli::UsageError("--landmarks needs --mode transfer");
     fm::MeshReadReport read_report;
     const fm::Mesh target = fm::read_mesh(target_path, fm::MeshReadOptions{true}, &read_report);
     if (!quiet && read_report.orientation.flipped_faces > 0)

@@ -7,7 +7,9 @@
 #include <benchmark/benchmark.h>
 
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/muscles/solver.hpp"
 #include "emoface/retarget/retarget.hpp"
+#include "emoface/retarget/transfer.hpp"
 #include "emoface/retarget/surface.hpp"
 #include "emoface/retarget/validation.hpp"
 
@@ -80,6 +82,82 @@ void BM_Fit(benchmark::State& state) {
   state.counters["target_vertices"] = static_cast<double>(target().vertex_count());
 }
 BENCHMARK(BM_Fit)->Arg(1)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// Issue 13: transfer onto a ~30k-vertex head (the warped built-in face subdivided twice and decimated,
+// so its triangulation is its own) with the default options (40 GA generations), and deformation of the
+// transferred rig vs a dense 52-target blendshape evaluation on the same mesh, same run.
+const fm::Mesh& head30k() {
+  static const fm::Mesh t = [] {
+    rt::SyntheticWarp w;
+    w.width = 1.05;
+    w.chin = 0.004;
+    w.scale = 10.0;  // decimetres
+    fm::Mesh m = face().mesh;
+    m.vertices = w.apply(m.vertices);
+    return rt::decimate(fm::subdivide_midpoint(fm::subdivide_midpoint(m)), 0.375);
+  }();
+  return t;
+}
+const rt::TransferResult& transferred() {
+  static const rt::TransferResult r = rt::transfer_rig(face(), head30k());
+  return r;
+}
+void BM_Transfer30k(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(rt::transfer_rig(face(), head30k()).report.registration.final_rms);
+  const auto& r = transferred();
+  state.counters["vertices"] = static_cast<double>(head30k().vertex_count());
+  state.counters["fit_s"] = r.report.fit_seconds;
+  state.counters["registration_s"] = r.report.registration_seconds;
+  state.counters["transfer_s"] = r.report.transfer_seconds;
+}
+BENCHMARK(BM_Transfer30k)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+std::vector<double> all_muscles() {
+  std::vector<double> v(emoface::muscles::kParameterCount, 0.0);
+  for (std::size_t i = 0; i < emoface::muscles::kSideParameterCount; ++i) v[i] = 0.6;
+  return v;
+}
+void BM_TransferredRigDeformation30k(benchmark::State& state) {
+  const auto& f = transferred().face;
+  const emoface::muscles::FaceSolver solver(f.mesh, f.rig);
+  const auto values = all_muscles();
+  emoface::muscles::Deformation out;
+  emoface::muscles::DeformWorkspace ws;
+  for (auto _ : state) {
+    solver.deform(values, out, ws);
+    benchmark::DoNotOptimize(out.vertices.data());
+  }
+  state.counters["vertices"] = static_cast<double>(f.mesh.vertex_count());
+  state.counters["lip_bound"] = static_cast<double>(f.rig.lips.bound.size());
+}
+BENCHMARK(BM_TransferredRigDeformation30k)->Unit(benchmark::kMicrosecond);
+
+// Baseline: 52 dense targets (each a full #V×3 delta: the 35 single-muscle deformations of the same
+// transferred rig, then 17 of them at half strength), weighted sum into the neutral mesh.
+void BM_Blendshape52Same30k(benchmark::State& state) {
+  const auto& f = transferred().face;
+  const emoface::muscles::FaceSolver solver(f.mesh, f.rig);
+  const long n = f.mesh.vertices.rows() * 3;
+  std::vector<Eigen::VectorXd> deltas;
+  for (std::size_t i = 0; i < 52; ++i) {
+    std::vector<double> v(emoface::muscles::kParameterCount, 0.0);
+    v[i % emoface::muscles::kSideParameterCount] = i < emoface::muscles::kSideParameterCount ? 1.0 : 0.5;
+    const auto d = solver.deform(v);
+    deltas.push_back(Eigen::Map<const Eigen::VectorXd>(d.vertices.data(), n) - Eigen::Map<const Eigen::VectorXd>(f.mesh.vertices.data(), n));
+  }
+  const Eigen::Map<const Eigen::VectorXd> neutral(f.mesh.vertices.data(), n);
+  std::vector<double> weights(52);
+  for (std::size_t i = 0; i < weights.size(); ++i) weights[i] = 0.5 + 0.01 * static_cast<double>(i);
+  fm::Vertices out(f.mesh.vertices.rows(), 3);
+  Eigen::Map<Eigen::VectorXd> x(out.data(), n);
+  for (auto _ : state) {
+    x = neutral;
+    for (std::size_t i = 0; i < deltas.size(); ++i) x += weights[i] * deltas[i];
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["vertices"] = static_cast<double>(f.mesh.vertex_count());
+}
+BENCHMARK(BM_Blendshape52Same30k)->Unit(benchmark::kMicrosecond);
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -1,5 +1,6 @@
 // Quadric-error edge collapse for the synthetic validation suite (see validation.hpp).
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <queue>
 #include <tuple>
@@ -22,7 +23,7 @@ struct Candidate {
 };
 }  // namespace
 
-facemesh::Mesh decimate(const facemesh::Mesh& mesh, double keep_fraction) {
+facemesh::Mesh decimate(const facemesh::Mesh& mesh, double keep_fraction, bool keep_positions) {
   if (!(keep_fraction > 0.0 && keep_fraction <= 1.0)) throw InvalidInput("decimate: keep_fraction must be in (0, 1]");
   facemesh::validate_mesh(mesh, "decimate input");
   const auto nv = static_cast<int>(mesh.vertices.rows());
@@ -66,7 +67,7 @@ facemesh::Mesh decimate(const facemesh::Mesh& mesh, double keep_fraction) {
   auto best_position = [&](int a, int b, double& cost) {
     const Eigen::Matrix4d m = q[static_cast<std::size_t>(a)] + q[static_cast<std::size_t>(b)];
     Eigen::Vector3d best = 0.5 * (Eigen::Vector3d(v.row(a)) + Eigen::Vector3d(v.row(b)));
-    cost = quadric_cost(m, best);
+    cost = keep_positions ? std::numeric_limits<double>::infinity() : quadric_cost(m, best);
     for (const Eigen::Vector3d x : {Eigen::Vector3d(v.row(a)), Eigen::Vector3d(v.row(b))}) {
       const double c = quadric_cost(m, x);
       if (c < cost) {

@@ -1,5 +1,7 @@
 #include "emoface/retarget/io.hpp"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "emoface/core/io.hpp"
@@ -9,7 +11,8 @@ namespace {
 nlohmann::ordered_json vec(const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v.x(), v.y(), v.z()}); }
 }  // namespace
 
-std::string format_report(const RetargetResult& r, bool include_time) {
+namespace {
+nlohmann::ordered_json report_json(const RetargetResult& r, bool include_time) {
   auto doc = core::make_envelope("retarget_report", {kReportFormatMajor, kReportFormatMinor});
   auto& c = doc["cleaning"];
   c["components"] = r.cleaning.components;
@@ -69,11 +72,152 @@ std::string format_report(const RetargetResult& r, bool include_time) {
     f["final_error"] = r.refine.final_error;
     if (include_time) f["seconds"] = r.refine.seconds;
   }
-  return doc.dump(2) + "\n";
+  return doc;
 }
+}  // namespace
+
+std::string format_report(const RetargetResult& r, bool include_time) { return report_json(r, include_time).dump(2) + "\n"; }
 
 void write_report(const std::string& path, const RetargetResult& result, bool include_time) {
   core::write_file_atomic(path, format_report(result, include_time));
+}
+
+}  // namespace emoface::retarget
+
+namespace emoface::retarget {
+
+std::string format_transfer_report(const TransferResult& result, bool include_time) {
+  auto doc = report_json(result.fit, include_time);
+  doc["mode"] = "transfer";
+  const auto& r = result.report;
+  auto& t = doc["transfer"];
+  const auto& fr = result.face.rig.frame;
+  t["frame"]["scale"] = fr.scale;
+  t["frame"]["rotation"] = nlohmann::ordered_json::array();
+  for (int i = 0; i < 3; ++i) t["frame"]["rotation"].push_back(vec(fr.rotation.row(i).transpose()));
+  t["frame"]["translation"] = vec(fr.translation);
+  t["frame"]["meaning"] = "rig-frame point = scale * rotation * mesh-file point + translation";
+  t["vertices"] = result.face.mesh.vertices.rows();
+  t["components"] = r.components;
+  t["head_height"] = r.head_height;
+  t["head_height_meaning"] = "top of head to chin of the registered generic face, input units";
+  t["user_landmarks"] = r.user_landmarks;
+  auto& g = t["registration"];
+  g["iterations"] = r.registration.iterations;
+  g["correspondences"] = r.registration.correspondences;
+  g["initial_rms"] = r.registration.initial_rms / fr.scale;
+  g["final_rms"] = r.registration.final_rms / fr.scale;
+  g["units"] = "input units";
+  auto& res = t["residuals"];
+  res = nlohmann::ordered_json::array();
+  for (const auto& rr : r.residuals) {
+    nlohmann::ordered_json j;
+    j["region"] = rr.region;
+    j["vertices"] = rr.vertices;
+    j["mean"] = rr.mean, j["p95"] = rr.p95, j["max"] = rr.max;
+    j["mean_percent"] = rr.mean_percent, j["p95_percent"] = rr.p95_percent, j["max_percent"] = rr.max_percent;
+    res.push_back(j);
+  }
+  auto& lm = t["ibug68"];
+  lm = nlohmann::ordered_json::array();
+  for (const auto& l : r.landmarks) {
+    nlohmann::ordered_json j;
+    j["index"] = l.index, j["vertex"] = l.vertex, j["source"] = l.source;
+    j["distance"] = l.distance, j["confidence"] = l.confidence;
+    lm.push_back(j);
+  }
+  auto& parts = t["parts"];
+  parts = nlohmann::ordered_json::array();
+  for (const auto& p : r.parts) {
+    nlohmann::ordered_json j;
+    j["name"] = p.name, j["kind"] = facemesh::to_string(p.kind), j["side"] = p.side, j["vertices"] = p.vertices;
+    j["found_by"] = p.found_by;
+    if (p.kind == facemesh::PartKind::Eyeball && p.radius > 0) j["centre"] = vec(p.centre), j["radius"] = p.radius, j["sphere_rms"] = p.rms;
+    parts.push_back(j);
+  }
+  auto& c = t["counts"];
+  c["lip_bound"] = r.lip_bound, c["lip_full"] = r.lip_full, c["jaw"] = r.jaw_vertices, c["mouth_bag"] = r.mouth_bag;
+  c["lid_right"] = r.lid_vertices[0], c["lid_left"] = r.lid_vertices[1];
+  c["eye_hole_right"] = r.eye_hole_vertices[0], c["eye_hole_left"] = r.eye_hole_vertices[1];
+  t["warnings"] = r.warnings;
+  if (include_time) {
+    t["seconds"]["fit"] = r.fit_seconds;
+    t["seconds"]["registration"] = r.registration_seconds;
+    t["seconds"]["transfer"] = r.transfer_seconds;
+  }
+  return doc.dump(2) + "\n";
+}
+
+void write_transfer_report(const std::string& path, const TransferResult& result, bool include_time) {
+  core::write_file_atomic(path, format_transfer_report(result, include_time));
+}
+
+UserLandmarks parse_landmarks(std::string_view text, const std::string& source) {
+  const auto doc = core::parse_json(text, source);
+  core::check_envelope(doc, "landmarks", {kLandmarksFormatMajor, kLandmarksFormatMinor}, source);
+  auto fail = [&](const std::string& pointer, const std::string& message) -> FormatError {
+    return FormatError({source, pointer, 0, 0}, message);
+  };
+  for (auto it = doc.begin(); it != doc.end(); ++it)
+    if (it.key() != "format" && it.key() != "version" && it.key() != "generator" && it.key() != "scheme" && it.key() != "points")
+      throw fail("/" + core::json_pointer_token(it.key()), "unknown field");
+  if (!doc.contains("scheme") || !doc["scheme"].is_string() || doc["scheme"].get<std::string>() != "ibug68")
+    throw fail("/scheme", "must be \"ibug68\"");
+  if (!doc.contains("points") || !doc["points"].is_array()) throw fail("/points", "must be an array of 68 entries");
+  const auto& pts = doc["points"];
+  if (pts.size() != static_cast<std::size_t>(UserLandmarks::kCount))
+    throw fail("/points", "expected 68 iBUG points, got " + std::to_string(pts.size()));
+  UserLandmarks out;
+  out.points.resize(pts.size());
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const auto& e = pts[k];
+    const std::string ptr = "/points/" + std::to_string(k);
+    auto& p = out.points[k];
+    if (e.is_null()) continue;
+    if (e.is_number_integer() || e.is_number_unsigned()) {
+      const auto id = e.get<long long>();
+      if (id < 0 || id > 2147483647LL) throw fail(ptr, "vertex id " + std::to_string(id) + " out of range");
+      p.kind = UserLandmarkKind::Vertex;
+      p.vertex = static_cast<int>(id);
+      continue;
+    }
+    if (e.is_array()) {
+      if (e.size() != 3) throw fail(ptr, "a point needs 3 coordinates");
+      for (int c = 0; c < 3; ++c) {
+        if (!e[static_cast<std::size_t>(c)].is_number()) throw fail(ptr + "/" + std::to_string(c), "not a number");
+        p.point(c) = e[static_cast<std::size_t>(c)].get<double>();
+        if (!std::isfinite(p.point(c))) throw fail(ptr + "/" + std::to_string(c), "not finite");
+      }
+      p.kind = UserLandmarkKind::Point;
+      continue;
+    }
+    throw fail(ptr, "expected a vertex id, [x, y, z] or null");
+  }
+  return out;
+}
+
+std::string format_landmarks(const UserLandmarks& landmarks) {
+  if (landmarks.points.size() != static_cast<std::size_t>(UserLandmarks::kCount))
+    throw InvalidInput("format_landmarks: needs exactly 68 points");
+  auto doc = core::make_envelope("landmarks", {kLandmarksFormatMajor, kLandmarksFormatMinor});
+  doc["scheme"] = "ibug68";
+  auto& pts = doc["points"];
+  pts = nlohmann::ordered_json::array();
+  for (const auto& p : landmarks.points) {
+    if (p.kind == UserLandmarkKind::Missing) pts.push_back(nullptr);
+    else if (p.kind == UserLandmarkKind::Vertex) pts.push_back(p.vertex);
+    else {
+      if (!p.point.allFinite()) throw InvalidInput("format_landmarks: non-finite point");
+      pts.push_back(vec(p.point));
+    }
+  }
+  return doc.dump(2) + "\n";
+}
+
+UserLandmarks read_landmarks(const std::string& path) { return parse_landmarks(core::read_file(path), path); }
+
+void write_landmarks(const std::string& path, const UserLandmarks& landmarks) {
+  core::write_file_atomic(path, format_landmarks(landmarks));
 }
 
 }  // namespace emoface::retarget

@@ -49,8 +49,10 @@ SurfaceDistance surface_distance(const facemesh::Mesh& from, const facemesh::Mes
 /// collapsed only if neither end lies on an open boundary (holes and rims keep their shape), the link
 /// condition holds (exactly two common neighbours, so the result stays manifold) and no remaining
 /// triangle turns by more than ~78° or degenerates. Unused vertices are dropped. Throws InvalidInput
-/// for keep_fraction outside (0, 1] or a mesh that is not a valid triangle mesh.
-facemesh::Mesh decimate(const facemesh::Mesh& mesh, double keep_fraction);
+/// for keep_fraction outside (0, 1] or a mesh that is not a valid triangle mesh. `keep_positions`:
+/// half-edge collapses only (the survivor stays where it was, never the midpoint), so every remaining
+/// vertex is one of the input's — a remeshing with exactly known correspondence (transfer tests).
+facemesh::Mesh decimate(const facemesh::Mesh& mesh, double keep_fraction, bool keep_positions = false);
 
 /// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection §5.1.5).
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
