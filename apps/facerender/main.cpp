@@ -43,13 +43,15 @@ int main(int argc, char** argv) {
     options.width = width;
     options.height = height;
     options.yaw = yaw;
+    const fm::Paint* paint = fm::paint_for(rig);  // brows and hairline of the built-in face
     std::vector<fm::Image> images;
     for (const auto& path : meshes) {
       const auto mesh = fm::read_mesh(path);
       const bool fits = mesh.vertex_count() == rig.vertex_count;
       if (!rig_path.empty() && !fits) throw emoface::InvalidInput(path + ": mesh does not fit the rig's vertex count");
       if (fits && colors.empty()) colors = fm::material_colors(rig, mesh);
-      images.push_back(fm::render(mesh, fits ? colors : std::vector<Eigen::Vector3f>{}, {}, options));
+      images.push_back(fm::render(mesh, fits ? colors : std::vector<Eigen::Vector3f>{}, {}, options,
+                                  fits ? paint : nullptr));
     }
     auto numbered = [](const std::string& base, std::size_t i) {
       const std::filesystem::path p(base);

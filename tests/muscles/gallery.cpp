@@ -28,7 +28,7 @@ fm::Image shot(const mu::Deformation& d, fm::View view, int w, int h, const std:
   o.view = view;
   o.width = w;
   o.height = h;
-  return fm::render(fm::Mesh{d.vertices, face().mesh.faces}, colors, d.crease, o);
+  return fm::render(fm::Mesh{d.vertices, face().mesh.faces}, colors, d.crease, o, fm::paint_for(face().rig));
 }
 
 Named from_esv(const fx::Engine& engine, const fx::Esv& esv) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -39,6 +40,33 @@ void RenderOptions::validate() const {
   check(background.allFinite() && background.minCoeff() >= 0.0 && background.maxCoeff() <= 1.0, "background in [0,1]");
   check(shininess >= 1.0 && shininess <= 512.0, "shininess must be in [1, 512]");
   check(specular >= 0.0 && specular <= 1.0, "specular must be in [0, 1]");
+  check(normal_smoothing >= 0 && normal_smoothing <= 10, "normal_smoothing must be in [0, 10]");
+}
+
+void Paint::validate(std::size_t vertex_count) const {
+  if (width < 1 || width > 8192 || height < 1 || height > 8192) throw InvalidInput("Paint: width/height must be in [1, 8192]");
+  if (texels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+    throw InvalidInput("Paint: texels must hold width*height values");
+  if (uv.size() != vertex_count) throw InvalidInput("Paint: one uv per vertex");
+  for (std::size_t v = 0; v < uv.size(); ++v) {
+    const Eigen::Vector2f& t = uv[v];
+    if (std::isnan(t.x()) || std::isnan(t.y())) continue;
+    if (!(t.x() >= 0.0f && t.x() <= 1.0f && t.y() >= 0.0f && t.y() <= 1.0f))
+      throw InvalidInput("Paint: uv of vertex " + std::to_string(v) + " outside [0, 1]");
+  }
+  for (const auto& c : texels) {
+    if (!(c.minCoeff() >= 0.0f && c.maxCoeff() <= 1.0f)) throw InvalidInput("Paint: texel values must be in [0, 1]");
+  }
+}
+
+Eigen::Vector4f Paint::sample(float u, float v) const {
+  const float fx = std::clamp(u, 0.0f, 1.0f) * static_cast<float>(width) - 0.5f;
+  const float fy = std::clamp(v, 0.0f, 1.0f) * static_cast<float>(height) - 0.5f;
+  const int x0 = std::clamp(static_cast<int>(std::floor(fx)), 0, width - 1), y0 = std::clamp(static_cast<int>(std::floor(fy)), 0, height - 1);
+  const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+  const float a = std::clamp(fx - static_cast<float>(x0), 0.0f, 1.0f), b = std::clamp(fy - static_cast<float>(y0), 0.0f, 1.0f);
+  auto t = [&](int x, int y) -> const Eigen::Vector4f& { return texels[static_cast<std::size_t>(y) * width + x]; };
+  return (1 - b) * ((1 - a) * t(x0, y0) + a * t(x1, y0)) + b * ((1 - a) * t(x0, y1) + a * t(x1, y1));
 }
 
 std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
@@ -50,9 +78,9 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
       case Material::EyeWhite: out[v] = {0.94f, 0.93f, 0.90f}; break;
       case Material::Iris: out[v] = {0.30f, 0.42f, 0.55f}; break;
       case Material::Pupil: out[v] = {0.05f, 0.05f, 0.06f}; break;
-      case Material::Brow: out[v] = {0.33f, 0.22f, 0.16f}; break;
+      case Material::Brow: out[v] = {0.16f, 0.11f, 0.08f}; break;
       case Material::Hair: out[v] = {0.28f, 0.19f, 0.13f}; break;
-      case Material::MouthInterior: out[v] = {0.35f, 0.12f, 0.12f}; break;
+      case Material::MouthInterior: out[v] = {0.12f, 0.04f, 0.04f}; break;
       case Material::Teeth: out[v] = {0.92f, 0.90f, 0.84f}; break;
       case Material::Tongue: out[v] = {0.70f, 0.36f, 0.36f}; break;
       case Material::Lash: out[v] = {0.10f, 0.08f, 0.07f}; break;
@@ -93,11 +121,12 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig, const Mesh& mesh, i
 }
 
 Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const std::vector<std::uint8_t>& crease,
-             const RenderOptions& options) {
+             const RenderOptions& options, const Paint* paint) {
   options.validate();
   const std::size_t nv = mesh.vertex_count();
   if (!colors.empty() && colors.size() != nv) throw InvalidInput("render: colors must be empty or one per vertex");
   if (!crease.empty() && crease.size() != nv) throw InvalidInput("render: crease must be empty or one per vertex");
+  if (paint != nullptr && paint->uv.size() != nv) throw InvalidInput("render: paint must have one uv per vertex");
   for (long f = 0; f < mesh.faces.rows(); ++f) {
     for (int c = 0; c < 3; ++c) {
       if (mesh.faces(f, c) < 0 || static_cast<std::size_t>(mesh.faces(f, c)) >= nv) throw InvalidInput("render: face id out of range");
@@ -113,7 +142,34 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
   const Eigen::Vector3d up = right.cross(forward);
   const double focal = 0.5 * h / std::tan(0.5 * options.field_of_view);
 
-  const Vertices vn = vertex_normals(mesh.vertices, mesh.faces);
+  Vertices vn = vertex_normals(mesh.vertices, mesh.faces);
+  if (options.normal_smoothing > 0) {
+    // Shading normals averaged over the triangles around each vertex, each triangle weighted by its
+    // area and carrying the mean of its three vertex normals: the fans of thin triangles where a
+    // coarse rim meets a finer row (the lips' stitching) otherwise shade as wedges, and slivers carry
+    // almost no weight. Geometry, depth and crease vertices (face normals) are unchanged.
+    Vertices next(vn.rows(), 3);
+    std::vector<double> area(static_cast<std::size_t>(mesh.faces.rows()));
+    for (long f = 0; f < mesh.faces.rows(); ++f) {
+      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
+                            c = mesh.vertices.row(mesh.faces(f, 2));
+      area[static_cast<std::size_t>(f)] = 0.5 * (b - a).cross(c - a).norm();
+    }
+    for (int it = 0; it < options.normal_smoothing; ++it) {
+      next.setZero();
+      for (long f = 0; f < mesh.faces.rows(); ++f) {
+        const Eigen::RowVector3d m = area[static_cast<std::size_t>(f)] *
+                                     (vn.row(mesh.faces(f, 0)) + vn.row(mesh.faces(f, 1)) + vn.row(mesh.faces(f, 2)));
+        for (int k = 0; k < 3; ++k) next.row(mesh.faces(f, k)) += m;
+      }
+      for (long v = 0; v < next.rows(); ++v) {
+        const double len = next.row(v).norm();
+        if (len > 0.0) next.row(v) /= len;
+        else next.row(v) = vn.row(v);
+      }
+      std::swap(vn, next);
+    }
+  }
   const Vertices fn = face_normals(mesh.vertices, mesh.faces);
   std::vector<Eigen::Vector3d> screen(nv);  // x, y pixels; z = depth along forward
   for (std::size_t v = 0; v < nv; ++v) {
@@ -183,15 +239,33 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     const Eigen::Vector3d& a = screen[ids[0]];
     const Eigen::Vector3d& b = screen[ids[1]];
     const Eigen::Vector3d& c = screen[ids[2]];
-    if ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()) > 0.0) return cavity;  // back face
+    const bool back = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()) > 0.0;
     const double w0 = bary[2 * idx], w1 = bary[2 * idx + 1];
     const double wk[3] = {w0, w1, 1.0 - w0 - w1};
+    if (back) {
+      // A back face is the inside of the head (dark mouth cavity) unless the surface around it faces
+      // the camera: then it is a thin fold of skin (a closing lid, the lips' stitching pulled over
+      // the rim), shaded with the interpolated vertex normals instead of as a dark streak.
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) n += wk[k] * Eigen::Vector3d(vn.row(ids[k]));
+      if (n.dot(forward) >= -0.05 * n.norm()) return cavity;
+    }
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     Eigen::Vector3f base = Eigen::Vector3f::Zero();
     for (int k = 0; k < 3; ++k) {
-      const bool use_face = !crease.empty() && crease[static_cast<std::size_t>(ids[k])];
+      const bool use_face = !back && !crease.empty() && crease[static_cast<std::size_t>(ids[k])];
       normal += wk[k] * (use_face ? Eigen::Vector3d(fn.row(f)) : Eigen::Vector3d(vn.row(ids[k])));
       base += static_cast<float>(wk[k]) * (colors.empty() ? skin : colors[static_cast<std::size_t>(ids[k])]);
+    }
+    if (paint != nullptr) {
+      const Eigen::Vector2f& t0 = paint->uv[static_cast<std::size_t>(ids[0])];
+      const Eigen::Vector2f& t1 = paint->uv[static_cast<std::size_t>(ids[1])];
+      const Eigen::Vector2f& t2 = paint->uv[static_cast<std::size_t>(ids[2])];
+      if (!std::isnan(t0.x()) && !std::isnan(t1.x()) && !std::isnan(t2.x())) {
+        const Eigen::Vector2f t = static_cast<float>(wk[0]) * t0 + static_cast<float>(wk[1]) * t1 + static_cast<float>(wk[2]) * t2;
+        const Eigen::Vector4f pc = paint->sample(t.x(), t.y());
+        base += pc.w() * (pc.head<3>() - base);
+      }
     }
     if (normal.squaredNorm() > 0.0) normal.normalize();
     const double kd = std::max(0.0, normal.dot(key_light));

@@ -59,8 +59,8 @@ struct SolverOptions {
   /// sum ≤ 0.8 so that t = 1 never shuts the eye (close_angle + 0.2·close_angle does). Defaults: on
   /// the default face t = 1 leaves about a third of the neutral aperture, mostly by raising the
   /// lower lid (docs/muscles.md, deviations).
-  double lid_tighten_upper = 0.30;
-  double lid_tighten_lower = 0.40;
+  double lid_tighten_upper = 0.20;
+  double lid_tighten_lower = 0.50;
   void validate() const;
 };
 
