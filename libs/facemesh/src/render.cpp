@@ -1,5 +1,6 @@
 // Software rasteriser: perspective camera, z-buffer, per-pixel Phong shading (Bui Tuong Phong 1975,
-// the shading the thesis uses in §2.3), 2x2 supersampling, deferred shading; PNG through core::encode_png.
+// the shading the thesis uses in §2.3), 4-sample rotated-grid anti-aliasing, deferred shading, optional
+// surface paint (texture); PNG through core::encode_png.
 #include "emoface/facemesh/render.hpp"
 
 #include <algorithm>
@@ -55,7 +56,7 @@ void Paint::validate(std::size_t vertex_count) const {
       throw InvalidInput("Paint: uv of vertex " + std::to_string(v) + " outside [0, 1]");
   }
   for (const auto& c : texels) {
-    if (!(c.minCoeff() >= 0.0f && c.maxCoeff() <= 1.0f)) throw InvalidInput("Paint: texel values must be in [0, 1]");
+    if (!c.allFinite() || !(c.minCoeff() >= 0.0f && c.maxCoeff() <= 1.0f)) throw InvalidInput("Paint: texel values must be in [0, 1]");
   }
 }
 
@@ -132,8 +133,13 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
       if (mesh.faces(f, c) < 0 || static_cast<std::size_t>(mesh.faces(f, c)) >= nv) throw InvalidInput("render: face id out of range");
     }
   }
-  constexpr int ss = 2;  // supersampling factor
-  const int w = options.width * ss, h = options.height * ss;
+  // Anti-aliasing: 4 samples per pixel on a rotated grid (RGSS; offsets in 1/8 pixel, every row and
+  // column of the 4×4 sub-grid used once), box-filtered. Near-horizontal and near-vertical edges get
+  // 4 coverage levels instead of the 2 of a 2×2 ordered grid, at the same cost.
+  constexpr int kSamples = 4;
+  static constexpr double kOffX[kSamples] = {0.375, 0.875, 0.125, 0.625};
+  static constexpr double kOffY[kSamples] = {0.125, 0.375, 0.625, 0.875};
+  const int w = options.width, h = options.height;
   // Camera: orbit about the target; three-quarter = 35 degrees towards the subject's right.
   const double yaw = options.yaw + (options.view == View::ThreeQuarter ? -35.0 * kPi / 180.0 : 0.0);
   const Eigen::Vector3d forward(-std::sin(yaw), 0.0, -std::cos(yaw));  // camera looks along this
@@ -180,7 +186,7 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
   // Pass 1 (visibility): z-buffer with the winning face and its perspective-correct barycentric weights
   // per sample. Pass 2 shades each visible sample once (deferred shading), so hidden surfaces cost no
   // lighting. The winner is the same as shading in submission order with a strict depth test.
-  const std::size_t samples = static_cast<std::size_t>(w) * h;
+  const std::size_t samples = static_cast<std::size_t>(w) * h * kSamples;
   std::vector<double> inv_depth(samples, 0.0);  // 1/z: interpolates linearly in screen space, larger = closer
   std::vector<std::int32_t> face_of(samples, -1);
   std::vector<float> bary(2 * samples);
@@ -192,29 +198,33 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
     if (area == 0.0) continue;
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
-    const int x1 = std::min(w - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
+    const int x1 = std::min(w - 1, static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}))));
     const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
-    const int y1 = std::min(h - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
+    const int y1 = std::min(h - 1, static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}))));
     if (x0 > x1 || y0 > y1) continue;
-    // Edge functions w0(px, py), w1(px, py) are affine: step them along x.
+    // Edge functions are affine in the sample position (px, py): w0 = k0 + px·d0x + py·d0y, ...
     const double inv_area = 1.0 / area;
-    const double d0x = -(c.y() - b.y()) * inv_area, d1x = -(a.y() - c.y()) * inv_area;
+    const double d0x = (b.y() - c.y()) * inv_area, d0y = (c.x() - b.x()) * inv_area;
+    const double d1x = (c.y() - a.y()) * inv_area, d1y = (a.x() - c.x()) * inv_area;
+    const double k0 = (b.x() * c.y() - b.y() * c.x()) * inv_area, k1 = (c.x() * a.y() - c.y() * a.x()) * inv_area;
     const double iza = 1.0 / a.z(), izb = 1.0 / b.z(), izc = 1.0 / c.z();
     for (int y = y0; y <= y1; ++y) {
-      const double py = y + 0.5, px0 = x0 + 0.5;
-      double w0 = ((b.x() - px0) * (c.y() - py) - (b.y() - py) * (c.x() - px0)) * inv_area;
-      double w1 = ((c.x() - px0) * (a.y() - py) - (c.y() - py) * (a.x() - px0)) * inv_area;
-      std::size_t idx = static_cast<std::size_t>(y) * w + x0;
-      for (int x = x0; x <= x1; ++x, ++idx, w0 += d0x, w1 += d1x) {
-        const double w2 = 1.0 - w0 - w1;
-        if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
-        const double q0 = w0 * iza, q1 = w1 * izb, qs = q0 + q1 + w2 * izc;
-        if (qs <= inv_depth[idx]) continue;  // not closer (z = 1/qs ≥ the stored depth)
-        inv_depth[idx] = qs;
-        face_of[idx] = static_cast<std::int32_t>(f);
-        const double z = 1.0 / qs;
-        bary[2 * idx] = static_cast<float>(q0 * z);
-        bary[2 * idx + 1] = static_cast<float>(q1 * z);
+      for (int s = 0; s < kSamples; ++s) {
+        const double py = y + kOffY[s], px0 = x0 + kOffX[s];
+        double w0 = k0 + px0 * d0x + py * d0y;
+        double w1 = k1 + px0 * d1x + py * d1y;
+        std::size_t idx = (static_cast<std::size_t>(y) * w + x0) * kSamples + s;
+        for (int x = x0; x <= x1; ++x, idx += kSamples, w0 += d0x, w1 += d1x) {
+          const double w2 = 1.0 - w0 - w1;
+          if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
+          const double q0 = w0 * iza, q1 = w1 * izb, qs = q0 + q1 + w2 * izc;
+          if (qs <= inv_depth[idx]) continue;  // not closer (z = 1/qs ≥ the stored depth)
+          inv_depth[idx] = qs;
+          face_of[idx] = static_cast<std::int32_t>(f);
+          const double z = 1.0 / qs;
+          bary[2 * idx] = static_cast<float>(q0 * z);
+          bary[2 * idx + 1] = static_cast<float>(q1 * z);
+        }
       }
     }
   }
@@ -281,18 +291,17 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     return out.cwiseMin(1.0f).cwiseMax(0.0f);
   };
 
-  // Pass 2 fused with the box-filter downsampling: each visible sample is shaded exactly once.
+  // Pass 2 fused with the box filter: each visible sample is shaded exactly once.
   Image image;
   image.width = options.width;
   image.height = options.height;
   image.rgb.resize(static_cast<std::size_t>(options.width) * options.height * 3);
   for (int y = 0; y < options.height; ++y) {
     for (int x = 0; x < options.width; ++x) {
+      const std::size_t base_idx = (static_cast<std::size_t>(y) * w + x) * kSamples;
       Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-      for (int dy = 0; dy < ss; ++dy) {
-        for (int dx = 0; dx < ss; ++dx) sum += shade(static_cast<std::size_t>(y * ss + dy) * w + (x * ss + dx));
-      }
-      sum /= static_cast<float>(ss * ss);
+      for (int s = 0; s < kSamples; ++s) sum += shade(base_idx + s);
+      sum /= static_cast<float>(kSamples);
       for (int k = 0; k < 3; ++k) {
         image.rgb[(static_cast<std::size_t>(y) * options.width + x) * 3 + k] =
             static_cast<std::uint8_t>(std::lround(std::min(1.0f, std::max(0.0f, sum[k])) * 255.0f));
