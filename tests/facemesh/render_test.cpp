@@ -96,7 +96,10 @@ TEST(Render, RotatedGridAntiAliasing) {
   // a pixel covers 1 sample (value 255·3/4 ≈ 191 on white), 0.55 px 2 (128), 0.8 px 3 (64). A 2×2
   // ordered grid would give 255, 128, 128: it cannot tell 0.3 from 0.55 from 0.8.
   const int w = 64, h = 48;
-  const struct { double frac; int value; } cases[] = {{0.3, 191}, {0.55, 128}, {0.8, 64}};
+  const struct {
+    double frac;
+    int value;
+  } cases[] = {{0.3, 191}, {0.55, 128}, {0.8, 64}};
   for (const auto& c : cases) {
     const Image im = square_with_edge_at(40.0 + c.frac, w, h);
     const std::size_t row = static_cast<std::size_t>(h / 2) * w;
@@ -175,7 +178,8 @@ TEST(Render, DefaultFacePaint) {
   EXPECT_EQ(paint_for(other), nullptr);  // not the default face
   // brows dark, forehead skin light, in the paint's frontal frame (brow at x = ±3 cm, y ≈ 2.4 cm)
   auto at = [&](double x, double y) {
-    return p->sample(static_cast<float>((x + 0.086) / 0.172), static_cast<float>((y + 0.140) / 0.268));
+    return p->sample(static_cast<float>((x + 0.086) / 0.172),
+                     static_cast<float>((y + 0.140) / 0.268));
   };
   EXPECT_LT(at(-0.03, 0.0235).x(), 0.4f);
   EXPECT_LT(at(0.03, 0.0235).x(), 0.4f);

@@ -188,7 +188,9 @@ TEST(ModeSelection, ALoneEmotionIsSingleAtAnyIntensity) {
   EXPECT_GT(f[index(Muscle::FrontalisMedialis)], 0.3);
   EXPECT_GT(f[index(Muscle::CorrugatorSupercilii)], 0.3);
   Engine blend_engine;
-  EXPECT_EQ(blend_engine.blend(Emotion::Sadness, 0.4, Emotion::Happiness, 0.0)[index(Muscle::FrontalisMedialis)], 0.0);
+  EXPECT_EQ(blend_engine.blend(Emotion::Sadness, 0.4, Emotion::Happiness,
+                               0.0)[index(Muscle::FrontalisMedialis)],
+            0.0);
   // a second emotion, however small, is a partner again (thesis §6.5: margin 0.5)
   sad[index(Emotion::Fear)] = 1e-9;
   EXPECT_EQ(engine.select(sad).mode, ExpressionMode::Blend);

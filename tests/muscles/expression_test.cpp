@@ -1,5 +1,5 @@
-// Issue 14: expressions through the whole chain (fuzzyexpr rules → muscles on the default face): the
-// eyes narrow but never shut outside blinks, surprise opens them.
+// Issue 14: expressions through the whole chain (fuzzyexpr rules → muscles on the default face):
+// the eyes narrow but never shut outside blinks, surprise opens them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -39,7 +39,9 @@ std::vector<double> parameters(const fx::Esv& esv) {
 double aperture_fraction(const std::vector<double>& values) {
   const double a0 = eye_aperture(face().rig, face().mesh.vertices, 0);
   const auto d = solver().deform(values);
-  return std::min(eye_aperture(face().rig, d.vertices, 0), eye_aperture(face().rig, d.vertices, 1)) / a0;
+  return std::min(eye_aperture(face().rig, d.vertices, 0),
+                  eye_aperture(face().rig, d.vertices, 1)) /
+         a0;
 }
 
 TEST(Expressions, EyesNarrowButNeverShut) {
@@ -49,7 +51,9 @@ TEST(Expressions, EyesNarrowButNeverShut) {
       esv[e] = x;
       const double f = aperture_fraction(parameters(esv));
       EXPECT_GE(f, 0.30) << std::string(fx::to_string(fx::emotion_at(e))) << " " << x;
-      if (x == 0.9) std::printf("%-10s 0.9: aperture %.2f of neutral\n", std::string(fx::to_string(fx::emotion_at(e))).c_str(), f);
+      if (x == 0.9)
+        std::printf("%-10s 0.9: aperture %.2f of neutral\n",
+                    std::string(fx::to_string(fx::emotion_at(e))).c_str(), f);
     }
   }
   // the blends of the docs sheets too
@@ -78,17 +82,20 @@ Shot render_front(const std::vector<double>& values) {
   s.options.width = 480;
   s.options.height = 560;
   const auto d = solver().deform(values);
-  s.image = fm::render(fm::Mesh{d.vertices, face().mesh.faces}, fm::material_colors(face().rig, face().mesh), d.crease,
-                       s.options, fm::paint_for(face().rig));
+  s.image = fm::render(fm::Mesh{d.vertices, face().mesh.faces},
+                       fm::material_colors(face().rig, face().mesh), d.crease, s.options,
+                       fm::paint_for(face().rig));
   return s;
 }
 
-// Screen position (pixels) of a point for the front camera of render() (camera on +z, looking at target).
+// Screen position (pixels) of a point for the front camera of render() (camera on +z, looking at
+// target).
 Eigen::Vector2d project(const fm::RenderOptions& o, const Eigen::Vector3d& p) {
   const double focal = 0.5 * o.height / std::tan(0.5 * o.field_of_view);
   const Eigen::Vector3d eye = o.target + Eigen::Vector3d(0, 0, o.distance);
   const double z = eye.z() - p.z();
-  return {0.5 * o.width + focal * (p.x() - eye.x()) / z, 0.5 * o.height - focal * (p.y() - eye.y()) / z};
+  return {0.5 * o.width + focal * (p.x() - eye.x()) / z,
+          0.5 * o.height - focal * (p.y() - eye.y()) / z};
 }
 
 double luminance(const fm::Image& im, int x, int y) {
@@ -104,7 +111,8 @@ int landmark(const std::string& name) {
 
 std::vector<double> frontalis(double level) {
   std::vector<double> v(kParameterCount, 0.0);
-  for (const char* n : {"frontalis_medialis_l", "frontalis_medialis_r", "frontalis_lateralis_l", "frontalis_lateralis_r"})
+  for (const char* n : {"frontalis_medialis_l", "frontalis_medialis_r", "frontalis_lateralis_l",
+                        "frontalis_lateralis_r"})
     v[parameter_index(n)] = level;
   return v;
 }
@@ -146,9 +154,10 @@ TEST(Expressions, BrowColourStaysOnTheBrowUnderFullFrontalis) {
     EXPECT_GT(n1, 0.6 * n0) << name;
     EXPECT_LT(n1, 1.6 * n0) << name;
     EXPECT_GT(luminance(raised.image, x, static_cast<int>(std::lround(c0))),
-              luminance(neutral.image, x, static_cast<int>(std::lround(c0))) + 40.0) << name;  // skin now
-    std::printf("%s: brow band %d -> %d px high, moved %.1f px, skin moved %.1f px\n", name, n0, n1, c1 - c0,
-                p1.y() - p0.y());
+              luminance(neutral.image, x, static_cast<int>(std::lround(c0))) + 40.0)
+        << name;  // skin now
+    std::printf("%s: brow band %d -> %d px high, moved %.1f px, skin moved %.1f px\n", name, n0, n1,
+                c1 - c0, p1.y() - p0.y());
   }
 }
 
@@ -160,7 +169,8 @@ TEST(Expressions, ForeheadWrinklesAreVisibleAndClean) {
   const int v = landmark("brow_centre_r");
   const Eigen::Vector2d b = project(neutral.options, face().mesh.vertices.row(v).transpose());
   const int x = static_cast<int>(std::lround(b.x())) + 4;
-  const int y_top = static_cast<int>(project(neutral.options, Eigen::Vector3d(b.x(), 0.066, 0.09)).y());
+  const int y_top =
+      static_cast<int>(project(neutral.options, Eigen::Vector3d(b.x(), 0.066, 0.09)).y());
   const int y_bottom = static_cast<int>(b.y()) - 22;
   ASSERT_GT(y_bottom - y_top, 20);
   auto roughness = [&](const fm::Image& im, double* darkest) {
@@ -177,10 +187,11 @@ TEST(Expressions, ForeheadWrinklesAreVisibleAndClean) {
   for (double level : {0.5, 1.0}) {
     double dark = 0.0;
     const double r = roughness(render_front(frontalis(level)).image, &dark);
-    std::printf("frontalis %.1f: forehead roughness %.1f (neutral %.1f), darkest %.0f (neutral %.0f)\n", level, r, r0,
-                dark, dark0);
-    // measured 29 / 288 against 15 at 0.5 / 1 (docs/muscles.md): visible at 1, faint at 0.5 (issue 14
-    // asks for clean wrinkles from 0.5 on: not reached with geometric wrinkles on this grid)
+    std::printf(
+        "frontalis %.1f: forehead roughness %.1f (neutral %.1f), darkest %.0f (neutral %.0f)\n",
+        level, r, r0, dark, dark0);
+    // measured 29 / 288 against 15 at 0.5 / 1 (docs/muscles.md): visible at 1, faint at 0.5 (issue
+    // 14 asks for clean wrinkles from 0.5 on: not reached with geometric wrinkles on this grid)
     EXPECT_GT(r, (level < 0.75 ? 1.5 : 3.0) * r0) << level;
     EXPECT_GT(dark, 0.5 * dark0) << level;
   }

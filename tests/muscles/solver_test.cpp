@@ -227,7 +227,8 @@ double lid_angle(const fm::Eye& eye, const fm::Vertices& X, int v) {
 }
 
 TEST(FaceSolver, PalpebralisTightensTheLidsButNeverClosesThem) {
-  // FACS AU7 (lid tightener): the aperture narrows, the lower lid rises; closure is AU45 (eye_blink).
+  // FACS AU7 (lid tightener): the aperture narrows, the lower lid rises; closure is AU45
+  // (eye_blink).
   const auto& eye = face().rig.eyes[0];  // right
   const SolverOptions o;
   const double a0 = eye_aperture(face().rig, face().mesh.vertices, 0);
@@ -253,14 +254,16 @@ TEST(FaceSolver, PalpebralisTightensTheLidsButNeverClosesThem) {
   EXPECT_GT(a1, 0.25 * a0);
   EXPECT_LT(a1, 0.42 * a0);
   EXPECT_NEAR(eye_aperture(face().rig, d.vertices, 1), a0, 1e-12);  // the left eye stays
-  const auto both = solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_palpebralis_l", 1.0}}));
+  const auto both = solver().deform(
+      values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_palpebralis_l", 1.0}}));
   EXPECT_NEAR(eye_aperture(face().rig, both.vertices, 0), a1, 1e-6);
   EXPECT_NEAR(eye_aperture(face().rig, both.vertices, 1), a1, 1e-6);
   // monotone in the level and never below 30 % of neutral, with or without the orbitalis squeeze
   double previous = a0;
   for (double t = 0.1; t <= 1.0001; t += 0.1) {
     for (double sq : {0.0, 1.0}) {
-      const auto x = solver().deform(values({{"orbicularis_oculi_palpebralis_r", t}, {"orbicularis_oculi_orbitalis_r", sq}}));
+      const auto x = solver().deform(
+          values({{"orbicularis_oculi_palpebralis_r", t}, {"orbicularis_oculi_orbitalis_r", sq}}));
       EXPECT_GE(eye_aperture(face().rig, x.vertices, 0), 0.25 * a0) << t << " " << sq;
       if (sq == 0.0) {
         const double a = eye_aperture(face().rig, x.vertices, 0);
@@ -273,7 +276,8 @@ TEST(FaceSolver, PalpebralisTightensTheLidsButNeverClosesThem) {
   const auto up = solver().deform(values({{"levator_palpebrae_superioris_r", 1.0}}));
   EXPECT_GT(eye_aperture(face().rig, up.vertices, 0), a0 + 0.002);
   // a blink closes the eye whatever the tightener does
-  const auto shut = solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"eye_blink_r", 1.0}}));
+  const auto shut =
+      solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"eye_blink_r", 1.0}}));
   EXPECT_EQ(eye_aperture(face().rig, shut.vertices, 0), 0.0);
   // tightening one eye alone squeezes it (coupling): the orbitalis sphincter moves the right cheek
   const auto one = solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}}));

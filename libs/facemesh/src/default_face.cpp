@@ -189,7 +189,8 @@ int nearest_xy(const std::vector<Eigen::Vector3d>& pts, const std::vector<int>& 
 double brow_distance(double x, double y) {
   const double ax = std::abs(x);
   if (ax <= 0.010 || ax >= 0.05) return 1.0;
-  const double brow_y = 0.019 + 0.006 * std::exp(-std::pow((ax - 0.03) / 0.012, 2)) - 0.004 * std::max(0.0, (ax - 0.04) / 0.01);
+  const double brow_y = 0.019 + 0.006 * std::exp(-std::pow((ax - 0.03) / 0.012, 2)) -
+                        0.004 * std::max(0.0, (ax - 0.04) / 0.01);
   const double half = 0.0042 - 0.04 * std::max(0.0, ax - 0.042);
   return std::abs(y - brow_y) - half;
 }
@@ -448,8 +449,9 @@ Face make_default_face() {
       // the border row is skin: the zipper triangles to the rim then carry no colour edge; the two
       // innermost rows, which roll into the mouth, are its dark interior (seen when the lips part)
       const long row = s / lips.samples_around;
-      materials.push_back(row == 0 ? Material::Skin
-                          : row >= lips.samples_across - 2 ? Material::MouthInterior : Material::Lip);
+      materials.push_back(row == 0                         ? Material::Skin
+                          : row >= lips.samples_across - 2 ? Material::MouthInterior
+                                                           : Material::Lip);
     }
     const int na = lips.samples_around, nac = lips.samples_across;
     auto L = [&](int i, int j) { return lips.first_vertex + j * na + ((i % na) + na) % na; };
@@ -496,14 +498,16 @@ Face make_default_face() {
   const int lip_begin = lips.first_vertex;
 
   // ---- 4b. teeth (issue 14): an upper and a lower row seen when the lips part, as curved strips
-  // behind the lips' inner edge; the upper row is fixed to the skull, the lower one rides on the jaw.
+  // behind the lips' inner edge; the upper row is fixed to the skull, the lower one rides on the
+  // jaw.
   std::vector<int> lower_teeth;
   {
     const double contact_y = kMouthCy + 0.0012;
-    const double z0 = front_z(0.0, contact_y) - 0.0110;  // incisors' front, behind the inner lip rows
+    const double z0 =
+        front_z(0.0, contact_y) - 0.0110;  // incisors' front, behind the inner lip rows
     const int n = 18;  // columns; every third one is a gap between two teeth (set back 0.8 mm)
-    // Each row is a closed slab (front and back grids 2.5 mm apart, joined along the border) so that
-    // the head stays a closed surface.
+    // Each row is a closed slab (front and back grids 2.5 mm apart, joined along the border) so
+    // that the head stays a closed surface.
     auto add_strip = [&](double y_top, double y_bottom, double back, std::vector<int>* ids) {
       const int rows = 3, cols = n + 1;
       const int first = static_cast<int>(pts.size());
@@ -523,10 +527,13 @@ Face make_default_face() {
       auto B = [&](int j, int i) { return first + rows * cols + j * cols + i; };
       // a quad a-b-c-d split in two, turned so that its normal points along `out`
       auto quad = [&](int a, int b, int c, int d, const Eigen::Vector3d& out) {
-        const Eigen::Vector3d n1 = (pts[static_cast<std::size_t>(b)] - pts[static_cast<std::size_t>(a)])
-                                       .cross(pts[static_cast<std::size_t>(c)] - pts[static_cast<std::size_t>(a)]);
-        if (n1.dot(out) >= 0.0) tris.push_back({a, b, c}), tris.push_back({a, c, d});
-        else tris.push_back({a, c, b}), tris.push_back({a, d, c});
+        const Eigen::Vector3d n1 =
+            (pts[static_cast<std::size_t>(b)] - pts[static_cast<std::size_t>(a)])
+                .cross(pts[static_cast<std::size_t>(c)] - pts[static_cast<std::size_t>(a)]);
+        if (n1.dot(out) >= 0.0)
+          tris.push_back({a, b, c}), tris.push_back({a, c, d});
+        else
+          tris.push_back({a, c, b}), tris.push_back({a, d, c});
       };
       const Eigen::Vector3d ex(1, 0, 0), ey(0, 1, 0), ez(0, 0, 1);
       for (int j = 0; j + 1 < rows; ++j) {
@@ -580,7 +587,8 @@ Face make_default_face() {
   // ---- 7. materials: brows and hair ----
   for (int k = 0; k < skin_count; ++k) {
     const auto& p = pts[static_cast<std::size_t>(k)];
-    if (p.z() > 0.03 && brow_distance(p.x(), p.y()) < 0.0) materials[static_cast<std::size_t>(k)] = Material::Brow;
+    if (p.z() > 0.03 && brow_distance(p.x(), p.y()) < 0.0)
+      materials[static_cast<std::size_t>(k)] = Material::Brow;
     if (p.y() > hair_line(p.x(), p.z())) materials[static_cast<std::size_t>(k)] = Material::Hair;
   }
   rig.materials = materials;
@@ -713,21 +721,186 @@ Face make_default_face() {
   };
   using R = Region;
   const std::vector<Def> defs = {
-      {"zygomatic_major", "", P(-0.060, -0.016, 0.010), P(-0.026, -0.066, 0.002), 0.42, 0.75, 1.35, 0.0170, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
-      {"zygomatic_minor", "", P(-0.046, -0.016, 0.008), P(-0.017, -0.058, 0.002), 0.35, 0.75, 1.3, 0.015, {R::RightMiddleFace}, true, 0, 0.0},
-      {"triangularis", "", P(-0.046, -0.116, 0.018), P(-0.026, -0.068, 0.002), 0.40, 0.75, 1.3, 0.014, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
-      {"risorius", "", P(-0.070, -0.072, 0.015), P(-0.026, -0.067, 0.002), 0.30, 0.8, 1.3, 0.011, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
-      {"depressor_labii", "", P(-0.016, -0.106, 0.008), P(-0.010, -0.076, 0.002), 0.45, 0.75, 1.35, 0.0100, {R::RightLowerFace}, true, 0, 0.0},
-      {"mentalis", "", P(-0.006, -0.082, 0.012), P(-0.006, -0.106, 0.002), 0.55, 0.75, 1.4, 0.006, {R::RightLowerFace}, true, 2, 0.0006},
-      {"frontalis_medialis", "_0", P(-0.007, 0.080, 0.006), P(-0.008, 0.022, 0.001), 0.40, 0.75, 1.2, 0.0120, {R::RightUpperFace, R::LeftUpperFace}, false, 3, 0.0016},
-      {"frontalis_medialis", "_1", P(-0.018, 0.080, 0.006), P(-0.019, 0.022, 0.001), 0.40, 0.75, 1.2, 0.0120, {R::RightUpperFace, R::LeftUpperFace}, false, 3, 0.0016},
-      {"frontalis_lateralis", "_0", P(-0.032, 0.080, 0.006), P(-0.034, 0.022, 0.001), 0.40, 0.75, 1.2, 0.0110, {R::RightUpperFace}, false, 3, 0.0016},
-      {"frontalis_lateralis", "_1", P(-0.045, 0.078, 0.006), P(-0.046, 0.020, 0.001), 0.40, 0.75, 1.2, 0.0105, {R::RightUpperFace}, false, 3, 0.0016},
-      {"levator_labii_nasi", "", P(-0.010, 0.004, 0.006), P(-0.015, -0.040, 0.002), 0.28, 0.8, 1.35, 0.0065, {R::RightMiddleFace, R::RightUpperFace}, true, 3, 0.0005},
-      {"levator_labii_superioris", "", P(-0.027, -0.016, 0.006), P(-0.014, -0.058, 0.002), 0.32, 0.8, 1.3, 0.0100, {R::RightMiddleFace, R::RightUpperFace}, true, 0, 0.0},
-      {"depressor_supercilii", "", P(-0.008, -0.002, 0.006), P(-0.015, 0.023, 0.001), 0.40, 0.8, 1.35, 0.0045, {R::RightMiddleFace, R::RightUpperFace}, false, 0, 0.0},
-      {"corrugator_supercilii", "", P(-0.005, 0.018, 0.007), P(-0.030, 0.025, 0.001), 0.40, 0.8, 1.3, 0.0060, {R::RightMiddleFace, R::RightUpperFace}, false, 2, 0.0006},
-      {"depressor_glabellae", "", P(-0.003, -0.014, 0.006), P(-0.004, 0.020, 0.001), 0.30, 0.8, 1.3, 0.0045, {R::RightMiddleFace, R::RightUpperFace}, false, 2, 0.0005},
+      {"zygomatic_major",
+       "",
+       P(-0.060, -0.016, 0.010),
+       P(-0.026, -0.066, 0.002),
+       0.42,
+       0.75,
+       1.35,
+       0.0170,
+       {R::RightLowerFace, R::RightMiddleFace},
+       true,
+       0,
+       0.0},
+      {"zygomatic_minor",
+       "",
+       P(-0.046, -0.016, 0.008),
+       P(-0.017, -0.058, 0.002),
+       0.35,
+       0.75,
+       1.3,
+       0.015,
+       {R::RightMiddleFace},
+       true,
+       0,
+       0.0},
+      {"triangularis",
+       "",
+       P(-0.046, -0.116, 0.018),
+       P(-0.026, -0.068, 0.002),
+       0.40,
+       0.75,
+       1.3,
+       0.014,
+       {R::RightLowerFace, R::RightMiddleFace},
+       true,
+       0,
+       0.0},
+      {"risorius",
+       "",
+       P(-0.070, -0.072, 0.015),
+       P(-0.026, -0.067, 0.002),
+       0.30,
+       0.8,
+       1.3,
+       0.011,
+       {R::RightLowerFace, R::RightMiddleFace},
+       true,
+       0,
+       0.0},
+      {"depressor_labii",
+       "",
+       P(-0.016, -0.106, 0.008),
+       P(-0.010, -0.076, 0.002),
+       0.45,
+       0.75,
+       1.35,
+       0.0100,
+       {R::RightLowerFace},
+       true,
+       0,
+       0.0},
+      {"mentalis",
+       "",
+       P(-0.006, -0.082, 0.012),
+       P(-0.006, -0.106, 0.002),
+       0.55,
+       0.75,
+       1.4,
+       0.006,
+       {R::RightLowerFace},
+       true,
+       2,
+       0.0006},
+      {"frontalis_medialis",
+       "_0",
+       P(-0.007, 0.080, 0.006),
+       P(-0.008, 0.022, 0.001),
+       0.40,
+       0.75,
+       1.2,
+       0.0120,
+       {R::RightUpperFace, R::LeftUpperFace},
+       false,
+       3,
+       0.0016},
+      {"frontalis_medialis",
+       "_1",
+       P(-0.018, 0.080, 0.006),
+       P(-0.019, 0.022, 0.001),
+       0.40,
+       0.75,
+       1.2,
+       0.0120,
+       {R::RightUpperFace, R::LeftUpperFace},
+       false,
+       3,
+       0.0016},
+      {"frontalis_lateralis",
+       "_0",
+       P(-0.032, 0.080, 0.006),
+       P(-0.034, 0.022, 0.001),
+       0.40,
+       0.75,
+       1.2,
+       0.0110,
+       {R::RightUpperFace},
+       false,
+       3,
+       0.0016},
+      {"frontalis_lateralis",
+       "_1",
+       P(-0.045, 0.078, 0.006),
+       P(-0.046, 0.020, 0.001),
+       0.40,
+       0.75,
+       1.2,
+       0.0105,
+       {R::RightUpperFace},
+       false,
+       3,
+       0.0016},
+      {"levator_labii_nasi",
+       "",
+       P(-0.010, 0.004, 0.006),
+       P(-0.015, -0.040, 0.002),
+       0.28,
+       0.8,
+       1.35,
+       0.0065,
+       {R::RightMiddleFace, R::RightUpperFace},
+       true,
+       3,
+       0.0005},
+      {"levator_labii_superioris",
+       "",
+       P(-0.027, -0.016, 0.006),
+       P(-0.014, -0.058, 0.002),
+       0.32,
+       0.8,
+       1.3,
+       0.0100,
+       {R::RightMiddleFace, R::RightUpperFace},
+       true,
+       0,
+       0.0},
+      {"depressor_supercilii",
+       "",
+       P(-0.008, -0.002, 0.006),
+       P(-0.015, 0.023, 0.001),
+       0.40,
+       0.8,
+       1.35,
+       0.0045,
+       {R::RightMiddleFace, R::RightUpperFace},
+       false,
+       0,
+       0.0},
+      {"corrugator_supercilii",
+       "",
+       P(-0.005, 0.018, 0.007),
+       P(-0.030, 0.025, 0.001),
+       0.40,
+       0.8,
+       1.3,
+       0.0060,
+       {R::RightMiddleFace, R::RightUpperFace},
+       false,
+       2,
+       0.0006},
+      {"depressor_glabellae",
+       "",
+       P(-0.003, -0.014, 0.006),
+       P(-0.004, 0.020, 0.001),
+       0.30,
+       0.8,
+       1.3,
+       0.0045,
+       {R::RightMiddleFace, R::RightUpperFace},
+       false,
+       2,
+       0.0005},
   };
   for (int side = 0; side < 2; ++side) {
     const double mx = side == 0 ? 1.0 : -1.0;
@@ -790,13 +963,16 @@ Paint build_default_face_paint() {
   const int zh = static_cast<int>(std::ceil((kPaintY1 - 0.010) / zs)) + 1;
   std::vector<double> zgrid(static_cast<std::size_t>(zw) * zh);
   for (int j = 0; j < zh; ++j)
-    for (int i = 0; i < zw; ++i) zgrid[static_cast<std::size_t>(j) * zw + i] = front_z(kPaintX0 + i * zs, 0.010 + j * zs);
+    for (int i = 0; i < zw; ++i)
+      zgrid[static_cast<std::size_t>(j) * zw + i] = front_z(kPaintX0 + i * zs, 0.010 + j * zs);
   auto z_at = [&](double x, double y) {
-    const double fx = std::clamp((x - kPaintX0) / zs, 0.0, zw - 1.001), fy = std::clamp((y - 0.010) / zs, 0.0, zh - 1.001);
+    const double fx = std::clamp((x - kPaintX0) / zs, 0.0, zw - 1.001),
+                 fy = std::clamp((y - 0.010) / zs, 0.0, zh - 1.001);
     const int i = static_cast<int>(fx), j = static_cast<int>(fy);
     const double a = fx - i, b = fy - j;
     auto g = [&](int ii, int jj) { return zgrid[static_cast<std::size_t>(jj) * zw + ii]; };
-    return (1 - b) * ((1 - a) * g(i, j) + a * g(i + 1, j)) + b * ((1 - a) * g(i, j + 1) + a * g(i + 1, j + 1));
+    return (1 - b) * ((1 - a) * g(i, j) + a * g(i + 1, j)) +
+           b * ((1 - a) * g(i, j + 1) + a * g(i + 1, j + 1));
   };
   const double soft = 0.0003;  // half width of the anti-aliased edges, m
   paint.texels.resize(static_cast<std::size_t>(paint.width) * paint.height);
@@ -805,9 +981,9 @@ Paint build_default_face_paint() {
     for (int i = 0; i < paint.width; ++i) {
       const double x = kPaintX0 + (i + 0.5) * kPaintTexel;
       Eigen::Vector3f c = kPaintSkin;
-      // brows inside the Brow material's band, slimmer than it (the band is as wide as the coarse grid
-      // needs): 2.4 mm half height medially tapering to 1.0 mm at the tail, rounded head, soft edges;
-      // a little lighter towards the tail
+      // brows inside the Brow material's band, slimmer than it (the band is as wide as the coarse
+      // grid needs): 2.4 mm half height medially tapering to 1.0 mm at the tail, rounded head, soft
+      // edges; a little lighter towards the tail
       {
         const double ax = std::abs(x);
         const double t = std::clamp((ax - 0.011) / (0.050 - 0.011), 0.0, 1.0);
@@ -816,7 +992,8 @@ Paint build_default_face_paint() {
         const double arch = t * std::pow(1.0 - t, 0.55) / 0.3652;
         const double centre = 0.0203 + 0.0045 * arch - 0.0010 * t;
         const double ends = smoothstep(0.0100, 0.0150, ax) * (1.0 - smoothstep(0.0460, 0.0505, ax));
-        const double brow = ends * (1.0 - smoothstep(half - 2 * soft, half + soft, std::abs(y - centre)));
+        const double brow =
+            ends * (1.0 - smoothstep(half - 2 * soft, half + soft, std::abs(y - centre)));
         if (brow > 0.0) c += static_cast<float>(brow * (0.85 - 0.3 * t)) * (kPaintBrow - c);
       }
       if (y > 0.010) {
@@ -835,16 +1012,19 @@ Paint build_default_face_paint() {
   std::vector<char> socket(static_cast<std::size_t>(X.rows()), 0);
   for (const auto& eye : rig.eyes) {
     for (long v = 0; v < X.rows(); ++v)
-      if ((X.row(v).transpose() - (eye.centre - Eigen::Vector3d(0, 0, 1.2 * eye.radius))).norm() < 1e-9)
+      if ((X.row(v).transpose() - (eye.centre - Eigen::Vector3d(0, 0, 1.2 * eye.radius))).norm() <
+          1e-9)
         socket[static_cast<std::size_t>(v)] = 1;  // the cap closing the socket behind the eyeball
   }
   for (long v = 0; v < X.rows(); ++v) {
     const Material m = rig.materials[static_cast<std::size_t>(v)];
     if (m != Material::Skin && m != Material::Brow && m != Material::Hair) continue;
     if (X(v, 2) <= 0.0 || socket[static_cast<std::size_t>(v)]) continue;
-    if (v >= rig.lips.first_vertex && X(v, 2) < front_z(X(v, 0), X(v, 1)) - 0.02) continue;  // mouth cavity
-    paint.uv[static_cast<std::size_t>(v)] = {static_cast<float>((X(v, 0) - kPaintX0) / (kPaintX1 - kPaintX0)),
-                                             static_cast<float>((X(v, 1) - kPaintY0) / (kPaintY1 - kPaintY0))};
+    if (v >= rig.lips.first_vertex && X(v, 2) < front_z(X(v, 0), X(v, 1)) - 0.02)
+      continue;  // mouth cavity
+    paint.uv[static_cast<std::size_t>(v)] = {
+        static_cast<float>((X(v, 0) - kPaintX0) / (kPaintX1 - kPaintX0)),
+        static_cast<float>((X(v, 1) - kPaintY0) / (kPaintY1 - kPaintY0))};
   }
   paint.validate(static_cast<std::size_t>(X.rows()));
   return paint;
@@ -859,7 +1039,8 @@ const Paint& default_face_paint() {
 
 const Paint* paint_for(const Rig& rig) {
   static const std::vector<Material> materials = make_default_face().rig.materials;
-  return rig.vertex_count == materials.size() && rig.materials == materials ? &default_face_paint() : nullptr;
+  return rig.vertex_count == materials.size() && rig.materials == materials ? &default_face_paint()
+                                                                            : nullptr;
 }
 
 }  // namespace emoface::facemesh

@@ -227,7 +227,8 @@ std::string format_rig(const Rig& rig) {
   doc["mesh"] = rig.mesh_file;
   doc["vertex_count"] = rig.vertex_count;
   doc["regions"] = label_sets(rig.regions, kRegionCount);
-  doc["materials"] = label_sets(rig.materials, static_cast<int>(Material::Lash) + 1);  // every material
+  doc["materials"] =
+      label_sets(rig.materials, static_cast<int>(Material::Lash) + 1);  // every material
   doc["head_pivot"] = vec(rig.head_pivot);
   Json lips;
   Json cps = Json::array();

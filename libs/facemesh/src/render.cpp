@@ -1,6 +1,6 @@
 // Software rasteriser: perspective camera, z-buffer, per-pixel Phong shading (Bui Tuong Phong 1975,
-// the shading the thesis uses in §2.3), 4-sample rotated-grid anti-aliasing, deferred shading, optional
-// surface paint (texture); PNG through core::encode_png.
+// the shading the thesis uses in §2.3), 4-sample rotated-grid anti-aliasing, deferred shading,
+// optional surface paint (texture); PNG through core::encode_png.
 #include "emoface/facemesh/render.hpp"
 
 #include <algorithm>
@@ -11,7 +11,6 @@
 #include <string>
 
 #include <Eigen/Geometry>
-
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -45,7 +44,8 @@ void RenderOptions::validate() const {
 }
 
 void Paint::validate(std::size_t vertex_count) const {
-  if (width < 1 || width > 8192 || height < 1 || height > 8192) throw InvalidInput("Paint: width/height must be in [1, 8192]");
+  if (width < 1 || width > 8192 || height < 1 || height > 8192)
+    throw InvalidInput("Paint: width/height must be in [1, 8192]");
   if (texels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
     throw InvalidInput("Paint: texels must hold width*height values");
   if (uv.size() != vertex_count) throw InvalidInput("Paint: one uv per vertex");
@@ -56,18 +56,24 @@ void Paint::validate(std::size_t vertex_count) const {
       throw InvalidInput("Paint: uv of vertex " + std::to_string(v) + " outside [0, 1]");
   }
   for (const auto& c : texels) {
-    if (!c.allFinite() || !(c.minCoeff() >= 0.0f && c.maxCoeff() <= 1.0f)) throw InvalidInput("Paint: texel values must be in [0, 1]");
+    if (!c.allFinite() || !(c.minCoeff() >= 0.0f && c.maxCoeff() <= 1.0f))
+      throw InvalidInput("Paint: texel values must be in [0, 1]");
   }
 }
 
 Eigen::Vector4f Paint::sample(float u, float v) const {
   const float fx = std::clamp(u, 0.0f, 1.0f) * static_cast<float>(width) - 0.5f;
   const float fy = std::clamp(v, 0.0f, 1.0f) * static_cast<float>(height) - 0.5f;
-  const int x0 = std::clamp(static_cast<int>(std::floor(fx)), 0, width - 1), y0 = std::clamp(static_cast<int>(std::floor(fy)), 0, height - 1);
+  const int x0 = std::clamp(static_cast<int>(std::floor(fx)), 0, width - 1),
+            y0 = std::clamp(static_cast<int>(std::floor(fy)), 0, height - 1);
   const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
-  const float a = std::clamp(fx - static_cast<float>(x0), 0.0f, 1.0f), b = std::clamp(fy - static_cast<float>(y0), 0.0f, 1.0f);
-  auto t = [&](int x, int y) -> const Eigen::Vector4f& { return texels[static_cast<std::size_t>(y) * width + x]; };
-  return (1 - b) * ((1 - a) * t(x0, y0) + a * t(x1, y0)) + b * ((1 - a) * t(x0, y1) + a * t(x1, y1));
+  const float a = std::clamp(fx - static_cast<float>(x0), 0.0f, 1.0f),
+              b = std::clamp(fy - static_cast<float>(y0), 0.0f, 1.0f);
+  auto t = [&](int x, int y) -> const Eigen::Vector4f& {
+    return texels[static_cast<std::size_t>(y) * width + x];
+  };
+  return (1 - b) * ((1 - a) * t(x0, y0) + a * t(x1, y0)) +
+         b * ((1 - a) * t(x0, y1) + a * t(x1, y1));
 }
 
 std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
@@ -79,9 +85,13 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
       case Material::EyeWhite: out[v] = {0.94f, 0.93f, 0.90f}; break;
       case Material::Iris: out[v] = {0.30f, 0.42f, 0.55f}; break;
       case Material::Pupil: out[v] = {0.05f, 0.05f, 0.06f}; break;
-      case Material::Brow: out[v] = {0.16f, 0.11f, 0.08f}; break;
+      case Material::Brow:
+        out[v] = {0.16f, 0.11f, 0.08f};
+        break;
       case Material::Hair: out[v] = {0.28f, 0.19f, 0.13f}; break;
-      case Material::MouthInterior: out[v] = {0.12f, 0.04f, 0.04f}; break;
+      case Material::MouthInterior:
+        out[v] = {0.12f, 0.04f, 0.04f};
+        break;
       case Material::Teeth: out[v] = {0.92f, 0.90f, 0.84f}; break;
       case Material::Tongue: out[v] = {0.70f, 0.36f, 0.36f}; break;
       case Material::Lash: out[v] = {0.10f, 0.08f, 0.07f}; break;
@@ -121,21 +131,23 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig, const Mesh& mesh, i
   return colors;
 }
 
-Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const std::vector<std::uint8_t>& crease,
-             const RenderOptions& options, const Paint* paint) {
+Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
+             const std::vector<std::uint8_t>& crease, const RenderOptions& options,
+             const Paint* paint) {
   options.validate();
   const std::size_t nv = mesh.vertex_count();
   if (!colors.empty() && colors.size() != nv) throw InvalidInput("render: colors must be empty or one per vertex");
   if (!crease.empty() && crease.size() != nv) throw InvalidInput("render: crease must be empty or one per vertex");
-  if (paint != nullptr && paint->uv.size() != nv) throw InvalidInput("render: paint must have one uv per vertex");
+  if (paint != nullptr && paint->uv.size() != nv)
+    throw InvalidInput("render: paint must have one uv per vertex");
   for (long f = 0; f < mesh.faces.rows(); ++f) {
     for (int c = 0; c < 3; ++c) {
       if (mesh.faces(f, c) < 0 || static_cast<std::size_t>(mesh.faces(f, c)) >= nv) throw InvalidInput("render: face id out of range");
     }
   }
   // Anti-aliasing: 4 samples per pixel on a rotated grid (RGSS; offsets in 1/8 pixel, every row and
-  // column of the 4×4 sub-grid used once), box-filtered. Near-horizontal and near-vertical edges get
-  // 4 coverage levels instead of the 2 of a 2×2 ordered grid, at the same cost.
+  // column of the 4×4 sub-grid used once), box-filtered. Near-horizontal and near-vertical edges
+  // get 4 coverage levels instead of the 2 of a 2×2 ordered grid, at the same cost.
   constexpr int kSamples = 4;
   static constexpr double kOffX[kSamples] = {0.375, 0.875, 0.125, 0.625};
   static constexpr double kOffY[kSamples] = {0.125, 0.375, 0.625, 0.875};
@@ -152,26 +164,30 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
   if (options.normal_smoothing > 0) {
     // Shading normals averaged over the triangles around each vertex, each triangle weighted by its
     // area and carrying the mean of its three vertex normals: the fans of thin triangles where a
-    // coarse rim meets a finer row (the lips' stitching) otherwise shade as wedges, and slivers carry
-    // almost no weight. Geometry, depth and crease vertices (face normals) are unchanged.
+    // coarse rim meets a finer row (the lips' stitching) otherwise shade as wedges, and slivers
+    // carry almost no weight. Geometry, depth and crease vertices (face normals) are unchanged.
     Vertices next(vn.rows(), 3);
     std::vector<double> area(static_cast<std::size_t>(mesh.faces.rows()));
     for (long f = 0; f < mesh.faces.rows(); ++f) {
-      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
+      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)),
+                            b = mesh.vertices.row(mesh.faces(f, 1)),
                             c = mesh.vertices.row(mesh.faces(f, 2));
       area[static_cast<std::size_t>(f)] = 0.5 * (b - a).cross(c - a).norm();
     }
     for (int it = 0; it < options.normal_smoothing; ++it) {
       next.setZero();
       for (long f = 0; f < mesh.faces.rows(); ++f) {
-        const Eigen::RowVector3d m = area[static_cast<std::size_t>(f)] *
-                                     (vn.row(mesh.faces(f, 0)) + vn.row(mesh.faces(f, 1)) + vn.row(mesh.faces(f, 2)));
+        const Eigen::RowVector3d m =
+            area[static_cast<std::size_t>(f)] *
+            (vn.row(mesh.faces(f, 0)) + vn.row(mesh.faces(f, 1)) + vn.row(mesh.faces(f, 2)));
         for (int k = 0; k < 3; ++k) next.row(mesh.faces(f, k)) += m;
       }
       for (long v = 0; v < next.rows(); ++v) {
         const double len = next.row(v).norm();
-        if (len > 0.0) next.row(v) /= len;
-        else next.row(v) = vn.row(v);
+        if (len > 0.0)
+          next.row(v) /= len;
+        else
+          next.row(v) = vn.row(v);
       }
       std::swap(vn, next);
     }
@@ -206,7 +222,8 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     const double inv_area = 1.0 / area;
     const double d0x = (b.y() - c.y()) * inv_area, d0y = (c.x() - b.x()) * inv_area;
     const double d1x = (c.y() - a.y()) * inv_area, d1y = (a.x() - c.x()) * inv_area;
-    const double k0 = (b.x() * c.y() - b.y() * c.x()) * inv_area, k1 = (c.x() * a.y() - c.y() * a.x()) * inv_area;
+    const double k0 = (b.x() * c.y() - b.y() * c.x()) * inv_area,
+                 k1 = (c.x() * a.y() - c.y() * a.x()) * inv_area;
     const double iza = 1.0 / a.z(), izb = 1.0 / b.z(), izc = 1.0 / c.z();
     for (int y = y0; y <= y1; ++y) {
       for (int s = 0; s < kSamples; ++s) {
@@ -253,9 +270,9 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     const double w0 = bary[2 * idx], w1 = bary[2 * idx + 1];
     const double wk[3] = {w0, w1, 1.0 - w0 - w1};
     if (back) {
-      // A back face is the inside of the head (dark mouth cavity) unless the surface around it faces
-      // the camera: then it is a thin fold of skin (a closing lid, the lips' stitching pulled over
-      // the rim), shaded with the interpolated vertex normals instead of as a dark streak.
+      // A back face is the inside of the head (dark mouth cavity) unless the surface around it
+      // faces the camera: then it is a thin fold of skin (a closing lid, the lips' stitching pulled
+      // over the rim), shaded with the interpolated vertex normals instead of as a dark streak.
       Eigen::Vector3d n = Eigen::Vector3d::Zero();
       for (int k = 0; k < 3; ++k) n += wk[k] * Eigen::Vector3d(vn.row(ids[k]));
       if (n.dot(forward) >= -0.05 * n.norm()) return cavity;
@@ -272,7 +289,8 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
       const Eigen::Vector2f& t1 = paint->uv[static_cast<std::size_t>(ids[1])];
       const Eigen::Vector2f& t2 = paint->uv[static_cast<std::size_t>(ids[2])];
       if (!std::isnan(t0.x()) && !std::isnan(t1.x()) && !std::isnan(t2.x())) {
-        const Eigen::Vector2f t = static_cast<float>(wk[0]) * t0 + static_cast<float>(wk[1]) * t1 + static_cast<float>(wk[2]) * t2;
+        const Eigen::Vector2f t = static_cast<float>(wk[0]) * t0 + static_cast<float>(wk[1]) * t1 +
+                                  static_cast<float>(wk[2]) * t2;
         const Eigen::Vector4f pc = paint->sample(t.x(), t.y());
         base += pc.w() * (pc.head<3>() - base);
       }

@@ -70,8 +70,10 @@ void SolverOptions::validate() const {
   check(zone_margin >= 0.0 && zone_margin <= 4.0, "zone_margin must be in [0, 4]");
   check(funnel_rotation >= 0.0 && funnel_rotation <= kHalfPi, "funnel_rotation must be in [0, pi/2]");
   check(press_rotation >= 0.0 && press_rotation <= kHalfPi, "press_rotation must be in [0, pi/2]");
-  check(lid_tighten_upper >= 0.0 && lid_tighten_upper <= 0.6, "lid_tighten_upper must be in [0, 0.6]");
-  check(lid_tighten_lower >= 0.0 && lid_tighten_lower <= 0.6, "lid_tighten_lower must be in [0, 0.6]");
+  check(lid_tighten_upper >= 0.0 && lid_tighten_upper <= 0.6,
+        "lid_tighten_upper must be in [0, 0.6]");
+  check(lid_tighten_lower >= 0.0 && lid_tighten_lower <= 0.6,
+        "lid_tighten_lower must be in [0, 0.6]");
   check(lid_tighten_upper + lid_tighten_lower <= 0.8,
         "lid_tighten_upper + lid_tighten_lower must be <= 0.8 (the tightener never shuts the eye)");
   check(funnel_extrusion >= 0.0 && funnel_extrusion <= 0.05, "funnel_extrusion must be in [0, 0.05]");
@@ -675,9 +677,11 @@ void FaceSolver::apply_lids_jaw_lips(const std::vector<double>& values, const st
     const auto& eye = rig_.eyes[e];
     const double blink = values[blink_param_[e]];
     const double tight = lids[e].closing;
-    const double upper = eye.close_angle * ((1.0 - blink) * options_.lid_tighten_upper * tight + blink) -
-                         (1.0 - blink) * values[opening_param_[e]] * eye.open_angle;
-    const double lower = -eye.close_angle * ((1.0 - blink) * options_.lid_tighten_lower * tight + 0.2 * blink);
+    const double upper =
+        eye.close_angle * ((1.0 - blink) * options_.lid_tighten_upper * tight + blink) -
+        (1.0 - blink) * values[opening_param_[e]] * eye.open_angle;
+    const double lower =
+        -eye.close_angle * ((1.0 - blink) * options_.lid_tighten_lower * tight + 0.2 * blink);
     if (upper != 0.0) {
       for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {
         const int v = eye.upper_lid[k];
@@ -836,14 +840,17 @@ double eye_aperture(const facemesh::Rig& rig, const facemesh::Vertices& X, int e
   const auto& e = rig.eyes[static_cast<std::size_t>(eye)];
   const double half_width = 0.3 * e.radius;
   auto margin = [&](const std::vector<int>& ids, const std::vector<double>& weights, bool upper) {
-    double best = upper ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+    double best =
+        upper ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < ids.size() && k < weights.size(); ++k) {
       if (weights[k] < 0.999) continue;
-      if (ids[k] < 0 || ids[k] >= X.rows()) throw InvalidInput("eye_aperture: lid vertex out of range");
+      if (ids[k] < 0 || ids[k] >= X.rows())
+        throw InvalidInput("eye_aperture: lid vertex out of range");
       if (std::abs(X(ids[k], 0) - e.centre.x()) > half_width) continue;
       best = upper ? std::min(best, X(ids[k], 1)) : std::max(best, X(ids[k], 1));
     }
-    if (!std::isfinite(best)) throw InvalidInput("eye_aperture: no lid margin vertex in the eye's centre column");
+    if (!std::isfinite(best))
+      throw InvalidInput("eye_aperture: no lid margin vertex in the eye's centre column");
     return best;
   };
   const double top = margin(e.upper_lid, e.upper_lid_weights, true);

@@ -329,7 +329,8 @@ ObieResult run_obie(const MatchScript& match, const parlee::AgentConfig& agent, 
   for (std::size_t c = 0; c < tracks.names.size(); ++c) column_of[muscles::parameter_index(tracks.names[c])] = c;
   const muscles::FaceSolver solver(face.mesh, face.rig, options.solver);
   const auto colors = facemesh::material_colors(face.rig, face.mesh);
-  const facemesh::Paint* paint = facemesh::paint_for(face.rig);  // brows/hairline of the built-in face
+  const facemesh::Paint* paint =
+      facemesh::paint_for(face.rig);  // brows/hairline of the built-in face
   facemesh::RenderOptions ro;
   ro.view = options.view;
   ro.width = options.width;
