@@ -54,7 +54,9 @@ int main(int argc, char** argv) {
     struct Input {
       fm::Mesh mesh;
       std::vector<Eigen::Vector3f> colors;
+      const fm::Paint* paint = nullptr;  // brows and hairline of the built-in face
     };
+    const fm::Paint* paint = fm::paint_for(rig);
     std::vector<Input> inputs;
     fm::Vertices box(2, 3);  // bounding box of all meshes (rows: min, max)
     for (const auto& path : meshes) {
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
         }
         if (colors.empty()) colors = fm::material_colors(rig, in.mesh);
         in.colors = colors;
+        in.paint = paint;
       } else {
         in.colors = doc.vertex_colors();  // the file's own colours, else uniform skin
       }
@@ -89,7 +92,7 @@ int main(int argc, char** argv) {
       }
     }
     std::vector<fm::Image> images;
-    for (const auto& in : inputs) images.push_back(fm::render(in.mesh, in.colors, {}, options));
+    for (const auto& in : inputs) images.push_back(fm::render(in.mesh, in.colors, {}, options, in.paint));
     auto numbered = [](const std::string& base, std::size_t i) {
       const std::filesystem::path p(base);
       char suffix[32];

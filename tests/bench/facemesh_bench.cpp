@@ -32,6 +32,27 @@ BENCHMARK(BM_Render)
     ->Args({480, 560, 1})
     ->Unit(benchmark::kMillisecond);
 
+// What the apps draw since issue 14: the default face's surface paint (brows, hairline) on top,
+// with the default normal smoothing; BM_Render above is without paint (and smoothing is on there
+// too).
+void BM_RenderPainted(benchmark::State& state) {
+  const auto& f = face();
+  const auto colors = fm::material_colors(f.rig, f.mesh);
+  const fm::Paint* paint = fm::paint_for(f.rig);
+  fm::RenderOptions ro;
+  ro.width = static_cast<int>(state.range(0));
+  ro.height = static_cast<int>(state.range(1));
+  ro.normal_smoothing = static_cast<int>(state.range(2));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(fm::render(f.mesh, colors, {}, ro, paint).rgb.data());
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_RenderPainted)
+    ->Args({320, 384, 1})
+    ->Args({480, 560, 1})
+    ->Args({480, 560, 0})
+    ->Unit(benchmark::kMillisecond);
+
 void BM_EncodePng(benchmark::State& state) {
   const auto& f = face();
   fm::RenderOptions ro;

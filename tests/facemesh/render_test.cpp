@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/facemesh/default_face.hpp"
@@ -66,6 +69,122 @@ TEST(Render, Validation) {
   EXPECT_EQ(view_from_string(to_string(View::ThreeQuarter)), View::ThreeQuarter);
   const Mesh t = testing::tetrahedron();
   EXPECT_THROW(render(t, std::vector<Eigen::Vector3f>(3), {}, RenderOptions{}), InvalidInput);
+}
+
+// A black square in the plane z = 0 whose right edge projects to screen column `edge_x` (pixels)
+// with the default front camera on a white background.
+Image square_with_edge_at(double edge_x, int w, int h) {
+  RenderOptions o;
+  o.width = w;
+  o.height = h;
+  o.target = Eigen::Vector3d::Zero();
+  o.background = Eigen::Vector3d::Ones();
+  o.specular = 0.0;
+  o.normal_smoothing = 0;
+  const double focal = 0.5 * h / std::tan(0.5 * o.field_of_view);  // as in render()
+  const double x_edge = (edge_x - 0.5 * w) * o.distance / focal;
+  Mesh m;
+  m.vertices.resize(4, 3);
+  m.vertices << -0.2, -0.2, 0, x_edge, -0.2, 0, x_edge, 0.2, 0, -0.2, 0.2, 0;
+  m.faces.resize(2, 3);
+  m.faces << 0, 1, 2, 0, 2, 3;
+  return render(m, std::vector<Eigen::Vector3f>(4, Eigen::Vector3f::Zero()), {}, o);
+}
+
+TEST(Render, RotatedGridAntiAliasing) {
+  // 4 samples per pixel at x offsets 1/8, 3/8, 5/8, 7/8 (one per row): a vertical edge 0.3 px into
+  // a pixel covers 1 sample (value 255·3/4 ≈ 191 on white), 0.55 px 2 (128), 0.8 px 3 (64). A 2×2
+  // ordered grid would give 255, 128, 128: it cannot tell 0.3 from 0.55 from 0.8.
+  const int w = 64, h = 48;
+  const struct {
+    double frac;
+    int value;
+  } cases[] = {{0.3, 191}, {0.55, 128}, {0.8, 64}};
+  for (const auto& c : cases) {
+    const Image im = square_with_edge_at(40.0 + c.frac, w, h);
+    const std::size_t row = static_cast<std::size_t>(h / 2) * w;
+    EXPECT_NEAR(im.rgb[(row + 40) * 3], c.value, 1) << c.frac;
+    EXPECT_EQ(im.rgb[(row + 39) * 3], 0);    // inside: black
+    EXPECT_EQ(im.rgb[(row + 41) * 3], 255);  // outside: white
+  }
+}
+
+TEST(Render, PaintIsSampledAtTheInterpolatedCoordinates) {
+  Paint p;
+  p.width = 2;
+  p.height = 1;
+  p.texels = {{0.0f, 0.0f, 0.0f, 1.0f}, {1.0f, 1.0f, 1.0f, 1.0f}};
+  p.uv.assign(4, Eigen::Vector2f(0.5f, 0.5f));
+  EXPECT_NO_THROW(p.validate(4));
+  // bilinear between texel centres u = 0.25 and 0.75; clamped outside
+  EXPECT_FLOAT_EQ(p.sample(0.5f, 0.5f).x(), 0.5f);
+  EXPECT_FLOAT_EQ(p.sample(0.375f, 0.0f).x(), 0.25f);
+  EXPECT_FLOAT_EQ(p.sample(0.0f, 1.0f).x(), 0.0f);
+  EXPECT_FLOAT_EQ(p.sample(1.0f, 0.3f).x(), 1.0f);
+  // a square painted black on its left half, white on its right: the left of the image is dark
+  Mesh m;
+  m.vertices.resize(4, 3);
+  m.vertices << -0.05, -0.05, 0, 0.05, -0.05, 0, 0.05, 0.05, 0, -0.05, 0.05, 0;
+  m.faces.resize(2, 3);
+  m.faces << 0, 1, 2, 0, 2, 3;
+  p.uv = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+  p.width = 64;
+  p.texels.assign(64, Eigen::Vector4f(1, 1, 1, 1));
+  for (int i = 0; i < 32; ++i) p.texels[static_cast<std::size_t>(i)] = {0, 0, 0, 1};
+  RenderOptions o;
+  o.width = o.height = 64;
+  o.target = Eigen::Vector3d::Zero();
+  o.specular = 0.0;
+  const Image plain = render(m, {}, {}, o);
+  const Image painted = render(m, {}, {}, o, &p);
+  const std::size_t left = (32u * 64u + 26u) * 3u, right = (32u * 64u + 38u) * 3u;
+  EXPECT_LT(painted.rgb[left], 5);
+  EXPECT_GT(painted.rgb[right], plain.rgb[right]);  // white paint is brighter than skin
+  // a vertex without coordinates leaves its triangles unpainted
+  p.uv[1] = Eigen::Vector2f(std::nanf(""), std::nanf(""));
+  const Image half = render(m, {}, {}, o, &p);
+  EXPECT_EQ(half.rgb[right], plain.rgb[right]);
+  // bad paints
+  Paint bad = p;
+  bad.uv.pop_back();
+  EXPECT_THROW(bad.validate(4), InvalidInput);
+  EXPECT_THROW(render(m, {}, {}, o, &bad), InvalidInput);
+  bad = p;
+  bad.uv[0] = {1.5f, 0.0f};
+  EXPECT_THROW(bad.validate(4), InvalidInput);
+  bad = p;
+  bad.uv[0] = {std::numeric_limits<float>::infinity(), 0.0f};
+  EXPECT_THROW(bad.validate(4), InvalidInput);
+  bad = p;
+  bad.texels[3] = {0.5f, std::nanf(""), 0.0f, 1.0f};
+  EXPECT_THROW(bad.validate(4), InvalidInput);
+  bad = p;
+  bad.width = 63;
+  EXPECT_THROW(bad.validate(4), InvalidInput);
+  bad = p;
+  bad.width = 0;
+  EXPECT_THROW(bad.validate(4), InvalidInput);
+  o.normal_smoothing = 11;
+  EXPECT_THROW(o.validate(), InvalidInput);
+}
+
+TEST(Render, DefaultFacePaint) {
+  const Face f = make_default_face();
+  const Paint* p = paint_for(f.rig);
+  ASSERT_NE(p, nullptr);
+  EXPECT_NO_THROW(p->validate(f.mesh.vertex_count()));
+  Rig other = f.rig;
+  other.materials[0] = Material::Lip;
+  EXPECT_EQ(paint_for(other), nullptr);  // not the default face
+  // brows dark, forehead skin light, in the paint's frontal frame (brow at x = ±3 cm, y ≈ 2.4 cm)
+  auto at = [&](double x, double y) {
+    return p->sample(static_cast<float>((x + 0.086) / 0.172),
+                     static_cast<float>((y + 0.140) / 0.268));
+  };
+  EXPECT_LT(at(-0.03, 0.0235).x(), 0.4f);
+  EXPECT_LT(at(0.03, 0.0235).x(), 0.4f);
+  EXPECT_GT(at(0.0, 0.045).x(), 0.8f);
+  EXPECT_LT(at(0.0, 0.110).x(), 0.3f);  // hair
 }
 
 class Png : public testing::TempDirTest {};

@@ -166,6 +166,43 @@ TEST(ModeSelection, ThresholdIsStrictlyGreaterThanHalf) {
   EXPECT_EQ(engine.select(esv).mode, ExpressionMode::Blend);
 }
 
+TEST(ModeSelection, ALoneEmotionIsSingleAtAnyIntensity) {
+  // Issue 14: sadness 0.4 alone used to go to blend mode with a zero-intensity partner and lose its
+  // characteristic muscles (Table 6.7 gives sadness no brow muscle in its blends).
+  Engine engine;
+  for (std::size_t e = 0; e < kEmotionCount; ++e) {
+    for (double x : {1e-6, 0.1, 0.25, 0.4, 0.5, 0.9}) {
+      Esv esv{};
+      esv[e] = x;
+      const Selection sel = engine.select(esv);
+      EXPECT_EQ(sel.mode, ExpressionMode::Single) << e << " " << x;
+      EXPECT_EQ(sel.first, emotion_at(e));
+      EXPECT_EQ(engine.convert(esv), engine.single(emotion_at(e), x));
+    }
+  }
+  Esv sad{};
+  sad[index(Emotion::Sadness)] = 0.4;
+  const Fmcv f = engine.convert(sad);
+  // Table 6.1 at 0.4 (between Low and Medium): frontalis medialis, corrugator, ... move; the blend
+  // with happiness (the old result) drove none of the brow muscles
+  EXPECT_GT(f[index(Muscle::FrontalisMedialis)], 0.3);
+  EXPECT_GT(f[index(Muscle::CorrugatorSupercilii)], 0.3);
+  Engine blend_engine;
+  EXPECT_EQ(blend_engine.blend(Emotion::Sadness, 0.4, Emotion::Happiness,
+                               0.0)[index(Muscle::FrontalisMedialis)],
+            0.0);
+  // a second emotion, however small, is a partner again (thesis §6.5: margin 0.5)
+  sad[index(Emotion::Fear)] = 1e-9;
+  EXPECT_EQ(engine.select(sad).mode, ExpressionMode::Blend);
+  // the smooth transition agrees with the crisp single mode for a lone emotion
+  ExpressionOptions o;
+  o.transition = Transition::Smooth;
+  Engine smooth(default_rule_base(), o);
+  sad[index(Emotion::Fear)] = 0.0;
+  const Fmcv g = smooth.convert(sad);
+  for (std::size_t k = 0; k < kMuscleCount; ++k) EXPECT_NEAR(g[k], f[k], 1e-12) << k;
+}
+
 TEST(ModeSelection, ForcedModes) {
   ExpressionOptions single;
   single.mode = ExpressionMode::Single;

@@ -28,7 +28,8 @@ fm::Image shot(const mu::Deformation& d, fm::View view, int w, int h, const std:
   o.view = view;
   o.width = w;
   o.height = h;
-  return fm::render(fm::Mesh{d.vertices, face().mesh.faces}, colors, d.crease, o);
+  return fm::render(fm::Mesh{d.vertices, face().mesh.faces}, colors, d.crease, o,
+                    fm::paint_for(face().rig));
 }
 
 Named from_esv(const fx::Engine& engine, const fx::Esv& esv) {
@@ -106,19 +107,50 @@ int main(int argc, char** argv) {
       o.distance = 0.45;
       const auto a = solver.deform(n);
       const auto b = old_style.deform(n);
-      tiles.push_back(fm::render(fm::Mesh{a.vertices, face().mesh.faces}, colors, a.crease, o));
-      tiles.push_back(fm::render(fm::Mesh{b.vertices, face().mesh.faces}, colors, b.crease, o));
+      tiles.push_back(fm::render(fm::Mesh{a.vertices, face().mesh.faces}, colors, a.crease, o,
+                                 fm::paint_for(face().rig)));
+      tiles.push_back(fm::render(fm::Mesh{b.vertices, face().mesh.faces}, colors, b.crease, o,
+                                 fm::paint_for(face().rig)));
     }
     fm::write_png((out / "muscles/wrinkles_on_off.png").string(), fm::contact_sheet(tiles, 2));
+  }
+
+  // forehead close-up: frontalis (medialis + lateralis, both sides) at 0, 0.5, 0.75 and 1 (issue
+  // 14)
+  {
+    std::vector<fm::Image> tiles;
+    for (double level : {0.0, 0.5, 0.75, 1.0}) {
+      Named n;
+      for (const char* p : {"frontalis_medialis_l", "frontalis_medialis_r", "frontalis_lateralis_l",
+                            "frontalis_lateralis_r"})
+        n[p] = level;
+      fm::RenderOptions o;
+      o.width = 360;
+      o.height = 260;
+      o.target = Eigen::Vector3d(0, 0.035, 0);
+      o.distance = 0.40;
+      const auto a = solver.deform(n);
+      tiles.push_back(fm::render(fm::Mesh{a.vertices, face().mesh.faces}, colors, a.crease, o,
+                                 fm::paint_for(face().rig)));
+    }
+    fm::write_png((out / "muscles/forehead_closeup.png").string(), fm::contact_sheet(tiles, 2));
   }
 
   // eyes, lids, jaw, lips
   {
     const std::vector<Named> poses = {
-        {{"eye_gaze_yaw", 0.4}}, {{"eye_gaze_yaw", -0.4}}, {{"eye_gaze_pitch", 0.3}}, {{"eye_gaze_yaw", 1.5}, {"eye_gaze_pitch", 1.0}},
-        {{"orbicularis_oculi_palpebralis_l", 1.0}, {"orbicularis_oculi_palpebralis_r", 1.0}}, {{"orbicularis_oculi_palpebralis_l", 1.0}},
-        {{"levator_palpebrae_superioris_l", 1.0}, {"levator_palpebrae_superioris_r", 1.0}}, {{"masseter", 1.0}},
-        {{"orbicularis_oris_funneler", 1.0}}, {{"orbicularis_oris_pressor", 1.0}}, {{"masseter", 0.6}, {"orbicularis_oris_funneler", 0.8}},
+        {{"eye_gaze_yaw", 0.4}},
+        {{"eye_gaze_yaw", -0.4}},
+        {{"eye_gaze_pitch", 0.3}},
+        {{"eye_gaze_yaw", 1.5}, {"eye_gaze_pitch", 1.0}},
+        {{"orbicularis_oculi_palpebralis_l", 1.0}, {"orbicularis_oculi_palpebralis_r", 1.0}},
+        {{"eye_blink_l", 1.0}, {"eye_blink_r", 1.0}},
+        {{"eye_blink_l", 1.0}},
+        {{"levator_palpebrae_superioris_l", 1.0}, {"levator_palpebrae_superioris_r", 1.0}},
+        {{"masseter", 1.0}},
+        {{"orbicularis_oris_funneler", 1.0}},
+        {{"orbicularis_oris_pressor", 1.0}},
+        {{"masseter", 0.6}, {"orbicularis_oris_funneler", 0.8}},
         {{"head_yaw", 0.4}, {"head_pitch", 0.15}, {"eye_gaze_yaw", -0.3}}};
     std::vector<fm::Image> tiles;
     for (const auto& p : poses) tiles.push_back(shot(solver.deform(p), fm::View::Front, 190, 222, colors));

@@ -219,24 +219,78 @@ TEST(FaceSolver, JawRotatesAboutThePivot) {
   EXPECT_GT((c0[middle] - c1[middle]).norm(), 2.0 * (c0[corner] - c1[corner]).norm());
 }
 
-TEST(FaceSolver, EyelidsCloseOverTheEyeball) {
+// Rotation angle of vertex v about the eye centre's x-axis between the neutral face and X (+ = up).
+double lid_angle(const fm::Eye& eye, const fm::Vertices& X, int v) {
+  const Eigen::Vector3d p0 = face().mesh.vertices.row(v).transpose() - eye.centre;
+  const Eigen::Vector3d p1 = X.row(v).transpose() - eye.centre;
+  return std::atan2(p1.y(), p1.z()) - std::atan2(p0.y(), p0.z());
+}
+
+TEST(FaceSolver, PalpebralisTightensTheLidsButNeverClosesThem) {
+  // FACS AU7 (lid tightener): the aperture narrows, the lower lid rises; closure is AU45
+  // (eye_blink).
   const auto& eye = face().rig.eyes[0];  // right
-  const auto d = solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_palpebralis_l", 1.0}}));
+  const SolverOptions o;
+  const double a0 = eye_aperture(face().rig, face().mesh.vertices, 0);
+  EXPECT_GT(a0, 0.008);  // neutral: an open eye (the default face's opening is 11.6 mm)
+  EXPECT_NEAR(eye_aperture(face().rig, face().mesh.vertices, 1), a0, 1e-12);
+  SolverOptions off;  // no coupling: the right lid alone moves (no squeeze)
+  off.eyelid_coupling = EyelidCoupling::Off;
+  const FaceSolver uncoupled(face().mesh, face().rig, off);
+  const auto d = uncoupled.deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}}));
+  // hand value: margin lid vertices turn by tighten·close_angle·weight about the eye centre
   for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {
-    if (eye.upper_lid_weights[k] < 0.99) continue;
-    const int v = eye.upper_lid[k];
-    EXPECT_LT(d.vertices(v, 1), face().mesh.vertices(v, 1) - 0.003);  // margin comes down by millimetres
-    EXPECT_NEAR((d.vertices.row(v).transpose() - eye.centre).norm(),
-                (face().mesh.vertices.row(v).transpose() - eye.centre).norm(), 1e-12);  // rotation about the centre
+    if (eye.upper_lid_weights[k] < 0.999) continue;
+    EXPECT_NEAR(lid_angle(eye, d.vertices, eye.upper_lid[k]),
+                -o.lid_tighten_upper * eye.close_angle * eye.upper_lid_weights[k], 1e-9);
+  }
+  for (std::size_t k = 0; k < eye.lower_lid.size(); ++k) {
+    if (eye.lower_lid_weights[k] < 0.999) continue;
+    EXPECT_NEAR(lid_angle(eye, d.vertices, eye.lower_lid[k]),
+                o.lid_tighten_lower * eye.close_angle * eye.lower_lid_weights[k], 1e-9);
+  }
+  // about a third of the neutral aperture is left, most of the narrowing from the lower lid
+  const double a1 = eye_aperture(face().rig, d.vertices, 0);
+  EXPECT_GT(a1, 0.25 * a0);
+  EXPECT_LT(a1, 0.42 * a0);
+  EXPECT_NEAR(eye_aperture(face().rig, d.vertices, 1), a0, 1e-12);  // the left eye stays
+  const auto both = solver().deform(
+      values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_palpebralis_l", 1.0}}));
+  EXPECT_NEAR(eye_aperture(face().rig, both.vertices, 0), a1, 1e-6);
+  EXPECT_NEAR(eye_aperture(face().rig, both.vertices, 1), a1, 1e-6);
+  // monotone in the level and never below 30 % of neutral, with or without the orbitalis squeeze
+  double previous = a0;
+  for (double t = 0.1; t <= 1.0001; t += 0.1) {
+    for (double sq : {0.0, 1.0}) {
+      const auto x = solver().deform(
+          values({{"orbicularis_oculi_palpebralis_r", t}, {"orbicularis_oculi_orbitalis_r", sq}}));
+      EXPECT_GE(eye_aperture(face().rig, x.vertices, 0), 0.25 * a0) << t << " " << sq;
+      if (sq == 0.0) {
+        const double a = eye_aperture(face().rig, x.vertices, 0);
+        EXPECT_LT(a, previous);
+        previous = a;
+      }
+    }
   }
   // the levator opens: the margin goes up
-  const auto o = solver().deform(values({{"levator_palpebrae_superioris_r", 1.0}}));
-  const int v = eye.upper_lid[static_cast<std::size_t>(std::max_element(eye.upper_lid_weights.begin(), eye.upper_lid_weights.end()) - eye.upper_lid_weights.begin())];
-  EXPECT_GT(o.vertices(v, 1), face().mesh.vertices(v, 1));
-  // closing one eye alone squeezes it (coupling): the orbitalis sphincter moves the right cheek
+  const auto up = solver().deform(values({{"levator_palpebrae_superioris_r", 1.0}}));
+  EXPECT_GT(eye_aperture(face().rig, up.vertices, 0), a0 + 0.002);
+  // a blink closes the eye whatever the tightener does
+  const auto shut =
+      solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"eye_blink_r", 1.0}}));
+  EXPECT_EQ(eye_aperture(face().rig, shut.vertices, 0), 0.0);
+  // tightening one eye alone squeezes it (coupling): the orbitalis sphincter moves the right cheek
   const auto one = solver().deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}}));
-  const auto lid_only = FaceSolver(face().mesh, face().rig).deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_palpebralis_l", 1.0}}));
+  const auto lid_only = uncoupled.deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}}));
   EXPECT_GT((one.vertices - lid_only.vertices).cwiseAbs().maxCoeff(), 1e-4);
+  // bad input
+  EXPECT_THROW(eye_aperture(face().rig, face().mesh.vertices, 2), InvalidInput);
+  EXPECT_THROW(eye_aperture(face().rig, fm::Vertices(10, 3), 0), InvalidInput);
+  SolverOptions bad;
+  bad.lid_tighten_upper = 0.5, bad.lid_tighten_lower = 0.5;  // sum > 0.8 could shut the eye
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad.lid_tighten_upper = -0.1, bad.lid_tighten_lower = 0.3;
+  EXPECT_THROW(bad.validate(), InvalidInput);
 }
 
 TEST(FaceSolver, BlinkClosesOnlyItsLidAndOverridesTheLevator) {
@@ -486,9 +540,11 @@ TEST(FaceSolver, EyelidCouplingModes) {
   const auto p = values({{"orbicularis_oculi_orbitalis_r", 0.6}});
   SolverOptions thesis;
   thesis.eyelid_coupling = EyelidCoupling::Thesis;
-  const auto closed = FaceSolver(f.mesh, f.rig, thesis).deform(p);
-  const auto open = solver().deform(p);  // default OneEye: squeezing alone does not close the lid
-  EXPECT_LT(closed.vertices(v, 1), open.vertices(v, 1) - 0.003);
+  const auto tight = FaceSolver(f.mesh, f.rig, thesis).deform(p);  // c_cl = min(1, 2·0.6) = 1
+  const auto open = solver().deform(p);  // default OneEye: squeezing alone does not tighten the lid
+  EXPECT_LT(tight.vertices(v, 1), open.vertices(v, 1) - 0.0005);
+  EXPECT_LT(eye_aperture(f.rig, tight.vertices, 0), 0.75 * eye_aperture(f.rig, open.vertices, 0));
+  EXPECT_GT(eye_aperture(f.rig, tight.vertices, 0), 0.25 * eye_aperture(f.rig, f.mesh.vertices, 0));
   EXPECT_EQ(eyelid_coupling_from_string(to_string(EyelidCoupling::Off)), EyelidCoupling::Off);
   EXPECT_THROW(eyelid_coupling_from_string("wink"), InvalidInput);
 }

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "emoface/channels/parameters.hpp"
@@ -11,6 +13,7 @@
 #include "emoface/core/video.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/muscles/parameters.hpp"
+#include "emoface/muscles/solver.hpp"
 #include "emoface/parlee/io.hpp"
 #include "test_match.hpp"
 
@@ -114,6 +117,52 @@ TEST(Pipeline, EveryStageInRange) {
   double moved = 0;
   for (const auto& v : r.gltf_frames) moved = std::max(moved, (v - face().mesh.vertices).cwiseAbs().maxCoeff());
   EXPECT_GT(moved, 1e-3);
+}
+
+TEST(Pipeline, FearNarrowsButNeverClosesTheEyes) {
+  // Issue 14: Obie spent the first 40 minutes with his eyes shut because fear saturated the lid
+  // muscle. Now orbicularis oculi palpebralis only tightens (AU7); closure is eye_blink (AU45).
+  // Every frame of the tracks outside blinks keeps at least 30 % of the neutral aperture.
+  const SpeechRun& run = speech_run();
+  const auto& tracks = run.result.head.tracks;
+  double fear = 0.0;
+  for (const auto& rec : run.result.timeline)
+    fear = std::max(fear, rec.basic[3]);  // ESV order: fear 4th
+  EXPECT_GT(fear, 0.5);  // the short match frightens him (the against team attacks, then scores)
+  const muscles::FaceSolver solver(face().mesh, face().rig);
+  const double a0 = muscles::eye_aperture(face().rig, face().mesh.vertices, 0);
+  std::vector<int> index(tracks.names.size());
+  for (std::size_t c = 0; c < tracks.names.size(); ++c)
+    index[c] = static_cast<int>(muscles::parameter_index(tracks.names[c]));
+  const std::size_t blink_l = muscles::parameter_index("eye_blink_l"),
+                    blink_r = muscles::parameter_index("eye_blink_r");
+  std::vector<double> values(muscles::kParameterCount);
+  muscles::Deformation d;
+  muscles::DeformWorkspace ws;
+  std::size_t checked = 0;
+  double smallest = 1e9, largest_palpebralis = 0.0;
+  for (std::size_t f = 0; f < tracks.frames(); ++f) {
+    std::fill(values.begin(), values.end(), 0.0);
+    for (std::size_t c = 0; c < tracks.names.size(); ++c)
+      values[static_cast<std::size_t>(index[c])] = tracks.at(f, c);
+    if (values[blink_l] > 0.0 || values[blink_r] > 0.0)
+      continue;  // a blink closes the eyes on purpose
+    for (const char* pose : {"head_yaw", "head_pitch", "head_roll"})
+      values[muscles::parameter_index(pose)] = 0.0;
+    largest_palpebralis = std::max(
+        largest_palpebralis, values[muscles::parameter_index("orbicularis_oculi_palpebralis_r")]);
+    solver.deform(values, d, ws);
+    for (int e = 0; e < 2; ++e)
+      smallest = std::min(smallest, muscles::eye_aperture(face().rig, d.vertices, e) / a0);
+    ++checked;
+  }
+  std::printf(
+      "fear up to %.2f, palpebralis up to %.2f: smallest aperture %.2f of neutral over %zu "
+      "frames\n",
+      fear, largest_palpebralis, smallest, checked);
+  EXPECT_GT(checked, tracks.frames() / 2);
+  EXPECT_GT(largest_palpebralis, 0.3);  // the tightener is used
+  EXPECT_GE(smallest, 0.30);
 }
 
 TEST(Pipeline, DurationsAgree) {

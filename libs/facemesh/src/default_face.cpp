@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -181,6 +182,22 @@ int nearest_xy(const std::vector<Eigen::Vector3d>& pts, const std::vector<int>& 
     if (d < bd) bd = d, best = i;
   }
   return best;
+}
+
+// Brows (step 7): signed vertical distance (m) from the brow band's edge, < 0 inside. The band
+// follows brow_y(|x|) for 0.010 < |x| < 0.05, half thickness 4.2 mm tapering laterally.
+double brow_distance(double x, double y) {
+  const double ax = std::abs(x);
+  if (ax <= 0.010 || ax >= 0.05) return 1.0;
+  const double brow_y = 0.019 + 0.006 * std::exp(-std::pow((ax - 0.03) / 0.012, 2)) -
+                        0.004 * std::max(0.0, (ax - 0.04) / 0.01);
+  const double half = 0.0042 - 0.04 * std::max(0.0, ax - 0.042);
+  return std::abs(y - brow_y) - half;
+}
+// Hairline height at a point of the head (x, z): lower at the sides and behind.
+double hair_line(double x, double z) {
+  const double front = z / std::sqrt(x * x + z * z + 1e-12);  // cos(azimuth)
+  return 0.076 - 0.085 * (1.0 - front) / 2.0 - 0.03 * smoothstep(0.0, -1.0, front);
 }
 
 }  // namespace
@@ -382,7 +399,7 @@ Face make_default_face() {
     }
     for (int s = 0; s < segs; ++s) tris.push_back({back, ring_start.back() + (s + 1) % segs, ring_start.back() + s});
     eye.close_angle = 0.80;
-    eye.open_angle = 0.18;
+    eye.open_angle = 0.26;  // AU5 shows the white above the iris (was 0.18, issue 14)
     eye.yaw_limit = 0.55;
     eye.pitch_limit = 0.38;
   }
@@ -429,8 +446,12 @@ Face make_default_face() {
     sampler.evaluate(lips.control_points, samples, 0);
     for (long s = 0; s < samples.rows(); ++s) {
       pts.push_back(samples.row(s));
-      // the border row is skin: the zipper triangles to the rim then carry no colour edge
-      materials.push_back(s < lips.samples_around ? Material::Skin : Material::Lip);
+      // the border row is skin: the zipper triangles to the rim then carry no colour edge; the two
+      // innermost rows, which roll into the mouth, are its dark interior (seen when the lips part)
+      const long row = s / lips.samples_around;
+      materials.push_back(row == 0                         ? Material::Skin
+                          : row >= lips.samples_across - 2 ? Material::MouthInterior
+                                                           : Material::Lip);
     }
     const int na = lips.samples_around, nac = lips.samples_across;
     auto L = [&](int i, int j) { return lips.first_vertex + j * na + ((i % na) + na) % na; };
@@ -476,6 +497,62 @@ Face make_default_face() {
   }
   const int lip_begin = lips.first_vertex;
 
+  // ---- 4b. teeth (issue 14): an upper and a lower row seen when the lips part, as curved strips
+  // behind the lips' inner edge; the upper row is fixed to the skull, the lower one rides on the
+  // jaw.
+  std::vector<int> lower_teeth;
+  {
+    const double contact_y = kMouthCy + 0.0012;
+    const double z0 =
+        front_z(0.0, contact_y) - 0.0110;  // incisors' front, behind the inner lip rows
+    const int n = 18;  // columns; every third one is a gap between two teeth (set back 0.8 mm)
+    // Each row is a closed slab (front and back grids 2.5 mm apart, joined along the border) so
+    // that the head stays a closed surface.
+    auto add_strip = [&](double y_top, double y_bottom, double back, std::vector<int>* ids) {
+      const int rows = 3, cols = n + 1;
+      const int first = static_cast<int>(pts.size());
+      for (int side = 0; side < 2; ++side) {
+        for (int j = 0; j < rows; ++j) {
+          const double y = y_top + (y_bottom - y_top) * j / (rows - 1);
+          for (int i = 0; i < cols; ++i) {
+            const double x = -0.019 + 0.038 * i / n;
+            const double gap = side == 0 && i % 3 == 0 ? 0.0008 : 0.0;
+            pts.push_back({x, y, z0 - back - gap - 32.0 * x * x - 0.0025 * side});
+            materials.push_back(Material::Teeth);
+            if (ids) ids->push_back(static_cast<int>(pts.size()) - 1);
+          }
+        }
+      }
+      auto F = [&](int j, int i) { return first + j * cols + i; };
+      auto B = [&](int j, int i) { return first + rows * cols + j * cols + i; };
+      // a quad a-b-c-d split in two, turned so that its normal points along `out`
+      auto quad = [&](int a, int b, int c, int d, const Eigen::Vector3d& out) {
+        const Eigen::Vector3d n1 =
+            (pts[static_cast<std::size_t>(b)] - pts[static_cast<std::size_t>(a)])
+                .cross(pts[static_cast<std::size_t>(c)] - pts[static_cast<std::size_t>(a)]);
+        if (n1.dot(out) >= 0.0)
+          tris.push_back({a, b, c}), tris.push_back({a, c, d});
+        else
+          tris.push_back({a, c, b}), tris.push_back({a, d, c});
+      };
+      const Eigen::Vector3d ex(1, 0, 0), ey(0, 1, 0), ez(0, 0, 1);
+      for (int j = 0; j + 1 < rows; ++j) {
+        for (int i = 0; i + 1 < cols; ++i) {
+          quad(F(j, i), F(j + 1, i), F(j + 1, i + 1), F(j, i + 1), ez);
+          quad(B(j, i), B(j + 1, i), B(j + 1, i + 1), B(j, i + 1), -ez);
+        }
+        quad(F(j, 0), F(j + 1, 0), B(j + 1, 0), B(j, 0), -ex);
+        quad(F(j, n), F(j + 1, n), B(j + 1, n), B(j, n), ex);
+      }
+      for (int i = 0; i + 1 < cols; ++i) {
+        quad(F(0, i), F(0, i + 1), B(0, i + 1), B(0, i), ey);
+        quad(F(rows - 1, i), F(rows - 1, i + 1), B(rows - 1, i + 1), B(rows - 1, i), -ey);
+      }
+    };
+    // the edges stay clear of the lips' contact line, so closed lips show a dark seam, not teeth
+    add_strip(contact_y + 0.0090, contact_y + 0.0022, 0.0, nullptr);
+    add_strip(contact_y - 0.0030, contact_y - 0.0100, 0.0012, &lower_teeth);
+  }
   // ---- 5. mesh ----
   face.mesh.vertices.resize(static_cast<long>(pts.size()), 3);
   for (std::size_t k = 0; k < pts.size(); ++k) face.mesh.vertices.row(static_cast<long>(k)) = pts[k];
@@ -510,14 +587,9 @@ Face make_default_face() {
   // ---- 7. materials: brows and hair ----
   for (int k = 0; k < skin_count; ++k) {
     const auto& p = pts[static_cast<std::size_t>(k)];
-    const double ax = std::abs(p.x());
-    const double brow_y = 0.019 + 0.006 * std::exp(-std::pow((ax - 0.03) / 0.012, 2)) - 0.004 * std::max(0.0, (ax - 0.04) / 0.01);
-    if (p.z() > 0.03 && ax > 0.010 && ax < 0.05 && std::abs(p.y() - brow_y) < 0.0042 - 0.04 * std::max(0.0, ax - 0.042)) {
+    if (p.z() > 0.03 && brow_distance(p.x(), p.y()) < 0.0)
       materials[static_cast<std::size_t>(k)] = Material::Brow;
-    }
-    const double front = p.z() / std::sqrt(p.x() * p.x() + p.z() * p.z() + 1e-12);  // cos(azimuth)
-    const double hair_y = 0.076 - 0.085 * (1.0 - front) / 2.0 - 0.03 * smoothstep(0.0, -1.0, front);
-    if (p.y() > hair_y) materials[static_cast<std::size_t>(k)] = Material::Hair;
+    if (p.y() > hair_line(p.x(), p.z())) materials[static_cast<std::size_t>(k)] = Material::Hair;
   }
   rig.materials = materials;
 
@@ -543,7 +615,7 @@ Face make_default_face() {
 
   // ---- 9. jaw (thesis §2.4.4) ----
   rig.jaw.pivot = {0.0, -0.022, -0.005};
-  rig.jaw.max_angle = 0.32;
+  rig.jaw.max_angle = 0.40;
   for (int k = 0; k < skin_count; ++k) {
     const auto& p = pts[static_cast<std::size_t>(k)];
     if (p.y() > kMouthCy + 0.002) continue;
@@ -554,6 +626,10 @@ Face make_default_face() {
       rig.jaw.vertices.push_back(k);
       rig.jaw.weights.push_back(std::min(1.0, w));
     }
+  }
+  for (int v : lower_teeth) {
+    rig.jaw.vertices.push_back(v);
+    rig.jaw.weights.push_back(1.0);
   }
   rig.head_pivot = {0.0, -0.09, -0.02};
 
@@ -645,21 +721,186 @@ Face make_default_face() {
   };
   using R = Region;
   const std::vector<Def> defs = {
-      {"zygomatic_major", "", P(-0.060, -0.016, 0.010), P(-0.026, -0.066, 0.002), 0.42, 0.75, 1.35, 0.0125, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
-      {"zygomatic_minor", "", P(-0.046, -0.016, 0.008), P(-0.017, -0.058, 0.002), 0.35, 0.75, 1.3, 0.008, {R::RightMiddleFace}, true, 0, 0.0},
-      {"triangularis", "", P(-0.046, -0.116, 0.018), P(-0.026, -0.068, 0.002), 0.40, 0.75, 1.3, 0.010, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
-      {"risorius", "", P(-0.070, -0.072, 0.015), P(-0.026, -0.067, 0.002), 0.30, 0.8, 1.3, 0.008, {R::RightLowerFace, R::RightMiddleFace}, true, 0, 0.0},
-      {"depressor_labii", "", P(-0.016, -0.106, 0.008), P(-0.010, -0.076, 0.002), 0.45, 0.75, 1.35, 0.0065, {R::RightLowerFace}, true, 0, 0.0},
-      {"mentalis", "", P(-0.006, -0.082, 0.012), P(-0.006, -0.106, 0.002), 0.55, 0.75, 1.4, 0.006, {R::RightLowerFace}, true, 2, 0.0006},
-      {"frontalis_medialis", "_0", P(-0.007, 0.078, 0.006), P(-0.008, 0.021, 0.001), 0.40, 0.75, 1.2, 0.0075, {R::RightUpperFace, R::LeftUpperFace}, false, 3, 0.0016},
-      {"frontalis_medialis", "_1", P(-0.018, 0.080, 0.006), P(-0.019, 0.022, 0.001), 0.40, 0.75, 1.2, 0.0075, {R::RightUpperFace, R::LeftUpperFace}, false, 3, 0.0016},
-      {"frontalis_lateralis", "_0", P(-0.032, 0.080, 0.006), P(-0.034, 0.024, 0.001), 0.40, 0.75, 1.2, 0.0075, {R::RightUpperFace}, false, 3, 0.0016},
-      {"frontalis_lateralis", "_1", P(-0.045, 0.074, 0.006), P(-0.046, 0.019, 0.001), 0.40, 0.75, 1.2, 0.0070, {R::RightUpperFace}, false, 3, 0.0016},
-      {"levator_labii_nasi", "", P(-0.010, 0.004, 0.006), P(-0.015, -0.040, 0.002), 0.28, 0.8, 1.35, 0.0065, {R::RightMiddleFace, R::RightUpperFace}, true, 3, 0.0005},
-      {"levator_labii_superioris", "", P(-0.027, -0.016, 0.006), P(-0.014, -0.058, 0.002), 0.32, 0.8, 1.3, 0.0075, {R::RightMiddleFace, R::RightUpperFace}, true, 0, 0.0},
-      {"depressor_supercilii", "", P(-0.008, -0.002, 0.006), P(-0.015, 0.023, 0.001), 0.40, 0.8, 1.35, 0.0045, {R::RightMiddleFace, R::RightUpperFace}, false, 0, 0.0},
-      {"corrugator_supercilii", "", P(-0.005, 0.012, 0.007), P(-0.030, 0.025, 0.001), 0.40, 0.8, 1.3, 0.0060, {R::RightMiddleFace, R::RightUpperFace}, false, 2, 0.0006},
-      {"depressor_glabellae", "", P(-0.003, -0.014, 0.006), P(-0.004, 0.020, 0.001), 0.30, 0.8, 1.3, 0.0045, {R::RightMiddleFace, R::RightUpperFace}, false, 2, 0.0005},
+      {"zygomatic_major",
+       "",
+       P(-0.060, -0.016, 0.010),
+       P(-0.026, -0.066, 0.002),
+       0.42,
+       0.75,
+       1.35,
+       0.0170,
+       {R::RightLowerFace, R::RightMiddleFace},
+       true,
+       0,
+       0.0},
+      {"zygomatic_minor",
+       "",
+       P(-0.046, -0.016, 0.008),
+       P(-0.017, -0.058, 0.002),
+       0.35,
+       0.75,
+       1.3,
+       0.015,
+       {R::RightMiddleFace},
+       true,
+       0,
+       0.0},
+      {"triangularis",
+       "",
+       P(-0.046, -0.116, 0.018),
+       P(-0.026, -0.068, 0.002),
+       0.40,
+       0.75,
+       1.3,
+       0.014,
+       {R::RightLowerFace, R::RightMiddleFace},
+       true,
+       0,
+       0.0},
+      {"risorius",
+       "",
+       P(-0.070, -0.072, 0.015),
+       P(-0.026, -0.067, 0.002),
+       0.30,
+       0.8,
+       1.3,
+       0.011,
+       {R::RightLowerFace, R::RightMiddleFace},
+       true,
+       0,
+       0.0},
+      {"depressor_labii",
+       "",
+       P(-0.016, -0.106, 0.008),
+       P(-0.010, -0.076, 0.002),
+       0.45,
+       0.75,
+       1.35,
+       0.0100,
+       {R::RightLowerFace},
+       true,
+       0,
+       0.0},
+      {"mentalis",
+       "",
+       P(-0.006, -0.082, 0.012),
+       P(-0.006, -0.106, 0.002),
+       0.55,
+       0.75,
+       1.4,
+       0.006,
+       {R::RightLowerFace},
+       true,
+       2,
+       0.0006},
+      {"frontalis_medialis",
+       "_0",
+       P(-0.007, 0.080, 0.006),
+       P(-0.008, 0.022, 0.001),
+       0.40,
+       0.75,
+       1.2,
+       0.0120,
+       {R::RightUpperFace, R::LeftUpperFace},
+       false,
+       3,
+       0.0016},
+      {"frontalis_medialis",
+       "_1",
+       P(-0.018, 0.080, 0.006),
+       P(-0.019, 0.022, 0.001),
+       0.40,
+       0.75,
+       1.2,
+       0.0120,
+       {R::RightUpperFace, R::LeftUpperFace},
+       false,
+       3,
+       0.0016},
+      {"frontalis_lateralis",
+       "_0",
+       P(-0.032, 0.080, 0.006),
+       P(-0.034, 0.022, 0.001),
+       0.40,
+       0.75,
+       1.2,
+       0.0110,
+       {R::RightUpperFace},
+       false,
+       3,
+       0.0016},
+      {"frontalis_lateralis",
+       "_1",
+       P(-0.045, 0.078, 0.006),
+       P(-0.046, 0.020, 0.001),
+       0.40,
+       0.75,
+       1.2,
+       0.0105,
+       {R::RightUpperFace},
+       false,
+       3,
+       0.0016},
+      {"levator_labii_nasi",
+       "",
+       P(-0.010, 0.004, 0.006),
+       P(-0.015, -0.040, 0.002),
+       0.28,
+       0.8,
+       1.35,
+       0.0065,
+       {R::RightMiddleFace, R::RightUpperFace},
+       true,
+       3,
+       0.0005},
+      {"levator_labii_superioris",
+       "",
+       P(-0.027, -0.016, 0.006),
+       P(-0.014, -0.058, 0.002),
+       0.32,
+       0.8,
+       1.3,
+       0.0100,
+       {R::RightMiddleFace, R::RightUpperFace},
+       true,
+       0,
+       0.0},
+      {"depressor_supercilii",
+       "",
+       P(-0.008, -0.002, 0.006),
+       P(-0.015, 0.023, 0.001),
+       0.40,
+       0.8,
+       1.35,
+       0.0045,
+       {R::RightMiddleFace, R::RightUpperFace},
+       false,
+       0,
+       0.0},
+      {"corrugator_supercilii",
+       "",
+       P(-0.005, 0.018, 0.007),
+       P(-0.030, 0.025, 0.001),
+       0.40,
+       0.8,
+       1.3,
+       0.0060,
+       {R::RightMiddleFace, R::RightUpperFace},
+       false,
+       2,
+       0.0006},
+      {"depressor_glabellae",
+       "",
+       P(-0.003, -0.014, 0.006),
+       P(-0.004, 0.020, 0.001),
+       0.30,
+       0.8,
+       1.3,
+       0.0045,
+       {R::RightMiddleFace, R::RightUpperFace},
+       false,
+       2,
+       0.0005},
   };
   for (int side = 0; side < 2; ++side) {
     const double mx = side == 0 ? 1.0 : -1.0;
@@ -699,6 +940,107 @@ Face make_default_face() {
     rig.muscles.push_back(oo);
   }
   return face;
+}
+
+namespace {
+
+// Paint frame: frontal (x, y) of the neutral face, 0.25 mm per texel.
+constexpr double kPaintX0 = -0.086, kPaintX1 = 0.086, kPaintY0 = -0.140, kPaintY1 = 0.128;
+constexpr double kPaintTexel = 0.00025;
+const Eigen::Vector3f kPaintSkin(0.87f, 0.69f, 0.58f);
+const Eigen::Vector3f kPaintBrow(0.17f, 0.115f, 0.085f);
+const Eigen::Vector3f kPaintHair(0.25f, 0.17f, 0.115f);
+
+Paint build_default_face_paint() {
+  const Face face = make_default_face();
+  Paint paint;
+  paint.width = static_cast<int>(std::lround((kPaintX1 - kPaintX0) / kPaintTexel));
+  paint.height = static_cast<int>(std::lround((kPaintY1 - kPaintY0) / kPaintTexel));
+  // Depth of the head's front surface on a 1 mm grid (bilinear in between) for the hairline, which
+  // depends on the azimuth; only needed where hair can be (y > 1 cm).
+  const double zs = 0.001;
+  const int zw = static_cast<int>(std::ceil((kPaintX1 - kPaintX0) / zs)) + 1;
+  const int zh = static_cast<int>(std::ceil((kPaintY1 - 0.010) / zs)) + 1;
+  std::vector<double> zgrid(static_cast<std::size_t>(zw) * zh);
+  for (int j = 0; j < zh; ++j)
+    for (int i = 0; i < zw; ++i)
+      zgrid[static_cast<std::size_t>(j) * zw + i] = front_z(kPaintX0 + i * zs, 0.010 + j * zs);
+  auto z_at = [&](double x, double y) {
+    const double fx = std::clamp((x - kPaintX0) / zs, 0.0, zw - 1.001),
+                 fy = std::clamp((y - 0.010) / zs, 0.0, zh - 1.001);
+    const int i = static_cast<int>(fx), j = static_cast<int>(fy);
+    const double a = fx - i, b = fy - j;
+    auto g = [&](int ii, int jj) { return zgrid[static_cast<std::size_t>(jj) * zw + ii]; };
+    return (1 - b) * ((1 - a) * g(i, j) + a * g(i + 1, j)) +
+           b * ((1 - a) * g(i, j + 1) + a * g(i + 1, j + 1));
+  };
+  const double soft = 0.0003;  // half width of the anti-aliased edges, m
+  paint.texels.resize(static_cast<std::size_t>(paint.width) * paint.height);
+  for (int j = 0; j < paint.height; ++j) {
+    const double y = kPaintY0 + (j + 0.5) * kPaintTexel;
+    for (int i = 0; i < paint.width; ++i) {
+      const double x = kPaintX0 + (i + 0.5) * kPaintTexel;
+      Eigen::Vector3f c = kPaintSkin;
+      // brows inside the Brow material's band, slimmer than it (the band is as wide as the coarse
+      // grid needs): 2.4 mm half height medially tapering to 1.0 mm at the tail, rounded head, soft
+      // edges; a little lighter towards the tail
+      {
+        const double ax = std::abs(x);
+        const double t = std::clamp((ax - 0.011) / (0.050 - 0.011), 0.0, 1.0);
+        const double half = 0.0024 - 0.0014 * t * t;
+        // a gentle arch peaking two thirds of the way out (t^1·(1 − t)^0.55 peaks at t = 0.645)
+        const double arch = t * std::pow(1.0 - t, 0.55) / 0.3652;
+        const double centre = 0.0203 + 0.0045 * arch - 0.0010 * t;
+        const double ends = smoothstep(0.0100, 0.0150, ax) * (1.0 - smoothstep(0.0460, 0.0505, ax));
+        const double brow =
+            ends * (1.0 - smoothstep(half - 2 * soft, half + soft, std::abs(y - centre)));
+        if (brow > 0.0) c += static_cast<float>(brow * (0.85 - 0.3 * t)) * (kPaintBrow - c);
+      }
+      if (y > 0.010) {
+        const double hair = smoothstep(-2 * soft, 2 * soft, y - hair_line(x, z_at(x, y)));
+        c += static_cast<float>(hair) * (kPaintHair - c);
+      }
+      paint.texels[static_cast<std::size_t>(j) * paint.width + i] = {c.x(), c.y(), c.z(), 1.0f};
+    }
+  }
+  // Coordinates: skin/brow/hair vertices of the front half (not the eye-socket caps) and the lips'
+  // border row (skin stitched to the rim); lips, eyes and the back of the head keep vertex colours.
+  const auto& X = face.mesh.vertices;
+  const auto& rig = face.rig;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  paint.uv.assign(static_cast<std::size_t>(X.rows()), Eigen::Vector2f(nan, nan));
+  std::vector<char> socket(static_cast<std::size_t>(X.rows()), 0);
+  for (const auto& eye : rig.eyes) {
+    for (long v = 0; v < X.rows(); ++v)
+      if ((X.row(v).transpose() - (eye.centre - Eigen::Vector3d(0, 0, 1.2 * eye.radius))).norm() <
+          1e-9)
+        socket[static_cast<std::size_t>(v)] = 1;  // the cap closing the socket behind the eyeball
+  }
+  for (long v = 0; v < X.rows(); ++v) {
+    const Material m = rig.materials[static_cast<std::size_t>(v)];
+    if (m != Material::Skin && m != Material::Brow && m != Material::Hair) continue;
+    if (X(v, 2) <= 0.0 || socket[static_cast<std::size_t>(v)]) continue;
+    if (v >= rig.lips.first_vertex && X(v, 2) < front_z(X(v, 0), X(v, 1)) - 0.02)
+      continue;  // mouth cavity
+    paint.uv[static_cast<std::size_t>(v)] = {
+        static_cast<float>((X(v, 0) - kPaintX0) / (kPaintX1 - kPaintX0)),
+        static_cast<float>((X(v, 1) - kPaintY0) / (kPaintY1 - kPaintY0))};
+  }
+  paint.validate(static_cast<std::size_t>(X.rows()));
+  return paint;
+}
+
+}  // namespace
+
+const Paint& default_face_paint() {
+  static const Paint paint = build_default_face_paint();
+  return paint;
+}
+
+const Paint* paint_for(const Rig& rig) {
+  static const std::vector<Material> materials = make_default_face().rig.materials;
+  return rig.vertex_count == materials.size() && rig.materials == materials ? &default_face_paint()
+                                                                            : nullptr;
 }
 
 }  // namespace emoface::facemesh

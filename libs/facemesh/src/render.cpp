@@ -1,5 +1,6 @@
 // Software rasteriser: perspective camera, z-buffer, per-pixel Phong shading (Bui Tuong Phong 1975,
-// the shading the thesis uses in §2.3), 2x2 supersampling, deferred shading; PNG through core::encode_png.
+// the shading the thesis uses in §2.3), 4-sample rotated-grid anti-aliasing, deferred shading,
+// optional surface paint (texture); PNG through core::encode_png.
 #include "emoface/facemesh/render.hpp"
 
 #include <algorithm>
@@ -7,9 +8,9 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
 
 #include <Eigen/Geometry>
-
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -39,6 +40,40 @@ void RenderOptions::validate() const {
   check(background.allFinite() && background.minCoeff() >= 0.0 && background.maxCoeff() <= 1.0, "background in [0,1]");
   check(shininess >= 1.0 && shininess <= 512.0, "shininess must be in [1, 512]");
   check(specular >= 0.0 && specular <= 1.0, "specular must be in [0, 1]");
+  check(normal_smoothing >= 0 && normal_smoothing <= 10, "normal_smoothing must be in [0, 10]");
+}
+
+void Paint::validate(std::size_t vertex_count) const {
+  if (width < 1 || width > 8192 || height < 1 || height > 8192)
+    throw InvalidInput("Paint: width/height must be in [1, 8192]");
+  if (texels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+    throw InvalidInput("Paint: texels must hold width*height values");
+  if (uv.size() != vertex_count) throw InvalidInput("Paint: one uv per vertex");
+  for (std::size_t v = 0; v < uv.size(); ++v) {
+    const Eigen::Vector2f& t = uv[v];
+    if (std::isnan(t.x()) || std::isnan(t.y())) continue;
+    if (!(t.x() >= 0.0f && t.x() <= 1.0f && t.y() >= 0.0f && t.y() <= 1.0f))
+      throw InvalidInput("Paint: uv of vertex " + std::to_string(v) + " outside [0, 1]");
+  }
+  for (const auto& c : texels) {
+    if (!c.allFinite() || !(c.minCoeff() >= 0.0f && c.maxCoeff() <= 1.0f))
+      throw InvalidInput("Paint: texel values must be in [0, 1]");
+  }
+}
+
+Eigen::Vector4f Paint::sample(float u, float v) const {
+  const float fx = std::clamp(u, 0.0f, 1.0f) * static_cast<float>(width) - 0.5f;
+  const float fy = std::clamp(v, 0.0f, 1.0f) * static_cast<float>(height) - 0.5f;
+  const int x0 = std::clamp(static_cast<int>(std::floor(fx)), 0, width - 1),
+            y0 = std::clamp(static_cast<int>(std::floor(fy)), 0, height - 1);
+  const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+  const float a = std::clamp(fx - static_cast<float>(x0), 0.0f, 1.0f),
+              b = std::clamp(fy - static_cast<float>(y0), 0.0f, 1.0f);
+  auto t = [&](int x, int y) -> const Eigen::Vector4f& {
+    return texels[static_cast<std::size_t>(y) * width + x];
+  };
+  return (1 - b) * ((1 - a) * t(x0, y0) + a * t(x1, y0)) +
+         b * ((1 - a) * t(x0, y1) + a * t(x1, y1));
 }
 
 std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
@@ -50,9 +85,13 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
       case Material::EyeWhite: out[v] = {0.94f, 0.93f, 0.90f}; break;
       case Material::Iris: out[v] = {0.30f, 0.42f, 0.55f}; break;
       case Material::Pupil: out[v] = {0.05f, 0.05f, 0.06f}; break;
-      case Material::Brow: out[v] = {0.33f, 0.22f, 0.16f}; break;
+      case Material::Brow:
+        out[v] = {0.16f, 0.11f, 0.08f};
+        break;
       case Material::Hair: out[v] = {0.28f, 0.19f, 0.13f}; break;
-      case Material::MouthInterior: out[v] = {0.35f, 0.12f, 0.12f}; break;
+      case Material::MouthInterior:
+        out[v] = {0.12f, 0.04f, 0.04f};
+        break;
       case Material::Teeth: out[v] = {0.92f, 0.90f, 0.84f}; break;
       case Material::Tongue: out[v] = {0.70f, 0.36f, 0.36f}; break;
       case Material::Lash: out[v] = {0.10f, 0.08f, 0.07f}; break;
@@ -92,19 +131,27 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig, const Mesh& mesh, i
   return colors;
 }
 
-Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const std::vector<std::uint8_t>& crease,
-             const RenderOptions& options) {
+Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
+             const std::vector<std::uint8_t>& crease, const RenderOptions& options,
+             const Paint* paint) {
   options.validate();
   const std::size_t nv = mesh.vertex_count();
   if (!colors.empty() && colors.size() != nv) throw InvalidInput("render: colors must be empty or one per vertex");
   if (!crease.empty() && crease.size() != nv) throw InvalidInput("render: crease must be empty or one per vertex");
+  if (paint != nullptr && paint->uv.size() != nv)
+    throw InvalidInput("render: paint must have one uv per vertex");
   for (long f = 0; f < mesh.faces.rows(); ++f) {
     for (int c = 0; c < 3; ++c) {
       if (mesh.faces(f, c) < 0 || static_cast<std::size_t>(mesh.faces(f, c)) >= nv) throw InvalidInput("render: face id out of range");
     }
   }
-  constexpr int ss = 2;  // supersampling factor
-  const int w = options.width * ss, h = options.height * ss;
+  // Anti-aliasing: 4 samples per pixel on a rotated grid (RGSS; offsets in 1/8 pixel, every row and
+  // column of the 4×4 sub-grid used once), box-filtered. Near-horizontal and near-vertical edges
+  // get 4 coverage levels instead of the 2 of a 2×2 ordered grid, at the same cost.
+  constexpr int kSamples = 4;
+  static constexpr double kOffX[kSamples] = {0.375, 0.875, 0.125, 0.625};
+  static constexpr double kOffY[kSamples] = {0.125, 0.375, 0.625, 0.875};
+  const int w = options.width, h = options.height;
   // Camera: orbit about the target; three-quarter = 35 degrees towards the subject's right.
   const double yaw = options.yaw + (options.view == View::ThreeQuarter ? -35.0 * kPi / 180.0 : 0.0);
   const Eigen::Vector3d forward(-std::sin(yaw), 0.0, -std::cos(yaw));  // camera looks along this
@@ -113,7 +160,38 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
   const Eigen::Vector3d up = right.cross(forward);
   const double focal = 0.5 * h / std::tan(0.5 * options.field_of_view);
 
-  const Vertices vn = vertex_normals(mesh.vertices, mesh.faces);
+  Vertices vn = vertex_normals(mesh.vertices, mesh.faces);
+  if (options.normal_smoothing > 0) {
+    // Shading normals averaged over the triangles around each vertex, each triangle weighted by its
+    // area and carrying the mean of its three vertex normals: the fans of thin triangles where a
+    // coarse rim meets a finer row (the lips' stitching) otherwise shade as wedges, and slivers
+    // carry almost no weight. Geometry, depth and crease vertices (face normals) are unchanged.
+    Vertices next(vn.rows(), 3);
+    std::vector<double> area(static_cast<std::size_t>(mesh.faces.rows()));
+    for (long f = 0; f < mesh.faces.rows(); ++f) {
+      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)),
+                            b = mesh.vertices.row(mesh.faces(f, 1)),
+                            c = mesh.vertices.row(mesh.faces(f, 2));
+      area[static_cast<std::size_t>(f)] = 0.5 * (b - a).cross(c - a).norm();
+    }
+    for (int it = 0; it < options.normal_smoothing; ++it) {
+      next.setZero();
+      for (long f = 0; f < mesh.faces.rows(); ++f) {
+        const Eigen::RowVector3d m =
+            area[static_cast<std::size_t>(f)] *
+            (vn.row(mesh.faces(f, 0)) + vn.row(mesh.faces(f, 1)) + vn.row(mesh.faces(f, 2)));
+        for (int k = 0; k < 3; ++k) next.row(mesh.faces(f, k)) += m;
+      }
+      for (long v = 0; v < next.rows(); ++v) {
+        const double len = next.row(v).norm();
+        if (len > 0.0)
+          next.row(v) /= len;
+        else
+          next.row(v) = vn.row(v);
+      }
+      std::swap(vn, next);
+    }
+  }
   const Vertices fn = face_normals(mesh.vertices, mesh.faces);
   std::vector<Eigen::Vector3d> screen(nv);  // x, y pixels; z = depth along forward
   for (std::size_t v = 0; v < nv; ++v) {
@@ -124,7 +202,7 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
   // Pass 1 (visibility): z-buffer with the winning face and its perspective-correct barycentric weights
   // per sample. Pass 2 shades each visible sample once (deferred shading), so hidden surfaces cost no
   // lighting. The winner is the same as shading in submission order with a strict depth test.
-  const std::size_t samples = static_cast<std::size_t>(w) * h;
+  const std::size_t samples = static_cast<std::size_t>(w) * h * kSamples;
   std::vector<double> inv_depth(samples, 0.0);  // 1/z: interpolates linearly in screen space, larger = closer
   std::vector<std::int32_t> face_of(samples, -1);
   std::vector<float> bary(2 * samples);
@@ -136,29 +214,34 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
     if (area == 0.0) continue;
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
-    const int x1 = std::min(w - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
+    const int x1 = std::min(w - 1, static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}))));
     const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
-    const int y1 = std::min(h - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
+    const int y1 = std::min(h - 1, static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}))));
     if (x0 > x1 || y0 > y1) continue;
-    // Edge functions w0(px, py), w1(px, py) are affine: step them along x.
+    // Edge functions are affine in the sample position (px, py): w0 = k0 + px·d0x + py·d0y, ...
     const double inv_area = 1.0 / area;
-    const double d0x = -(c.y() - b.y()) * inv_area, d1x = -(a.y() - c.y()) * inv_area;
+    const double d0x = (b.y() - c.y()) * inv_area, d0y = (c.x() - b.x()) * inv_area;
+    const double d1x = (c.y() - a.y()) * inv_area, d1y = (a.x() - c.x()) * inv_area;
+    const double k0 = (b.x() * c.y() - b.y() * c.x()) * inv_area,
+                 k1 = (c.x() * a.y() - c.y() * a.x()) * inv_area;
     const double iza = 1.0 / a.z(), izb = 1.0 / b.z(), izc = 1.0 / c.z();
     for (int y = y0; y <= y1; ++y) {
-      const double py = y + 0.5, px0 = x0 + 0.5;
-      double w0 = ((b.x() - px0) * (c.y() - py) - (b.y() - py) * (c.x() - px0)) * inv_area;
-      double w1 = ((c.x() - px0) * (a.y() - py) - (c.y() - py) * (a.x() - px0)) * inv_area;
-      std::size_t idx = static_cast<std::size_t>(y) * w + x0;
-      for (int x = x0; x <= x1; ++x, ++idx, w0 += d0x, w1 += d1x) {
-        const double w2 = 1.0 - w0 - w1;
-        if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
-        const double q0 = w0 * iza, q1 = w1 * izb, qs = q0 + q1 + w2 * izc;
-        if (qs <= inv_depth[idx]) continue;  // not closer (z = 1/qs ≥ the stored depth)
-        inv_depth[idx] = qs;
-        face_of[idx] = static_cast<std::int32_t>(f);
-        const double z = 1.0 / qs;
-        bary[2 * idx] = static_cast<float>(q0 * z);
-        bary[2 * idx + 1] = static_cast<float>(q1 * z);
+      for (int s = 0; s < kSamples; ++s) {
+        const double py = y + kOffY[s], px0 = x0 + kOffX[s];
+        double w0 = k0 + px0 * d0x + py * d0y;
+        double w1 = k1 + px0 * d1x + py * d1y;
+        std::size_t idx = (static_cast<std::size_t>(y) * w + x0) * kSamples + s;
+        for (int x = x0; x <= x1; ++x, idx += kSamples, w0 += d0x, w1 += d1x) {
+          const double w2 = 1.0 - w0 - w1;
+          if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
+          const double q0 = w0 * iza, q1 = w1 * izb, qs = q0 + q1 + w2 * izc;
+          if (qs <= inv_depth[idx]) continue;  // not closer (z = 1/qs ≥ the stored depth)
+          inv_depth[idx] = qs;
+          face_of[idx] = static_cast<std::int32_t>(f);
+          const double z = 1.0 / qs;
+          bary[2 * idx] = static_cast<float>(q0 * z);
+          bary[2 * idx + 1] = static_cast<float>(q1 * z);
+        }
       }
     }
   }
@@ -183,15 +266,34 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     const Eigen::Vector3d& a = screen[ids[0]];
     const Eigen::Vector3d& b = screen[ids[1]];
     const Eigen::Vector3d& c = screen[ids[2]];
-    if ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()) > 0.0) return cavity;  // back face
+    const bool back = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()) > 0.0;
     const double w0 = bary[2 * idx], w1 = bary[2 * idx + 1];
     const double wk[3] = {w0, w1, 1.0 - w0 - w1};
+    if (back) {
+      // A back face is the inside of the head (dark mouth cavity) unless the surface around it
+      // faces the camera: then it is a thin fold of skin (a closing lid, the lips' stitching pulled
+      // over the rim), shaded with the interpolated vertex normals instead of as a dark streak.
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) n += wk[k] * Eigen::Vector3d(vn.row(ids[k]));
+      if (n.dot(forward) >= -0.05 * n.norm()) return cavity;
+    }
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     Eigen::Vector3f base = Eigen::Vector3f::Zero();
     for (int k = 0; k < 3; ++k) {
-      const bool use_face = !crease.empty() && crease[static_cast<std::size_t>(ids[k])];
+      const bool use_face = !back && !crease.empty() && crease[static_cast<std::size_t>(ids[k])];
       normal += wk[k] * (use_face ? Eigen::Vector3d(fn.row(f)) : Eigen::Vector3d(vn.row(ids[k])));
       base += static_cast<float>(wk[k]) * (colors.empty() ? skin : colors[static_cast<std::size_t>(ids[k])]);
+    }
+    if (paint != nullptr) {
+      const Eigen::Vector2f& t0 = paint->uv[static_cast<std::size_t>(ids[0])];
+      const Eigen::Vector2f& t1 = paint->uv[static_cast<std::size_t>(ids[1])];
+      const Eigen::Vector2f& t2 = paint->uv[static_cast<std::size_t>(ids[2])];
+      if (!std::isnan(t0.x()) && !std::isnan(t1.x()) && !std::isnan(t2.x())) {
+        const Eigen::Vector2f t = static_cast<float>(wk[0]) * t0 + static_cast<float>(wk[1]) * t1 +
+                                  static_cast<float>(wk[2]) * t2;
+        const Eigen::Vector4f pc = paint->sample(t.x(), t.y());
+        base += pc.w() * (pc.head<3>() - base);
+      }
     }
     if (normal.squaredNorm() > 0.0) normal.normalize();
     const double kd = std::max(0.0, normal.dot(key_light));
@@ -207,18 +309,17 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors, const
     return out.cwiseMin(1.0f).cwiseMax(0.0f);
   };
 
-  // Pass 2 fused with the box-filter downsampling: each visible sample is shaded exactly once.
+  // Pass 2 fused with the box filter: each visible sample is shaded exactly once.
   Image image;
   image.width = options.width;
   image.height = options.height;
   image.rgb.resize(static_cast<std::size_t>(options.width) * options.height * 3);
   for (int y = 0; y < options.height; ++y) {
     for (int x = 0; x < options.width; ++x) {
+      const std::size_t base_idx = (static_cast<std::size_t>(y) * w + x) * kSamples;
       Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-      for (int dy = 0; dy < ss; ++dy) {
-        for (int dx = 0; dx < ss; ++dx) sum += shade(static_cast<std::size_t>(y * ss + dy) * w + (x * ss + dx));
-      }
-      sum /= static_cast<float>(ss * ss);
+      for (int s = 0; s < kSamples; ++s) sum += shade(base_idx + s);
+      sum /= static_cast<float>(kSamples);
       for (int k = 0; k < 3; ++k) {
         image.rgb[(static_cast<std::size_t>(y) * options.width + x) * 3 + k] =
             static_cast<std::uint8_t>(std::lround(std::min(1.0f, std::max(0.0f, sum[k])) * 255.0f));

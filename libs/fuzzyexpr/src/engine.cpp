@@ -266,8 +266,12 @@ Selection Engine::Impl::select(const Esv& esv, std::uint64_t row) const {
   Selection s;
   s.first = emotion_at(a);
   s.second = emotion_at(b);
+  // Auto: thesis §6.5 (e1 − e2 > margin), and single whenever only one emotion is present (e2 = 0):
+  // a lone weak emotion has no partner to blend with, and the blend with a zero-intensity partner
+  // would drop its characteristic muscles (sadness 0.4 alone would move no brow; issue 14).
   const bool single = options.mode == ExpressionMode::Single ||
-                      (options.mode == ExpressionMode::Auto && esv[a] - esv[b] > options.single_margin);
+                      (options.mode == ExpressionMode::Auto &&
+                       (esv[a] - esv[b] > options.single_margin || esv[b] == 0.0));
   s.mode = single ? ExpressionMode::Single : ExpressionMode::Blend;
   s.pair_has_rules = blend_plans[static_cast<std::size_t>(pair_plan[a][b])].has_rules;
   return s;
@@ -306,7 +310,10 @@ void Engine::Impl::smooth(const Esv& esv, Fmcv& out) const {
   switch (options.mode) {
     case ExpressionMode::Single: s = 1.0; break;
     case ExpressionMode::Blend: s = 0.0; break;
-    default: s = ramp(sorted[0] - sorted[1] - options.single_margin, w);
+    // the margin fades in as the second emotion rises from 0 to w, so that a lone emotion is single
+    // (as in the crisp selection) and the weight stays continuous in the ESV
+    default:
+      s = ramp(sorted[0] - sorted[1] - options.single_margin * std::min(1.0, sorted[1] / w), w);
   }
   if (s > 0.0) soft_single(esv, kAll, kEmotionCount, out, s);
   if (s >= 1.0) return;

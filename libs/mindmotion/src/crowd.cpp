@@ -343,8 +343,8 @@ fm::Image CrowdRenderer::cell(std::size_t c, std::size_t k) const {
   const CrowdCharacter& ch = crowd_.characters[c];
   const muscles::FaceSolver& solver = *rigs_[ch.rig].solver;
   const muscles::Deformation d = solver.deform(ch.tracks[k].values);
-  const fm::Image face = fm::render(fm::Mesh{d.vertices, solver.neutral().faces}, colours_[ch.rig], d.crease,
-                                    render_options_[ch.rig]);
+  const fm::Image face = fm::render(fm::Mesh{d.vertices, solver.neutral().faces}, colours_[ch.rig],
+                                    d.crease, render_options_[ch.rig], fm::paint_for(solver.rig()));
   const fm::Image strip = mood_strip(crowd_.strip_values(c, k), slot_colours_, options_.face_width, options_.strip_height);
   fm::Image out;
   out.width = cell_width();

@@ -70,7 +70,12 @@ void SolverOptions::validate() const {
   check(zone_margin >= 0.0 && zone_margin <= 4.0, "zone_margin must be in [0, 4]");
   check(funnel_rotation >= 0.0 && funnel_rotation <= kHalfPi, "funnel_rotation must be in [0, pi/2]");
   check(press_rotation >= 0.0 && press_rotation <= kHalfPi, "press_rotation must be in [0, pi/2]");
-  check(lid_closing_exponent >= 1.0 && lid_closing_exponent <= 5.0, "lid_closing_exponent must be in [1, 5]");
+  check(lid_tighten_upper >= 0.0 && lid_tighten_upper <= 0.6,
+        "lid_tighten_upper must be in [0, 0.6]");
+  check(lid_tighten_lower >= 0.0 && lid_tighten_lower <= 0.6,
+        "lid_tighten_lower must be in [0, 0.6]");
+  check(lid_tighten_upper + lid_tighten_lower <= 0.8,
+        "lid_tighten_upper + lid_tighten_lower must be <= 0.8 (the tightener never shuts the eye)");
   check(funnel_extrusion >= 0.0 && funnel_extrusion <= 0.05, "funnel_extrusion must be in [0, 0.05]");
 }
 
@@ -677,14 +682,19 @@ void FaceSolver::apply_lids_jaw_lips(const std::vector<double>& values, const st
   auto& X = out.vertices;
   auto& C = out.lip_control_points;
   // Eyelids (thesis §2.4.3, after Parke 1974): rotation of the lid about the eye's horizontal axis,
-  // weighted from the lid margin outwards; closing lowers the upper lid, the levator raises it.
+  // weighted from the lid margin outwards. Pars palpebralis tightens (AU7: upper lid a little down,
+  // lower lid up, never shut); a blink (eye_blink, AU45) closes the lid, linear in its level, and
+  // takes over from the tightener and the levator (AU5) as it rises, so blink = 1 closes exactly
+  // (upper lid by close_angle, lower lid up by 0.2 of it) whatever else is active.
   for (std::size_t e = 0; e < 2; ++e) {
     const auto& eye = rig_.eyes[e];
-    // A blink (eye_blink, AU45) closes the lid linearly; the muscle's closing level as before.
     const double blink = values[blink_param_[e]];
-    const double closure = std::max(std::pow(lids[e].closing, options_.lid_closing_exponent), blink);
-    const double upper = closure * eye.close_angle - (1.0 - blink) * values[opening_param_[e]] * eye.open_angle;
-    const double lower = -0.2 * std::max(lids[e].closing, blink) * eye.close_angle;
+    const double tight = lids[e].closing;
+    const double upper =
+        eye.close_angle * ((1.0 - blink) * options_.lid_tighten_upper * tight + blink) -
+        (1.0 - blink) * values[opening_param_[e]] * eye.open_angle;
+    const double lower =
+        -eye.close_angle * ((1.0 - blink) * options_.lid_tighten_lower * tight + 0.2 * blink);
     if (upper != 0.0) {
       for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {
         const int v = eye.upper_lid[k];
@@ -854,6 +864,29 @@ Deformation FaceSolver::deform(const std::map<std::string, double>& named) const
 Deformation deform_face(const facemesh::Mesh& mesh, const facemesh::Rig& rig, const std::map<std::string, double>& named,
                         const SolverOptions& options) {
   return FaceSolver(mesh, rig, options).deform(named);
+}
+
+double eye_aperture(const facemesh::Rig& rig, const facemesh::Vertices& X, int eye) {
+  if (eye < 0 || eye > 1) throw InvalidInput("eye_aperture: eye must be 0 (right) or 1 (left)");
+  const auto& e = rig.eyes[static_cast<std::size_t>(eye)];
+  const double half_width = 0.3 * e.radius;
+  auto margin = [&](const std::vector<int>& ids, const std::vector<double>& weights, bool upper) {
+    double best =
+        upper ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < ids.size() && k < weights.size(); ++k) {
+      if (weights[k] < 0.999) continue;
+      if (ids[k] < 0 || ids[k] >= X.rows())
+        throw InvalidInput("eye_aperture: lid vertex out of range");
+      if (std::abs(X(ids[k], 0) - e.centre.x()) > half_width) continue;
+      best = upper ? std::min(best, X(ids[k], 1)) : std::max(best, X(ids[k], 1));
+    }
+    if (!std::isfinite(best))
+      throw InvalidInput("eye_aperture: no lid margin vertex in the eye's centre column");
+    return best;
+  };
+  const double top = margin(e.upper_lid, e.upper_lid_weights, true);
+  const double bottom = margin(e.lower_lid, e.lower_lid_weights, false);
+  return std::max(0.0, top - bottom);
 }
 
 }  // namespace emoface::muscles

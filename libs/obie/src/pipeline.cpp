@@ -9,6 +9,7 @@
 #include "emoface/channels/parameters.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/video.hpp"
+#include "emoface/facemesh/default_face.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/muscles/parameters.hpp"
 #include "emoface/parlee/domain.hpp"
@@ -328,6 +329,8 @@ ObieResult run_obie(const MatchScript& match, const parlee::AgentConfig& agent, 
   for (std::size_t c = 0; c < tracks.names.size(); ++c) column_of[muscles::parameter_index(tracks.names[c])] = c;
   const muscles::FaceSolver solver(face.mesh, face.rig, options.solver);
   const auto colors = facemesh::material_colors(face.rig, face.mesh);
+  const facemesh::Paint* paint =
+      facemesh::paint_for(face.rig);  // brows/hairline of the built-in face
   facemesh::RenderOptions ro;
   ro.view = options.view;
   ro.width = options.width;
@@ -395,7 +398,7 @@ ObieResult run_obie(const MatchScript& match, const parlee::AgentConfig& agent, 
     if (want_gltf[f]) verts[slot] = w.def.vertices;
     if (need_render) {
       w.mesh.vertices = w.def.vertices;
-      images[slot] = facemesh::render(w.mesh, colors, w.def.crease, ro);
+      images[slot] = facemesh::render(w.mesh, colors, w.def.crease, ro, paint);
     }
     done[slot] = 1;
   };

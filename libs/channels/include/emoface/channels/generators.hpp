@@ -13,7 +13,7 @@ namespace emoface::channels {
 /// we draw inter-blink intervals (start to start) from a shifted exponential,
 /// IBI = min_interval + Exp(mean = mean_interval − min_interval): a refractory period, then a
 /// constant blink hazard. The default mean of 4 s is about 15 blinks/min, the spontaneous rate of
-/// adults in conversation. Each blink closes the eyelids (orbicularis_oculi_palpebralis_l/_r) fast
+/// adults in conversation. Each blink closes the eyelids (eye_blink_l/_r, FACS AU45) fast
 /// and reopens them more slowly.
 struct BlinkOptions {
   double mean_interval = 4.0;  ///< mean inter-blink interval, seconds, > min_interval
@@ -21,7 +21,7 @@ struct BlinkOptions {
   double duration = 0.3;       ///< whole blink Te − Ts, seconds, > 0
   double onset = 0.1;          ///< closing time Do, seconds, > 0
   double offset = 0.2;         ///< reopening time Dr, seconds, > 0, onset + offset <= duration
-  double closure = 1.0;        ///< contraction of orbicularis_oculi_palpebralis, in (0, 1]
+  double closure = 1.0;        ///< eye_blink level at the peak, in (0, 1]
   void validate() const;
 };
 

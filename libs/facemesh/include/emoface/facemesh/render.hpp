@@ -34,6 +34,10 @@ struct RenderOptions {
   Eigen::Vector3d background = Eigen::Vector3d(0.93, 0.94, 0.96);  ///< RGB in [0,1]
   double shininess = 24.0;       ///< Phong exponent, [1, 512]
   double specular = 0.18;        ///< specular strength, [0, 1]
+  /// Rounds of averaging the shading normals over the triangles around each vertex (area-weighted),
+  /// [0, 10]: smooth shading across seams of thin triangles (the lips' stitching, folding lids);
+  /// 0 = the plain area-weighted vertex normals.
+  int normal_smoothing = 1;
   void validate() const;
 };
 
@@ -44,11 +48,29 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig);
 /// coarse grid read as gradients instead of staircases. `iterations` in [0, 20].
 std::vector<Eigen::Vector3f> material_colors(const Rig& rig, const Mesh& mesh, int iterations = 2);
 
+/// Surface paint (a texture): per-vertex coordinates into an RGBA image, sampled per pixel (bilinear)
+/// at the perspective-correct interpolated coordinates. Painted detail (brows, hairline) is as sharp
+/// as the image, whatever the mesh density, and moves and stretches with the surface. A triangle with
+/// a vertex without coordinates (NaN) keeps the vertex colours.
+struct Paint {
+  std::vector<Eigen::Vector2f> uv;      ///< per vertex, in [0, 1]² (u right, v up), or NaN = unpainted
+  int width = 0;                        ///< texels, [1, 8192]
+  int height = 0;                       ///< texels, [1, 8192]
+  std::vector<Eigen::Vector4f> texels;  ///< width*height, row 0 at v = 0; RGB in [0, 1], A = coverage
+  /// Throws InvalidInput: sizes (uv per vertex, texels = width·height), uv outside [0, 1]² or ±inf,
+  /// texels outside [0, 1] or NaN.
+  void validate(std::size_t vertex_count) const;
+  /// Bilinear lookup, (u, v) clamped to [0, 1]².
+  Eigen::Vector4f sample(float u, float v) const;
+};
+
 /// Renders `mesh`. `colors` (per vertex) may be empty (uniform skin). `crease` (per vertex, optional)
 /// marks vertices shaded with their face normal instead of the averaged normal — the thesis' fix for the
 /// "unrepresentative vertex normal" at wrinkle feet (§2.4.1). Back faces are shaded dark (mouth inside).
+/// `paint` (optional, not owned) is blended over the vertex colours by its alpha.
 Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
-             const std::vector<std::uint8_t>& crease, const RenderOptions& options);
+             const std::vector<std::uint8_t>& crease, const RenderOptions& options,
+             const Paint* paint = nullptr);
 
 /// Fits the camera to `vertices` (#V by 3, any frame and units, +y up): target = bounding-box centre,
 /// distance such that the projected vertices span about `fill` ∈ (0, 1] of the image (from the

@@ -14,7 +14,8 @@ namespace emoface::fuzzyexpr {
 
 /// Which rule base expresses an ESV.
 enum class ExpressionMode : std::uint8_t {
-  Auto,    ///< thesis §6.5: single if the top intensity beats the second by more than single_margin
+  Auto,    ///< thesis §6.5: single if the top intensity beats the second by more than single_margin,
+           ///< or if it is the only non-zero emotion
   Single,  ///< always the strongest emotion alone
   Blend,   ///< always the two strongest (the stronger alone when the pair has no blend rules)
 };
@@ -46,7 +47,7 @@ std::optional<MissingRule> missing_rule_from_string(std::string_view s) noexcept
 
 struct ExpressionOptions {
   ExpressionMode mode = ExpressionMode::Auto;
-  /// Auto mode: single when e1 − e2 > single_margin (thesis §6.5: 0.5). Range [0, 1].
+  /// Auto mode: single when e1 − e2 > single_margin (thesis §6.5: 0.5) or e2 = 0. Range [0, 1].
   double single_margin = 0.5;
   TieBreak tie_break = TieBreak::Fixed;
   /// Fixed tie-break order: an emotion listed earlier wins a tie. Must be a permutation.

@@ -25,8 +25,9 @@
 
 namespace emoface::muscles {
 
-/// How the Orbicularis Oculi closing (pars palpebralis) and squeezing (pars orbitalis) levels of one
-/// eye are coupled (thesis §2.4.3; see couple_eyelids()).
+/// How the Orbicularis Oculi pars palpebralis (the thesis' "closing" level; here the lid tightener,
+/// AU7) and pars orbitalis (squeezing) levels of one eye are coupled (thesis §2.4.3; see
+/// couple_eyelids()). No coupling closes the eye: closure is eye_blink_* only.
 enum class EyelidCoupling {
   OneEye,  ///< only the second branch: closing one eye alone squeezes it (c_sq = ½·c_cl)
   Thesis,  ///< the full printed rule: squeezing also closes the lid (c_cl = min(1, 2·c_sq))
@@ -48,14 +49,19 @@ struct SolverOptions {
   double funnel_rotation = 0.349065850398866;  ///< lip funneler rotation θ, radians (thesis §2.4.2: 20°), [0, π/2]
   double funnel_extrusion = 0.006;  ///< lip funneler extrusion x at the lip edge, m, [0, 0.05]
   double press_rotation = 0.349065850398866;   ///< lip pressor rotation (opposite sense), radians, [0, π/2]
-  /// Default OneEye: the first branch of the thesis rule closes the eyes of every expression whose
-  /// fuzzy rules squeeze at ≥ 0.5 (sadness, happiness, anger, ...), which contradicts the thesis'
-  /// own pictures; it stays available as Thesis (docs/muscles.md, deviations).
+  /// Default OneEye: the first branch of the thesis rule raises the palpebralis level of every
+  /// expression whose fuzzy rules squeeze at ≥ 0.5 (sadness, happiness, anger, ...); it stays
+  /// available as Thesis (docs/muscles.md, deviations).
   EyelidCoupling eyelid_coupling = EyelidCoupling::OneEye;
-  /// Upper-lid rotation = close_angle·c_closing^exponent, [1, 5]. 1 = linear (thesis, Parke 1974);
-  /// the default 3 keeps c = 1 fully closed (blinks) while the 0.8-ish closing levels that the fuzzy
-  /// rules give anger and fear narrow the eye instead of shutting it (docs/muscles.md, deviations).
-  double lid_closing_exponent = 3.0;
+  /// Orbicularis oculi pars palpebralis is the lid *tightener* (FACS AU7: narrows the eye aperture
+  /// and raises the lower lid; Ekman, Friesen & Hager 2002); closing the eye is a blink (AU45,
+  /// eye_blink_*). At palpebralis level t the upper lid turns down by tighten_upper·close_angle·t
+  /// and the lower lid up by tighten_lower·close_angle·t (linear), both fractions in [0, 0.6], their
+  /// sum ≤ 0.8 so that t = 1 never shuts the eye (close_angle + 0.2·close_angle does). Defaults: on
+  /// the default face t = 1 leaves about a third of the neutral aperture, mostly by raising the
+  /// lower lid (docs/muscles.md, deviations).
+  double lid_tighten_upper = 0.20;
+  double lid_tighten_lower = 0.50;
   void validate() const;
 };
 
@@ -192,5 +198,12 @@ class FaceSolver {
 /// One-off: builds a FaceSolver and deforms once (same code path, so they cannot drift apart).
 Deformation deform_face(const facemesh::Mesh& mesh, const facemesh::Rig& rig,
                         const std::map<std::string, double>& named, const SolverOptions& options = {});
+
+/// Vertical eye aperture (m) of eye `eye` (0 = right, 1 = left) in the vertex positions X: the
+/// lowest upper-lid margin point minus the highest lower-lid margin point (lid vertices of weight
+/// ≥ 0.999) within 0.3·radius of the eye centre's x; 0 when the lids meet or overlap. Measured along
+/// y, so meaningful with the head upright (head pose 0). Throws InvalidInput for a bad eye index, X
+/// smaller than the rig's vertices or an eye without margin vertices in that column.
+double eye_aperture(const facemesh::Rig& rig, const facemesh::Vertices& X, int eye);
 
 }  // namespace emoface::muscles

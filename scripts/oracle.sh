@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Expression oracle (issue 14): render neutral + the six emotions at 0.9 on the built-in face (front,
+# 480×560: emo2muscle → faceanim → facerender) and let an independent network name them
+# (@vladmandic/human's emotion model, tests/oracle/classify.cjs). Prints the confusion table; exit 1
+# when fewer than MIN (default 6) of the 7 are top-1 correct.
+# Installs Node/npm from Debian if missing and the pinned npm packages with `npm ci`
+# (tests/oracle/package-lock.json, ≈ 130 MB in tests/oracle/node_modules, once); nothing is
+# downloaded when it runs.
+# Usage: scripts/oracle.sh [--no-build]      Env: BUILD_DIR (build), OUT_DIR (out/oracle), MIN (6),
+#        JOBS (2), EMOTIONS (tests/oracle/emotions.csv)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD_DIR=${BUILD_DIR:-build}
+OUT_DIR=${OUT_DIR:-out/oracle}
+MIN=${MIN:-6}
+JOBS=${JOBS:-2}
+EMOTIONS=${EMOTIONS:-tests/oracle/emotions.csv}
+build=1
+for a in "$@"; do
+  case "$a" in
+    --no-build) build=0 ;;
+    *) echo "oracle.sh: unknown argument $a" >&2; exit 2 ;;
+  esac
+done
+
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  echo "oracle: installing nodejs npm (Debian)"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends nodejs npm
+fi
+stamp=tests/oracle/node_modules/.package-lock.json
+if [ ! -f "$stamp" ] || [ tests/oracle/package-lock.json -nt "$stamp" ]; then
+  echo "oracle: npm ci (tests/oracle)"
+  npm ci --prefix tests/oracle --no-audit --no-fund --loglevel=error
+fi
+
+if [ "$build" = 1 ]; then
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$BUILD_DIR" -j"$JOBS" --target emo2muscle faceanim facerender
+fi
+bin="$BUILD_DIR"/apps
+rm -rf "$OUT_DIR"
+mkdir -p "$OUT_DIR"
+"$bin"/emo2muscle/emo2muscle "$EMOTIONS" --sides -o "$OUT_DIR"/muscles.csv
+"$bin"/faceanim/faceanim --params "$OUT_DIR"/muscles.csv --out "$OUT_DIR"/frames
+"$bin"/facerender/facerender "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
+  --out "$OUT_DIR"/face.png
+args=()
+i=0
+while IFS=, read -r id _; do
+  args+=("$id=$OUT_DIR/$(printf 'face_%04d.png' "$i")")
+  i=$((i + 1))
+done < <(tail -n +2 "$EMOTIONS")
+node tests/oracle/classify.cjs --min "$MIN" --json "$OUT_DIR"/oracle.json "${args[@]}"
