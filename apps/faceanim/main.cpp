@@ -10,6 +10,8 @@
 #include "emoface/facemesh/gltf.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
+#include "emoface/faceweights/mapper.hpp"
+#include "emoface/faceweights/tracks.hpp"
 #include "emoface/muscles/io.hpp"
 #include "emoface/muscles/solver.hpp"
 
@@ -20,11 +22,15 @@ int main(int argc, char** argv) {
   CLI::App app{"Deform a face by muscle parameters, one mesh per frame (thesis ch. 2 muscle model).\n"
                "Example: faceanim --params expressions.csv --out frames --gltf anim.gltf\n"
                "         faceanim --write-default-face data/face   (regenerates the built-in face files)"};
-  std::string rig_path, params, out_dir, format = "obj", gltf, default_dir, shard_text;
+  std::string rig_path, params, out_dir, format = "obj", gltf, default_dir, shard_text, weights;
   double fps = 25.0, delta_c = 0.2;
   bool no_wrinkles = false, ignore_unknown = false;
   app.add_option("--rig", rig_path, "Rig file (emoface.rig JSON); default: the built-in face");
   app.add_option("--params", params, "Parameter frames: .csv, .ndjson/.jsonl or .json");
+  app.add_option("--weights", weights,
+                 "arkit|facs: --params is a CSV of ARKit blend-shape (or FACS) weights, fitted to the "
+                 "face parameters by bounded least squares (Live Link Face CSV too)")
+      ->check(CLI::IsMember({"arkit", "facs"}));
   app.add_option("--out", out_dir, "Directory for frame_0000.<format> ...");
   app.add_option("--format", format, "Mesh format of the frames")->check(CLI::IsMember({"obj", "ply", "off"}));
   app.add_option("--gltf", gltf, "Also write an animated glTF 2.0 (.gltf or .glb)");
@@ -51,7 +57,19 @@ int main(int argc, char** argv) {
     mu::FrameReadOptions read;
     read.fps = fps;
     read.ignore_unknown_columns = ignore_unknown;
-    const auto frames = mu::read_parameter_frames(params, read);
+    std::vector<mu::ParameterFrame> frames;
+    if (weights.empty()) {
+      frames = mu::read_parameter_frames(params, read);
+    } else {
+      namespace fw = emoface::faceweights;
+      const fw::Mapper mapper(fw::builtin_weight_set(weights), mu::parameter_names());
+      fw::WeightTrackReadOptions wopt;
+      wopt.fps = fps;
+      wopt.ignore_unknown_columns = ignore_unknown;
+      const fw::WeightTrack track = fw::read_weight_track(params, mapper.set(), wopt);
+      const auto fitted = fw::fit_weight_track(track, mapper);
+      for (std::size_t i = 0; i < fitted.size(); ++i) frames.push_back({track.times[i], fitted[i]});
+    }
     if (frames.empty()) throw emoface::InvalidInput(params + ": no frames");
     if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
     std::vector<fm::Vertices> meshes;

@@ -147,3 +147,32 @@ TEST(Tracks, BadInputs) {
 
 }  // namespace
 }  // namespace emoface::faceweights
+
+namespace emoface::faceweights {
+namespace {
+
+TEST(Tracks, FlatLayoutAndFitRoundTrip) {
+  const auto& n = muscles::parameter_names();
+  std::vector<double> flat(2 * n.size(), 0.0);
+  flat[n.size() + muscles::parameter_index("masseter")] = 0.5;
+  flat[n.size() + muscles::parameter_index("head_roll")] = 0.1;
+  const std::string text = format_weight_track(TrackFormat::LiveLinkFaceCsv, n, 50.0, flat);
+  EXPECT_NE(text.find("\n00:00:00:01.000,61,"), std::string::npos);
+  WeightTrackReadOptions opt;
+  opt.fps = 50;
+  const auto track = parse_weight_track(text, builtin_weight_set("arkit"), "x.csv", opt);
+  const Mapper m(builtin_weight_set("arkit"), n);
+  TrackFitReport report;
+  const auto params = fit_weight_track(track, m, &report);
+  ASSERT_EQ(params.size(), 2u);
+  EXPECT_EQ(report.frames, 2u);
+  EXPECT_EQ(report.not_converged, 0u);
+  EXPECT_NEAR(params[1][muscles::parameter_index("masseter")], 0.5, 1e-4);
+  EXPECT_NEAR(params[1][muscles::parameter_index("head_roll")], 0.1, 1e-9);
+  EXPECT_NEAR(params[0][muscles::parameter_index("masseter")], 0.0, 1e-9);
+  EXPECT_THROW(fit_weight_track(track, Mapper(builtin_weight_set("facs"), n)), InvalidInput);
+  EXPECT_THROW(format_weight_track(TrackFormat::ArkitCsv, n, 25.0, std::vector<double>(5)), InvalidInput);
+}
+
+}  // namespace
+}  // namespace emoface::faceweights

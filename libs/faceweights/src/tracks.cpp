@@ -157,6 +157,52 @@ void write_weight_track(const std::string& path, TrackFormat format,
   core::write_file_atomic(path, format_weight_track(format, names, times, frames, fps));
 }
 
+std::string format_weight_track(TrackFormat format, const std::vector<std::string>& names,
+                                double fps, const std::vector<double>& values, int precision) {
+  if (names.empty() || values.size() % names.size() != 0)
+    throw InvalidInput("format_weight_track: values must hold whole frames of names.size() values");
+  if (!(fps > 0.0) || !std::isfinite(fps)) throw InvalidInput("format_weight_track: fps must be > 0");
+  const std::size_t n = values.size() / names.size();
+  std::vector<double> times(n);
+  std::vector<std::vector<double>> frames(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    times[i] = static_cast<double>(i) / fps;
+    frames[i].assign(values.begin() + static_cast<long>(i * names.size()),
+                     values.begin() + static_cast<long>((i + 1) * names.size()));
+  }
+  return format_weight_track(format, names, times, frames, fps, precision);
+}
+
+std::vector<std::vector<double>> fit_weight_track(const WeightTrack& track, const Mapper& mapper,
+                                                  TrackFitReport* report) {
+  if (track.targets != mapper.set().target_names())
+    throw InvalidInput("fit_weight_track: the track's targets are not the mapper's set '" +
+                       mapper.set().set + "'");
+  TrackFitReport rep;
+  std::vector<std::vector<double>> out;
+  std::vector<double> params(mapper.parameter_count(), 0.0);
+  const auto& names = mapper.parameter_names();
+  for (std::size_t i = 0; i < track.weights.size(); ++i) {
+    const FitReport r = mapper.inverse(track.weights[i], params);
+    rep.max_iterations = std::max(rep.max_iterations, r.sweeps);
+    if (!r.converged) ++rep.not_converged;
+    for (const auto& u : r.unrepresented) {
+      if (std::find(rep.unrepresented.begin(), rep.unrepresented.end(), u) == rep.unrepresented.end())
+        rep.unrepresented.push_back(u);
+    }
+    if (i < track.pose.size()) {
+      for (const auto& [name, v] : track.pose[i]) {
+        auto it = std::find(names.begin(), names.end(), name);
+        if (it != names.end()) params[static_cast<std::size_t>(it - names.begin())] = v;
+      }
+    }
+    out.push_back(params);
+  }
+  rep.frames = out.size();
+  if (report) *report = std::move(rep);
+  return out;
+}
+
 void WeightTrackReadOptions::validate() const {
   if (!(fps > 0.0) || fps > 1000.0) throw InvalidInput("WeightTrackReadOptions: fps in (0, 1000]");
 }
@@ -209,7 +255,9 @@ WeightTrack parse_weight_track(std::string_view text, const WeightSet& set, cons
       columns.push_back({key == "time" ? kTime : kTimecode, 0});
       continue;
     }
-    if (key == "blendshapecount") {
+    // Live Link Face's count column and emoface's metadata columns (emo2muscle passes "id" through)
+    if (key == "blendshapecount" || key == "id" || key == "frame" || key == "index" ||
+        key == "label" || key == "name") {
       columns.push_back({kIgnore, 0});
       continue;
     }

@@ -42,6 +42,11 @@ void write_weight_track(const std::string& path, TrackFormat format,
                         const std::vector<std::string>& names, const std::vector<double>& times,
                         const std::vector<std::vector<double>>& frames, double fps);
 
+/// The same for a fixed-rate track stored row-major (`values` = frames × names.size(), frame i at
+/// time i / fps; the layout of channels::Tracks).
+std::string format_weight_track(TrackFormat format, const std::vector<std::string>& names,
+                                double fps, const std::vector<double>& values, int precision = 6);
+
 /// A track of target weights read from CSV.
 struct WeightTrack {
   std::vector<std::string> targets;           ///< the set's target names (set order)
@@ -61,12 +66,26 @@ struct WeightTrackReadOptions {
 
 /// Reads a CSV whose header names every target of `set` (any ARKit spelling, case-insensitive, for
 /// the arkit set), an optional time column ("time" in seconds or Live Link Face "Timecode"),
-/// optional "BlendShapeCount" and Live Link Face angle columns. Errors are FormatError naming the
+/// optional "BlendShapeCount", metadata columns (id, frame, index, label, name; ignored) and Live
+/// Link Face angle columns. Errors are FormatError naming the
 /// file, line and column: a missing target column, an unknown column, a repeated column, a
 /// non-number, NaN/inf, a weight outside [0, 1], a row of the wrong length, no rows.
 WeightTrack parse_weight_track(std::string_view text, const WeightSet& set, const std::string& file,
                                const WeightTrackReadOptions& options = {});
 WeightTrack read_weight_track(const std::string& path, const WeightSet& set,
                               const WeightTrackReadOptions& options = {});
+
+class Mapper;
+struct TrackFitReport {
+  std::size_t frames = 0;
+  int max_iterations = 0;          ///< most active-set iterations of one frame
+  std::size_t not_converged = 0;   ///< frames whose fit stopped early
+  std::vector<std::string> unrepresented;  ///< targets with weight but no muscle, over all frames
+};
+/// Fits every frame of `track` (whose targets must be mapper.set()'s) with Mapper::inverse, warm
+/// started from the previous frame, and copies the track's angles (pose) into the parameters the
+/// mapper's list has. Returns one parameter vector per frame in mapper.parameter_names() order.
+std::vector<std::vector<double>> fit_weight_track(const WeightTrack& track, const Mapper& mapper,
+                                                  TrackFitReport* report = nullptr);
 
 }  // namespace emoface::faceweights
