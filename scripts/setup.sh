@@ -16,7 +16,10 @@ PACKAGES=(
   libespeak-ng-dev espeak-ng-data libpugixml-dev   # channels / talkinghead: speech, markup
   ffmpeg                            # core::VideoWriter: facerender, obie, mgraph, mindmap crowd videos
   liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
+  nodejs                            # test-only: the Khronos glTF-Validator (scripts/setup_npm.sh)
 )
+# Debian's npm package; a nodejs from elsewhere (e.g. NodeSource) bundles npm and conflicts with it.
+if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -26,6 +29,7 @@ for p in "${PACKAGES[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#PACKAGES[@]} packages present"
+  "$(dirname "$0")/setup_npm.sh"
   exit 0
 fi
 SUDO=""
@@ -33,3 +37,4 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 echo "setup: installing ${missing[*]}"
 $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+"$(dirname "$0")/setup_npm.sh"

@@ -7,12 +7,14 @@
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/facemesh/default_face.hpp"
-#include "emoface/facemesh/gltf.hpp"
+#include "emoface/facemesh/gltf_morph.hpp"
+#include "emoface/facemesh/render.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 #include "emoface/faceweights/mapper.hpp"
 #include "emoface/faceweights/tracks.hpp"
 #include "emoface/muscles/io.hpp"
+#include "emoface/muscles/morph_targets.hpp"
 #include "emoface/muscles/solver.hpp"
 
 namespace fm = emoface::facemesh;
@@ -33,7 +35,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"arkit", "facs"}));
   app.add_option("--out", out_dir, "Directory for frame_0000.<format> ...");
   app.add_option("--format", format, "Mesh format of the frames")->check(CLI::IsMember({"obj", "ply", "off"}));
-  app.add_option("--gltf", gltf, "Also write an animated glTF 2.0 (.gltf or .glb)");
+  app.add_option("--gltf", gltf,
+                 "Also write a glTF 2.0 (.gltf or .glb) for engines: named morph targets per face "
+                 "parameter and per ARKit shape, the frames as weights over time");
   app.add_option("--fps", fps, "Frame rate for inputs without times")->check(CLI::Range(0.001, 1000.0));
   app.add_option("--delta-c", delta_c, "Contraction step (thesis: 0.2)")->check(CLI::Range(0.001, 1.0));
   app.add_flag("--no-wrinkles", no_wrinkles, "Disable bulges and wrinkles");
@@ -72,7 +76,7 @@ int main(int argc, char** argv) {
     }
     if (frames.empty()) throw emoface::InvalidInput(params + ": no frames");
     if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
-    std::vector<fm::Vertices> meshes;
+    std::vector<std::vector<double>> gltf_frames;
     std::vector<double> times;
     mu::Deformation d;
     for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -84,7 +88,7 @@ int main(int argc, char** argv) {
         fm::write_mesh((std::filesystem::path(out_dir) / name).string(), fm::Mesh{d.vertices, face.mesh.faces});
       }
       if (!gltf.empty()) {
-        meshes.push_back(d.vertices);
+        gltf_frames.push_back(frames[i].values);
         times.push_back(frames[i].time);
       }
     }
@@ -96,7 +100,14 @@ int main(int argc, char** argv) {
           break;
         }
       }
-      fm::write_animated_gltf(gltf, face.mesh, meshes, times);
+      const emoface::faceweights::Mapper arkit(emoface::faceweights::builtin_weight_set("arkit"),
+                                               mu::parameter_names());
+      const mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&arkit});
+      fm::MorphGltfOptions gopt;
+      gopt.colors = fm::material_colors(face.rig, face.mesh);
+      gopt.head_pivot = rig.head_pivot;
+      fm::write_morph_gltf(gltf, rig.neutral, rig.targets,
+                           {mu::bake_animation(rig, times, gltf_frames)}, gopt);
     }
     return 0;
   });

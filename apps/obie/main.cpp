@@ -11,6 +11,10 @@
 #include "emoface/channels/io.hpp"
 #include "emoface/cli/cli.hpp"
 #include "emoface/faceweights/tracks.hpp"
+#include "emoface/facemesh/gltf_morph.hpp"
+#include "emoface/facemesh/render.hpp"
+#include "emoface/muscles/morph_targets.hpp"
+#include "emoface/muscles/parameters.hpp"
 #include "emoface/core/version.hpp"
 #include "emoface/core/video.hpp"
 #include "emoface/facemesh/default_face.hpp"
@@ -203,7 +207,32 @@ int main(int argc, char** argv) {
       if (no_video) emoface::channels::write_wav(file("speech.wav"), r.head.audio, r.head.sample_rate);
     });
     if (!r.gltf_frames.empty())
-      timed("write glTF", [&] { emoface::facemesh::write_animated_gltf(file("face.glb"), face.mesh, r.gltf_frames, r.gltf_times); });
+      timed("write glTF", [&] {
+        // named morph targets (parameters + ARKit shapes) animated by the tracks' weights at the
+        // glTF key times (docs/engines.md)
+        namespace mu = emoface::muscles;
+        const auto& tracks = r.head.tracks;
+        std::vector<int> column;
+        for (const auto& n : mu::parameter_names()) column.push_back(tracks.column(n));
+        std::vector<std::vector<double>> keys;
+        for (double t : r.gltf_times) {
+          const auto f = std::min<std::size_t>(static_cast<std::size_t>(std::llround(t * tracks.fps)),
+                                               tracks.frames() - 1);
+          std::vector<double> v(mu::kParameterCount, 0.0);
+          for (std::size_t i = 0; i < v.size(); ++i)
+            if (column[i] >= 0) v[i] = tracks.at(f, static_cast<std::size_t>(column[i]));
+          keys.push_back(std::move(v));
+        }
+        const mu::FaceSolver solver(face.mesh, face.rig);
+        const emoface::faceweights::Mapper arkit(emoface::faceweights::builtin_weight_set("arkit"),
+                                                 mu::parameter_names());
+        const mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&arkit});
+        emoface::facemesh::MorphGltfOptions gopt;
+        gopt.colors = emoface::facemesh::material_colors(face.rig, face.mesh);
+        gopt.head_pivot = rig.head_pivot;
+        emoface::facemesh::write_morph_gltf(file("face.glb"), rig.neutral, rig.targets,
+                                            {mu::bake_animation(rig, r.gltf_times, keys, "match")}, gopt);
+      });
     timed("charts + key moments", [&] {
       emoface::core::write_file_atomic(file("charts.png"), emoface::parlee::encode_png(ob::emotion_chart(r)));
       if (!r.key_frames.empty())
