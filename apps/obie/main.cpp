@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
         const std::string name = w == "livelink" ? "livelink_face.csv" : w + ".csv";
         emoface::core::write_file_atomic(
             file(name.c_str()),
-            emoface::faceweights::format_weight_track(
+            emoface::faceweights::format_fixed_rate_track(
                 *emoface::faceweights::track_format_from_string(w + "-csv"), r.head.tracks.names,
                 r.head.tracks.fps, r.head.tracks.values));
       }

@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
     out.write(ch::format_tracks(th.tracks, out_path));
     if (!weights_path.empty())
       emoface::core::write_file_atomic(
-          weights_path, emoface::faceweights::format_weight_track(
+          weights_path, emoface::faceweights::format_fixed_rate_track(
                             *emoface::faceweights::track_format_from_string(weights_format + "-csv"),
                             th.tracks.names, th.tracks.fps, th.tracks.values));
     if (!wav_path.empty()) ch::write_wav(wav_path, th.audio, th.sample_rate);

@@ -156,7 +156,7 @@ TEST(Tracks, FlatLayoutAndFitRoundTrip) {
   std::vector<double> flat(2 * n.size(), 0.0);
   flat[n.size() + muscles::parameter_index("masseter")] = 0.5;
   flat[n.size() + muscles::parameter_index("head_roll")] = 0.1;
-  const std::string text = format_weight_track(TrackFormat::LiveLinkFaceCsv, n, 50.0, flat);
+  const std::string text = format_fixed_rate_track(TrackFormat::LiveLinkFaceCsv, n, 50.0, flat);
   EXPECT_NE(text.find("\n00:00:00:01.000,61,"), std::string::npos);
   WeightTrackReadOptions opt;
   opt.fps = 50;
@@ -171,7 +171,7 @@ TEST(Tracks, FlatLayoutAndFitRoundTrip) {
   EXPECT_NEAR(params[1][muscles::parameter_index("head_roll")], 0.1, 1e-9);
   EXPECT_NEAR(params[0][muscles::parameter_index("masseter")], 0.0, 1e-9);
   EXPECT_THROW(fit_weight_track(track, Mapper(builtin_weight_set("facs"), n)), InvalidInput);
-  EXPECT_THROW(format_weight_track(TrackFormat::ArkitCsv, n, 25.0, std::vector<double>(5)), InvalidInput);
+  EXPECT_THROW(format_fixed_rate_track(TrackFormat::ArkitCsv, n, 25.0, std::vector<double>(5)), InvalidInput);
 }
 
 }  // namespace

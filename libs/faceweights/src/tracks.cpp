@@ -157,8 +157,8 @@ void write_weight_track(const std::string& path, TrackFormat format,
   core::write_file_atomic(path, format_weight_track(format, names, times, frames, fps));
 }
 
-std::string format_weight_track(TrackFormat format, const std::vector<std::string>& names,
-                                double fps, const std::vector<double>& values, int precision) {
+std::string format_fixed_rate_track(TrackFormat format, const std::vector<std::string>& names,
+                                   double fps, const std::vector<double>& values, int precision) {
   if (names.empty() || values.size() % names.size() != 0)
     throw InvalidInput("format_weight_track: values must hold whole frames of names.size() values");
   if (!(fps > 0.0) || !std::isfinite(fps)) throw InvalidInput("format_weight_track: fps must be > 0");

@@ -44,8 +44,9 @@ void write_weight_track(const std::string& path, TrackFormat format,
 
 /// The same for a fixed-rate track stored row-major (`values` = frames × names.size(), frame i at
 /// time i / fps; the layout of channels::Tracks).
-std::string format_weight_track(TrackFormat format, const std::vector<std::string>& names,
-                                double fps, const std::vector<double>& values, int precision = 6);
+std::string format_fixed_rate_track(TrackFormat format, const std::vector<std::string>& names,
+                                   double fps, const std::vector<double>& values,
+                                   int precision = 6);
 
 /// A track of target weights read from CSV.
 struct WeightTrack {
