@@ -3,6 +3,10 @@
 # already installed are skipped, and apt-get runs only when something is missing.
 # Usage: scripts/setup.sh            (as root, or as a user with sudo)
 set -euo pipefail
+# --browser: also Debian's chromium and three.js (npm) for the browser test (ctest -L browser,
+# scripts/browser_test.sh). Never a browser from npm.
+BROWSER=0
+if [ "${1:-}" = "--browser" ]; then BROWSER=1; fi
 
 PACKAGES=(
   build-essential cmake pkg-config git ca-certificates
@@ -16,7 +20,11 @@ PACKAGES=(
   libespeak-ng-dev espeak-ng-data libpugixml-dev   # channels / talkinghead: speech, markup
   ffmpeg                            # core::VideoWriter: facerender, obie, mgraph, mindmap crowd videos
   liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
+  nodejs                            # test-only: the Khronos glTF-Validator (scripts/setup_npm.sh)
 )
+if [ "$BROWSER" = 1 ]; then PACKAGES+=(chromium); fi
+# Debian's npm package; a nodejs from elsewhere (e.g. NodeSource) bundles npm and conflicts with it.
+if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -26,6 +34,7 @@ for p in "${PACKAGES[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#PACKAGES[@]} packages present"
+  "$(dirname "$0")/setup_npm.sh" $([ "$BROWSER" = 1 ] && echo --browser)
   exit 0
 fi
 SUDO=""
@@ -33,3 +42,4 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 echo "setup: installing ${missing[*]}"
 $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+"$(dirname "$0")/setup_npm.sh" $([ "$BROWSER" = 1 ] && echo --browser)

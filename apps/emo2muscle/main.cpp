@@ -9,6 +9,7 @@
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/fuzzyexpr/esv_stream.hpp"
 #include "emoface/fuzzyexpr/io.hpp"
+#include "emoface/faceweights/mapper.hpp"
 
 namespace fx = emoface::fuzzyexpr;
 namespace cli = emoface::cli;
@@ -18,7 +19,7 @@ using cli::parse_enum;
 int main(int argc, char** argv) {
   CLI::App app{"Convert emotion intensities (ESV: sadness, happiness, anger, fear, disgust, surprise in "
                "[0,1]) to the 19 muscle contraction levels of thesis chapter 6."};
-  std::string input = "-", output = "-", from, to, rules_path, mode = "auto", tie = "fixed",
+  std::string input = "-", output = "-", from, to, rules_path, mode = "auto", tie = "fixed", weights,
               transition = "crisp", missing = "no_rule", on_error = "stop", shard_text = "0/1", fll_path;
   bool sides = false, clamp = false, summary = false;
   std::uint64_t seed = 0;
@@ -28,6 +29,10 @@ int main(int argc, char** argv) {
   app.add_option("--from", from, "input format csv|ndjson (default: by extension, else csv)");
   app.add_option("--to", to, "output format csv|ndjson|json (default: by extension, else as input)");
   app.add_flag("--sides", sides, "write the 35 left/right face parameters instead of 19 muscles");
+  app.add_option("--weights", weights,
+                 "facs|arkit: write FACS action units or the 52 ARKit blend shapes instead of "
+                 "muscles (data/faceweights)")
+      ->check(CLI::IsMember({"facs", "arkit"}));
   app.add_option("--mode", mode, "auto|single|blend expression mode (default auto, thesis 6.5)");
   app.add_option("--rules", rules_path, "rule-base file (default: built-in data/fuzzyexpr/rules.json)");
   app.add_option("--tie-break", tie, "fixed|random choice among equal intensities (default fixed)");
@@ -45,6 +50,7 @@ int main(int argc, char** argv) {
       "Example:\n  emo2muscle data/fuzzyexpr/example_emotions.csv -o muscles.csv --summary\n"
       "  printf 'id,happiness,surprise,sadness,anger,fear,disgust\\nx,0.8,0.6,0,0,0,0\\n' | "
       "emo2muscle --to ndjson --sides\n"
+      "  emo2muscle data/fuzzyexpr/example_emotions.csv --weights arkit -o arkit.csv\n"
       "Exit codes: 0 ok, 1 usage, 2 bad input, 3 numerical, 4 internal.");
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
 
@@ -70,6 +76,18 @@ int main(int argc, char** argv) {
     out_opts.format = to.empty() ? fx::stream_format_from_path(output).value_or(in_opts.format)
                                  : parse_enum<fx::StreamFormat>(to, fx::stream_format_from_string, "--to", "csv|ndjson|json");
     out_opts.sides = sides;
+    std::shared_ptr<emoface::faceweights::Mapper> mapper;
+    if (!weights.empty()) {
+      if (sides) throw cli::UsageError("--weights and --sides exclude each other");
+      std::vector<std::string> names;
+      for (auto n : fx::side_parameter_names()) names.emplace_back(n);
+      mapper = std::make_shared<emoface::faceweights::Mapper>(
+          emoface::faceweights::builtin_weight_set(weights), names);
+      out_opts.mapped_columns = mapper->set().target_names();
+      out_opts.map = [mapper](const fx::SideParameters& s, double* out) {
+        mapper->forward(s.data(), out);
+      };
+    }
     out_opts.precision = precision;
     fx::BatchOptions batch;
     batch.on_error = parse_enum<fx::OnError>(on_error, fx::on_error_from_string, "--on-error", "stop|skip");

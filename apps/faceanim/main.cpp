@@ -7,10 +7,14 @@
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/facemesh/default_face.hpp"
-#include "emoface/facemesh/gltf.hpp"
+#include "emoface/facemesh/gltf_morph.hpp"
+#include "emoface/facemesh/render.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
+#include "emoface/faceweights/mapper.hpp"
+#include "emoface/faceweights/tracks.hpp"
 #include "emoface/muscles/io.hpp"
+#include "emoface/muscles/morph_targets.hpp"
 #include "emoface/muscles/solver.hpp"
 
 namespace fm = emoface::facemesh;
@@ -20,17 +24,23 @@ int main(int argc, char** argv) {
   CLI::App app{"Deform a face by muscle parameters, one mesh per frame (thesis ch. 2 muscle model).\n"
                "Example: faceanim --params expressions.csv --out frames --gltf anim.gltf\n"
                "         faceanim --write-default-face data/face   (regenerates the built-in face files)"};
-  std::string rig_path, params, out_dir, format, gltf, default_dir, shard_text;
+  std::string rig_path, params, out_dir, format, gltf, default_dir, shard_text, weights;
   double fps = 25.0, delta_c = 0.2;
   bool no_wrinkles = false, ignore_unknown = false;
   app.add_option("--rig", rig_path, "Rig file (emoface.rig JSON); default: the built-in face");
   app.add_option("--params", params, "Parameter frames: .csv, .ndjson/.jsonl or .json");
+  app.add_option("--weights", weights,
+                 "arkit|facs: --params is a CSV of ARKit blend-shape (or FACS) weights, fitted to the "
+                 "face parameters by bounded least squares (Live Link Face CSV too)")
+      ->check(CLI::IsMember({"arkit", "facs"}));
   app.add_option("--out", out_dir, "Directory for frame_0000.<format> ...");
   app.add_option("--format", format,
                  "Mesh format of the frames (default: the rig's mesh kind, obj or glb). Frames are in the mesh\n"
                  "file's own frame; obj/glb/gltf of an OBJ/glTF mesh keep its UVs, groups and materials")
       ->check(CLI::IsMember({"obj", "ply", "off", "glb", "gltf"}));
-  app.add_option("--gltf", gltf, "Also write an animated glTF 2.0 (.gltf or .glb)");
+  app.add_option("--gltf", gltf,
+                 "Also write a glTF 2.0 (.gltf or .glb) for engines: named morph targets per face "
+                 "parameter and per ARKit shape, the frames as weights over time");
   app.add_option("--fps", fps, "Frame rate for inputs without times")->check(CLI::Range(0.001, 1000.0));
   app.add_option("--delta-c", delta_c, "Contraction step (thesis: 0.2)")->check(CLI::Range(0.001, 1.0));
   app.add_flag("--no-wrinkles", no_wrinkles, "Disable bulges and wrinkles");
@@ -59,10 +69,22 @@ int main(int argc, char** argv) {
     mu::FrameReadOptions read;
     read.fps = fps;
     read.ignore_unknown_columns = ignore_unknown;
-    const auto frames = mu::read_parameter_frames(params, read);
+    std::vector<mu::ParameterFrame> frames;
+    if (weights.empty()) {
+      frames = mu::read_parameter_frames(params, read);
+    } else {
+      namespace fw = emoface::faceweights;
+      const fw::Mapper mapper(fw::builtin_weight_set(weights), mu::parameter_names());
+      fw::WeightTrackReadOptions wopt;
+      wopt.fps = fps;
+      wopt.ignore_unknown_columns = ignore_unknown;
+      const fw::WeightTrack track = fw::read_weight_track(params, mapper.set(), wopt);
+      const auto fitted = fw::fit_weight_track(track, mapper);
+      for (std::size_t i = 0; i < fitted.size(); ++i) frames.push_back({track.times[i], fitted[i]});
+    }
     if (frames.empty()) throw emoface::InvalidInput(params + ": no frames");
     if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
-    std::vector<fm::Vertices> meshes;
+    std::vector<std::vector<double>> gltf_frames;
     std::vector<double> times;
     mu::Deformation d;
     for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -75,7 +97,7 @@ int main(int argc, char** argv) {
         fm::write_face_mesh((std::filesystem::path(out_dir) / name).string(), face, d.vertices);
       }
       if (!gltf.empty()) {
-        meshes.push_back(fm::to_mesh_frame(face.rig, d.vertices));
+        gltf_frames.push_back(frames[i].values);
         times.push_back(frames[i].time);
       }
     }
@@ -87,7 +109,16 @@ int main(int argc, char** argv) {
           break;
         }
       }
-      fm::write_animated_gltf(gltf, fm::Mesh{fm::to_mesh_frame(face.rig, face.mesh.vertices), face.mesh.faces}, meshes, times);
+      const emoface::faceweights::Mapper arkit(emoface::faceweights::builtin_weight_set("arkit"),
+                                               mu::parameter_names());
+      mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&arkit});
+      fm::MorphGltfOptions gopt;
+      gopt.colors = fm::material_colors(face.rig, face.mesh);
+      gopt.head_pivot = rig.head_pivot;
+      std::vector<fm::WeightAnimation> animations{mu::bake_animation(rig, times, gltf_frames)};
+      mu::express_in_mesh_frame(rig, animations, face.rig.frame);  // a user's mesh keeps its own frame
+      gopt.head_pivot = rig.head_pivot;
+      fm::write_morph_gltf(gltf, rig.neutral, rig.targets, animations, gopt);
     }
     return 0;
   });

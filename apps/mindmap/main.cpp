@@ -2,6 +2,7 @@
 // through the characters' mind maps and writes mood timelines, triggered actions, mood charts and,
 // with a motion graph, the synthesized landmark motion. `crowd` animates and renders the characters
 // side by side (issue #9 §2). Thin: parse, call mindmap/mindmotion, write.
+#include <cmath>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "emoface/mindmotion/behaviour.hpp"
 #include "emoface/mindmotion/crowd.hpp"
 #include "emoface/mindmotion/muscle_tracks.hpp"
+#include "emoface/faceweights/tracks.hpp"
 #include "emoface/motiongraph/io.hpp"
 #include "emoface/motiongraph/render.hpp"
 
@@ -40,7 +42,28 @@ struct Args {
   std::string view = "front";
   double fps = 0.0;
   bool video = false;
+  std::vector<std::string> weights;  // arkit, facs, livelink: also write <name>_<format>.csv
 };
+
+// The muscle tracks as ARKit / FACS / Live Link Face CSV (faceweights' shared writer).
+void add_weight_files(std::vector<std::pair<std::string, std::string>>& files, const std::string& stem,
+                      const std::vector<emoface::muscles::ParameterFrame>& frames,
+                      const std::vector<std::string>& formats) {
+  if (frames.empty()) return;
+  std::vector<double> times;
+  std::vector<std::vector<double>> values;
+  for (const auto& f : frames) {
+    times.push_back(f.time);
+    values.push_back(f.values);
+  }
+  const double fps = frames.size() > 1 ? std::round(1.0 / (times[1] - times[0])) : 25.0;
+  for (const auto& w : formats) {
+    files.emplace_back(stem + "_" + w + ".csv",
+                       emoface::faceweights::format_weight_track(
+                           *emoface::faceweights::track_format_from_string(w + "-csv"),
+                           emoface::muscles::parameter_names(), times, values, fps));
+  }
+}
 
 std::string file_stem(const std::string& name) {  // character names become file names: keep them portable
   for (char c : name)
@@ -96,6 +119,7 @@ int simulate(Args& a) {
         emoface::mindmotion::TrackFitSummary fs;
         const auto frames = emoface::mindmotion::fit_muscle_tracks(*fitter, *graph, motion, &fs);
         files.emplace_back(stem + "_muscles.csv", emoface::muscles::format_parameter_frames_csv(frames));
+        add_weight_files(files, stem, frames, a.weights);
         std::cout << maps[c].character << ": muscle fit RMS residual mean " << fs.mean_rms * 1e3 << " mm, max "
                   << fs.max_rms * 1e3 << " mm, " << fs.not_converged << " frame(s) at the iteration limit\n";
       }
@@ -160,6 +184,7 @@ int crowd(Args& a) {
     const auto& ch = crowd.characters[c];
     const std::string stem = dir + ch.name;
     files.emplace_back(stem + "_muscles.csv", emoface::muscles::format_parameter_frames_csv(ch.tracks));
+    add_weight_files(files, stem, ch.tracks, a.weights);
     files.emplace_back(stem + "_mood.csv", mm::mood_timeline_csv(crowd.simulation, crowd.maps[c], c));
     files.emplace_back(stem + "_segments.csv", mo::segments_csv(ch.motion));
     if (!a.no_charts) {
@@ -243,6 +268,11 @@ int main(int argc, char** argv) {
   sim->add_option("--out", a.out, "output directory")->required();
   sim->add_option("--graph", a.graph, "motion graph (mgraph build): also synthesize landmark motion");
   sim->add_flag("--muscles", a.muscles, "also fit muscle tracks (faceanim CSV) to the motion (needs --graph)");
+  sim->add_option("--weights", a.weights,
+                  "arkit,facs,livelink: with --muscles, also write <name>_arkit.csv, _facs.csv, "
+                  "_livelink.csv")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"arkit", "facs", "livelink"}));
   sim->add_option("--rig", a.rig, "rig for --muscles (default: the built-in default face)");
   sim->add_option("--seed", a.sim.seed, "random seed (near-tie choices, motion variation)")->capture_default_str();
   sim->add_option("--mood-form", a.mood_form, "sum|printed reading of eq. 4")->capture_default_str();
@@ -264,6 +294,10 @@ int main(int argc, char** argv) {
   cr->add_option("--out", a.out, "output directory")->required();
   cr->add_option("--graph", a.graph, "motion graph (mgraph build); default: built from the synthetic database (~6 s)");
   cr->add_option("--rig", a.rigs, "rig for everyone (FILE) or for one character (NAME=FILE); default: the built-in face");
+  cr->add_option("--weights", a.weights,
+                 "arkit,facs,livelink: also write <name>_arkit.csv, _facs.csv, _livelink.csv")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"arkit", "facs", "livelink"}));
   cr->add_option("--seed", a.sim.seed, "random seed (near-tie choices, motion variation)")->capture_default_str();
   cr->add_option("--fps", a.fps, "frames per second of tracks, mood rows and video (0 = the graph's)")->capture_default_str();
   cr->add_option("--width", a.render.face_width, "pixels per face (height = 7/6 of it)")->capture_default_str();

@@ -10,6 +10,11 @@
 
 #include "emoface/channels/io.hpp"
 #include "emoface/cli/cli.hpp"
+#include "emoface/faceweights/tracks.hpp"
+#include "emoface/facemesh/gltf_morph.hpp"
+#include "emoface/facemesh/render.hpp"
+#include "emoface/muscles/morph_targets.hpp"
+#include "emoface/muscles/parameters.hpp"
 #include "emoface/core/version.hpp"
 #include "emoface/core/video.hpp"
 #include "emoface/facemesh/default_face.hpp"
@@ -86,6 +91,7 @@ int main(int argc, char** argv) {
       "       --key-moment '12:0-1' --out data/obie/my_match.json"};
   app.set_version_flag("--version", emoface::kGenerator);
   std::string match_path, agent_path, out_dir, rig_path, utterances_path, view = "front";
+  std::vector<std::string> weights_formats;
   ob::ObieOptions o;
   bool no_video = false, no_speech = false, quiet = false, no_blinks = false, no_gaze = false, no_head = false;
   app.add_option("--match", match_path, "match script (emoface.obie.match JSON, see docs/obie.md)");
@@ -108,6 +114,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 120.0))->capture_default_str();
   app.add_option("--threads", o.threads, "deformation/rendering threads (0 = all cores, at most 8)")
       ->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_option("--weights", weights_formats,
+                 "arkit,facs,livelink: also write the tracks as arkit.csv, facs.csv and/or "
+                 "livelink_face.csv (Live Link Face CSV)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"arkit", "facs", "livelink"}));
   app.add_flag("--no-video", no_video, "skip rendering every frame and the MP4 (key moments are still rendered)");
   app.add_flag("--no-speech", no_speech, "no utterances (silent audio)");
   app.add_flag("--no-blinks", no_blinks, "no random blinks");
@@ -185,10 +196,43 @@ int main(int argc, char** argv) {
     timed("write timeline + tracks", [&] {
       emoface::core::write_file_atomic(file("timeline.ndjson"), ob::format_timeline(r));
       emoface::channels::write_tracks(file("tracks.csv"), r.head.tracks);
+      for (const auto& w : weights_formats) {
+        const std::string name = w == "livelink" ? "livelink_face.csv" : w + ".csv";
+        emoface::core::write_file_atomic(
+            file(name.c_str()),
+            emoface::faceweights::format_fixed_rate_track(
+                *emoface::faceweights::track_format_from_string(w + "-csv"), r.head.tracks.names,
+                r.head.tracks.fps, r.head.tracks.values));
+      }
       if (no_video) emoface::channels::write_wav(file("speech.wav"), r.head.audio, r.head.sample_rate);
     });
     if (!r.gltf_frames.empty())
-      timed("write glTF", [&] { emoface::facemesh::write_animated_gltf(file("face.glb"), face.mesh, r.gltf_frames, r.gltf_times); });
+      timed("write glTF", [&] {
+        // named morph targets (parameters + ARKit shapes) animated by the tracks' weights at the
+        // glTF key times (docs/engines.md)
+        namespace mu = emoface::muscles;
+        const auto& tracks = r.head.tracks;
+        std::vector<int> column;
+        for (const auto& n : mu::parameter_names()) column.push_back(tracks.column(n));
+        std::vector<std::vector<double>> keys;
+        for (double t : r.gltf_times) {
+          const auto f = std::min<std::size_t>(static_cast<std::size_t>(std::llround(t * tracks.fps)),
+                                               tracks.frames() - 1);
+          std::vector<double> v(mu::kParameterCount, 0.0);
+          for (std::size_t i = 0; i < v.size(); ++i)
+            if (column[i] >= 0) v[i] = tracks.at(f, static_cast<std::size_t>(column[i]));
+          keys.push_back(std::move(v));
+        }
+        const mu::FaceSolver solver(face.mesh, face.rig);
+        const emoface::faceweights::Mapper arkit(emoface::faceweights::builtin_weight_set("arkit"),
+                                                 mu::parameter_names());
+        const mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&arkit});
+        emoface::facemesh::MorphGltfOptions gopt;
+        gopt.colors = emoface::facemesh::material_colors(face.rig, face.mesh);
+        gopt.head_pivot = rig.head_pivot;
+        emoface::facemesh::write_morph_gltf(file("face.glb"), rig.neutral, rig.targets,
+                                            {mu::bake_animation(rig, r.gltf_times, keys, "match")}, gopt);
+      });
     timed("charts + key moments", [&] {
       emoface::core::write_file_atomic(file("charts.png"), emoface::parlee::encode_png(ob::emotion_chart(r)));
       if (!r.key_frames.empty())
@@ -219,7 +263,8 @@ int main(int argc, char** argv) {
     for (const auto& s : r.timings) out << "  " << s.stage << std::string(s.stage.size() < 26 ? 26 - s.stage.size() : 1, ' ') << fixed(s.seconds, 2) << " s\n";
     out << "  total" << std::string(21, ' ') << fixed(total, 2) << " s\n";
     out << "outputs in " << out_dir << ":\n";
-    for (const char* name : {"obie.mp4", "speech.wav", "face.glb", "timeline.ndjson", "tracks.csv", "charts.png",
+    for (const char* name : {"obie.mp4", "speech.wav", "face.glb", "timeline.ndjson", "tracks.csv", "arkit.csv",
+                             "facs.csv", "livelink_face.csv", "charts.png",
                              "key_moments.png", "summary.json"})
       if (fs::exists(file(name))) out << "  " << file(name) << "\n";
     return 0;

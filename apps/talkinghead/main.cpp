@@ -6,6 +6,8 @@
 #include "emoface/channels/io.hpp"
 #include "emoface/channels/talking_head.hpp"
 #include "emoface/cli/cli.hpp"
+#include "emoface/core/io.hpp"
+#include "emoface/faceweights/tracks.hpp"
 #include "emoface/obie/pipeline.hpp"
 #include "plot.hpp"
 
@@ -29,13 +31,18 @@ int main(int argc, char** argv) {
       "Example:\n  talkinghead --script data/channels/examples/oh_really.xml --fps 25 --out tracks.csv "
       "--wav speech.wav --seed 1 --plot smile.png --plot-params zygomatic_major_l,orbicularis_oris_funneler"};
   std::string script_path, out_path, wav_path, plot_path, plot_params, visemes_path, conflicts_path;
-  std::string dump_visemes, dump_conflicts;
+  std::string dump_visemes, dump_conflicts, weights_format, weights_path;
   ch::TalkingHeadOptions o;
   double onset = 0.5, offset = 0.5;
   bool no_blinks = false, no_gaze = false, no_head = false;
   app.add_option("--script", script_path, "marked-up script (XML, see docs/channels.md)");
   app.add_option("--fps", o.render.fps, "frames per second of the tracks")->capture_default_str();
   app.add_option("--out", out_path, "output tracks: .csv (time + one column per parameter) or .json; - = stdout JSON");
+  app.add_option("--weights", weights_format,
+                 "arkit|facs|livelink: also write the tracks as ARKit, FACS or Live Link Face CSV "
+                 "(--weights-out)")
+      ->check(CLI::IsMember({"arkit", "facs", "livelink"}));
+  app.add_option("--weights-out", weights_path, "file for --weights (written atomically)");
   app.add_option("--wav", wav_path, "write the synthesized speech (16-bit mono WAV, same length as the tracks)");
   app.add_option("--seed", o.seed, "seed of blinks and gaze/head noise")->capture_default_str();
   app.add_option("--duration", o.render.duration, "seconds of output (0 = until the last movement)")->capture_default_str();
@@ -76,8 +83,15 @@ int main(int argc, char** argv) {
         conflicts_path.empty() ? ch::default_conflict_table() : ch::read_conflicts(conflicts_path);
     const ch::TalkingHead th = ch::run_talking_head(script, visemes, conflicts, emoface::obie::fuzzy_emotion_mapper(), o);
 
+    if (weights_format.empty() != weights_path.empty())
+      throw emoface::cli::UsageError("--weights and --weights-out go together");
     emoface::cli::Output out(out_path);
     out.write(ch::format_tracks(th.tracks, out_path));
+    if (!weights_path.empty())
+      emoface::core::write_file_atomic(
+          weights_path, emoface::faceweights::format_fixed_rate_track(
+                            *emoface::faceweights::track_format_from_string(weights_format + "-csv"),
+                            th.tracks.names, th.tracks.fps, th.tracks.values));
     if (!wav_path.empty()) ch::write_wav(wav_path, th.audio, th.sample_rate);
     if (!plot_path.empty()) {
       std::vector<std::vector<double>> series;

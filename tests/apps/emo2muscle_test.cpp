@@ -3,7 +3,9 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <algorithm>
 
 #include "cli_harness.hpp"
 #include "emoface/core/version.hpp"
@@ -42,6 +44,45 @@ TEST_F(Emo2Muscle, ConvertsTheExampleFile) {
   EXPECT_EQ(csv.substr(0, csv.find('\n')).find("id,zygomatic_major,"), 0u);
   EXPECT_NE(r.out.find("line 4: single happiness 0.90"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("13 record(s) converted"), std::string::npos);
+}
+
+// --weights: ARKit / FACS columns computed from the 35 side parameters (data/faceweights): checked
+// against the --sides output of the same records by the documented rows (mouthSmile_L = zygomatic
+// major + 0.3 zygomatic minor, clamped; AU12_L = zygomatic major).
+TEST_F(Emo2Muscle, WeightsArkitAndFacs) {
+  auto sides = run(kExample + " --sides");
+  ASSERT_EQ(sides.code, 0) << sides.err;
+  auto arkit = run(kExample + " --weights arkit");
+  ASSERT_EQ(arkit.code, 0) << arkit.err;
+  auto facs = run(kExample + " --weights facs");
+  ASSERT_EQ(facs.code, 0) << facs.err;
+  auto table = [](const std::string& csv) {
+    std::vector<std::vector<std::string>> rows;
+    std::string body = unstamped(csv), line;
+    std::stringstream ss(body);
+    while (std::getline(ss, line)) {
+      std::vector<std::string> f;
+      std::stringstream ls(line);
+      for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+      rows.push_back(f);
+    }
+    return rows;
+  };
+  const auto s = table(sides.out), a = table(arkit.out), f = table(facs.out);
+  ASSERT_EQ(s.size(), a.size());
+  ASSERT_EQ(a[0].size(), 53u);  // id + 52 shapes
+  auto col = [](const std::vector<std::vector<std::string>>& t, const std::string& name) {
+    return static_cast<std::size_t>(std::find(t[0].begin(), t[0].end(), name) - t[0].begin());
+  };
+  EXPECT_EQ(a[0][1], "browDown_L");
+  for (std::size_t r = 1; r < s.size(); ++r) {
+    const double zm = std::stod(s[r][col(s, "zygomatic_major_l")]);
+    const double zn = std::stod(s[r][col(s, "zygomatic_minor_l")]);
+    EXPECT_NEAR(std::stod(a[r][col(a, "mouthSmile_L")]), std::min(1.0, zm + 0.3 * zn), 2e-6) << r;
+    EXPECT_NEAR(std::stod(f[r][col(f, "AU12_L")]), zm, 2e-6) << r;
+  }
+  EXPECT_EQ(run(kExample + " --weights arkit --sides").code, 1);
+  EXPECT_EQ(run(kExample + " --weights vrm").code, 1);
 }
 
 TEST_F(Emo2Muscle, SidesNdjsonJsonAndStdinStdout) {

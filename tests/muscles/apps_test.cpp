@@ -54,6 +54,42 @@ TEST_F(Apps, FaceanimWritesFramesAndGltf) {
   EXPECT_TRUE(fs::exists(p("shard/frame_0001.ply")));
 }
 
+// faceanim --weights arkit: ARKit weights are fitted to parameters. jawOpen 0.5 is the masseter at
+// 0.5 (data/faceweights/arkit.json), so the frames equal those of the parameter file (to the fit's
+// ridge bias, ~1e-6 in the level → far below 1e-5 m).
+TEST_F(Apps, FaceanimFitsArkitWeights) {
+  std::string header = "time", zero = "0", open = "0.04";
+  for (const char* n : {"browDown_L", "browDown_R", "browInnerUp", "browOuterUp_L", "browOuterUp_R",
+                        "cheekPuff", "cheekSquint_L", "cheekSquint_R", "eyeBlink_L", "eyeBlink_R",
+                        "eyeLookDown_L", "eyeLookDown_R", "eyeLookIn_L", "eyeLookIn_R",
+                        "eyeLookOut_L", "eyeLookOut_R", "eyeLookUp_L", "eyeLookUp_R", "eyeSquint_L",
+                        "eyeSquint_R", "eyeWide_L", "eyeWide_R", "jawForward", "jawLeft", "jawOpen",
+                        "jawRight", "mouthClose", "mouthDimple_L", "mouthDimple_R", "mouthFrown_L",
+                        "mouthFrown_R", "mouthFunnel", "mouthLeft", "mouthLowerDown_L",
+                        "mouthLowerDown_R", "mouthPress_L", "mouthPress_R", "mouthPucker",
+                        "mouthRight", "mouthRollLower", "mouthRollUpper", "mouthShrugLower",
+                        "mouthShrugUpper", "mouthSmile_L", "mouthSmile_R", "mouthStretch_L",
+                        "mouthStretch_R", "mouthUpperUp_L", "mouthUpperUp_R", "noseSneer_L",
+                        "noseSneer_R", "tongueOut"}) {
+    header += std::string(",") + n;
+    zero += ",0";
+    open += std::string(n) == "jawOpen" ? ",0.5" : ",0";
+  }
+  emoface::core::write_file_atomic(p("w.csv"), header + "\n" + zero + "\n" + open + "\n");
+  emoface::core::write_file_atomic(p("m.csv"), "masseter\n0\n0.5\n");
+  ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --weights arkit --params " + p("w.csv") + " --out " + p("w")), 0);
+  ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --params " + p("m.csv") + " --out " + p("m")), 0);
+  const auto a = emoface::facemesh::read_mesh(p("w/frame_0001.obj"));
+  const auto b = emoface::facemesh::read_mesh(p("m/frame_0001.obj"));
+  EXPECT_TRUE(a.vertices.isApprox(b.vertices, 1e-6));
+  EXPECT_FALSE(a.vertices.isApprox(emoface::facemesh::read_mesh(p("w/frame_0000.obj")).vertices, 1e-4));
+  // a weight outside [0, 1] is a format error (exit 2), nothing written
+  emoface::core::write_file_atomic(p("bad.csv"), header + "\n" + zero.substr(0, zero.size() - 1) + "7\n");
+  EXPECT_EQ(run(std::string(FACEANIM_EXE) + " --weights arkit --params " + p("bad.csv") + " --out " + p("bad")), 2);
+  EXPECT_FALSE(fs::exists(p("bad/frame_0000.obj")));
+  EXPECT_EQ(run(std::string(FACEANIM_EXE) + " --weights vrm --params " + p("w.csv") + " --out " + p("x")), 1);
+}
+
 TEST_F(Apps, FaceanimRegeneratesTheCheckedInFace) {
   ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --write-default-face " + p("face")), 0);
   const std::string data = std::string(EMOFACE_SOURCE_DIR) + "/data/face/";

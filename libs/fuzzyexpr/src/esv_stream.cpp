@@ -320,13 +320,18 @@ const std::vector<std::string>& EsvReader::extra_columns() const noexcept { retu
 
 void FmcvWriterOptions::validate() const {
   if (precision < 1 || precision > 17) throw InvalidInput("FmcvWriterOptions.precision must be in 1..17");
+  if (mapped_columns.empty() != !map)
+    throw InvalidInput("FmcvWriterOptions: mapped_columns and map go together");
 }
 
 FmcvWriter::FmcvWriter(FmcvWriterOptions options, std::vector<std::string> extra_columns)
     : options_(options), extra_(std::move(extra_columns)) {
   options_.validate();
   zero_ = "0." + std::string(static_cast<std::size_t>(options_.precision), '0');
-  if (options_.sides)
+  if (options_.map) {
+    names_ = options_.mapped_columns;
+    mapped_.assign(names_.size(), 0.0);
+  } else if (options_.sides)
     for (auto n : side_parameter_names()) names_.emplace_back(n);
   else
     for (std::size_t m = 0; m < kMuscleCount; ++m) names_.emplace_back(to_string(muscle_at(m)));
@@ -363,14 +368,19 @@ std::string FmcvWriter::begin() const {
 }
 
 void FmcvWriter::append(std::string& out, const EsvRecord& record, const Fmcv& fmcv) {
-  double values[kSideParameterCount];
+  double fixed_values[kSideParameterCount];
+  double* values = fixed_values;
   std::size_t n = 0;
-  if (options_.sides) {
+  if (options_.map) {
+    options_.map(expand_to_sides(fmcv), mapped_.data());
+    values = mapped_.data();
+    n = mapped_.size();
+  } else if (options_.sides) {
     const auto s = expand_to_sides(fmcv);
-    std::copy(s.begin(), s.end(), values);
+    std::copy(s.begin(), s.end(), fixed_values);
     n = kSideParameterCount;
   } else {
-    std::copy(fmcv.begin(), fmcv.end(), values);
+    std::copy(fmcv.begin(), fmcv.end(), fixed_values);
     n = kMuscleCount;
   }
   char buf[40];

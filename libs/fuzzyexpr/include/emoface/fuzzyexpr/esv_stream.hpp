@@ -72,6 +72,11 @@ struct FmcvWriterOptions {
   bool sides = false;
   /// Digits after the decimal point for levels. Range 1–17.
   int precision = 6;
+  /// Optional: write `mapped_columns` instead of the muscles / sides, computed from the 35 side
+  /// parameters by `map` (which writes mapped_columns.size() values; e.g. faceweights' FACS or ARKit
+  /// weights for emo2muscle --weights). Both set or both empty.
+  std::vector<std::string> mapped_columns;
+  std::function<void(const SideParameters& sides, double* out)> map;
   void validate() const;
 };
 
@@ -91,6 +96,7 @@ class FmcvWriter {
   std::vector<std::string> extra_;
   std::vector<std::string> names_;
   std::string zero_;  // 0 formatted at the chosen precision
+  std::vector<double> mapped_;  // scratch for options_.map
   std::size_t rows_ = 0;
 };
 

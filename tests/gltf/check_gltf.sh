@@ -1,0 +1,28 @@
+#!/bin/sh
+# ctest gltf.validator: every kind of glTF the apps write passes the Khronos glTF-Validator with
+# 0 errors and 0 warnings, and Obie's face.glb for the §7.4 match stays under 4 MiB.
+# Usage: tests/gltf/check_gltf.sh BUILD_DIR WORK_DIR   (needs scripts/setup_npm.sh; exit 77 = skip)
+set -eu
+BUILD=$1
+WORK=$2
+SRC=$(cd "$(dirname "$0")/../.." && pwd)
+if [ ! -f "$SRC/tests/gltf/node_modules/gltf-validator/package.json" ] || ! command -v node >/dev/null; then
+  echo "check_gltf: glTF-Validator not installed: run scripts/setup.sh (it calls scripts/setup_npm.sh)"
+  exit 77
+fi
+rm -rf "$WORK"
+mkdir -p "$WORK"
+printf 'time,zygomatic_major_l,zygomatic_major_r,masseter,eye_gaze_yaw,eye_gaze_pitch,head_yaw,head_roll,eye_blink_l\n0,0,0,0,0,0,0,0,0\n0.5,1,1,0.4,0.3,-0.2,0.2,0.1,1\n1,0,0,0,-0.3,0.1,-0.1,0,0\n' > "$WORK/p.csv"
+"$BUILD/apps/faceanim/faceanim" --params "$WORK/p.csv" --gltf "$WORK/faceanim.gltf"
+"$BUILD/apps/faceanim/faceanim" --params "$WORK/p.csv" --gltf "$WORK/faceanim.glb"
+"$BUILD/apps/emo2muscle/emo2muscle" "$SRC/data/fuzzyexpr/example_emotions.csv" --weights arkit -o "$WORK/arkit.csv"
+"$BUILD/apps/faceanim/faceanim" --weights arkit --params "$WORK/arkit.csv" --gltf "$WORK/arkit.glb"
+"$BUILD/apps/obie/obie" --match "$SRC/data/obie/match_7_4.json" --agent "$SRC/data/parlee/agents/neutral.json" \
+  --out "$WORK/obie" --no-video --no-speech --quiet >/dev/null
+size=$(stat -c %s "$WORK/obie/face.glb")
+echo "obie face.glb: $size bytes"
+if [ "$size" -ge 4194304 ]; then
+  echo "check_gltf: Obie's face.glb is $size bytes, over the 4 MiB budget"
+  exit 1
+fi
+node "$SRC/tests/gltf/validate.mjs" "$WORK/faceanim.gltf" "$WORK/faceanim.glb" "$WORK/arkit.glb" "$WORK/obie/face.glb"
