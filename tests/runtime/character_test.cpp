@@ -248,6 +248,24 @@ TEST(Character, ConfigRoundTripAndBadInput) {
   EXPECT_EQ(parse_character_config(env + R"j("seed": 9})j").options.seed, 9u);
 }
 
+TEST(Character, ArkitAndFacsWeights) {
+  Character c{CharacterConfig{}};
+  ASSERT_EQ(Character::arkit_names().size(), 52u);
+  c.update(0.5);
+  ASSERT_EQ(c.arkit().size(), 52u);
+  const auto smile = static_cast<std::size_t>(
+      std::find(Character::arkit_names().begin(), Character::arkit_names().end(), "mouthSmile_L") -
+      Character::arkit_names().begin());
+  ASSERT_LT(smile, 52u);
+  EXPECT_EQ(c.arkit()[smile], 0.0);
+  c.push_emotions({0, 1, 0, 0, 0, 0});
+  c.update(2.0);
+  EXPECT_GT(c.arkit()[smile], 0.2);
+  for (double w : c.arkit()) EXPECT_TRUE(w >= 0 && w <= 1);
+  EXPECT_EQ(c.facs().size(), Character::facs_names().size());
+  EXPECT_GT(*std::max_element(c.facs().begin(), c.facs().end()), 0.2);
+}
+
 TEST(Character, FaceVerticesOnRequest) {
   CharacterConfig cfg;
   cfg.face = "default";

@@ -8,6 +8,8 @@
 #include "emoface/channels/parameters.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
+#include "emoface/faceweights/names.hpp"
+#include "emoface/faceweights/weight_set.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
@@ -446,6 +448,38 @@ std::vector<double> Character::occ_emotions() const {
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = impl_->occ_last[i] * std::pow(impl_->phi[i], steps);
   return out;
 }
+
+namespace {
+const std::vector<double>& mapped(std::unique_ptr<faceweights::Mapper>& mapper, const char* set,
+                                  std::vector<double>& out, std::size_t& frame, std::size_t now,
+                                  const std::vector<double>& params) {
+  if (!mapper)
+    mapper = std::make_unique<faceweights::Mapper>(faceweights::builtin_weight_set(set), ch::default_parameter_names());
+  if (frame != now || out.size() != mapper->target_count()) {
+    out.resize(mapper->target_count());
+    mapper->forward(params.data(), out.data());
+    frame = now;
+  }
+  return out;
+}
+}  // namespace
+
+const std::vector<double>& Character::arkit() {
+  Impl& m = *impl_;
+  return mapped(m.arkit, "arkit", m.arkit_out, m.arkit_frame, m.mixer.frames_out(), m.params_out);
+}
+
+const std::vector<double>& Character::facs() {
+  Impl& m = *impl_;
+  return mapped(m.facs, "facs", m.facs_out, m.facs_frame, m.mixer.frames_out(), m.params_out);
+}
+
+const std::vector<std::string>& Character::arkit_names() {
+  static const std::vector<std::string> names = faceweights::builtin_weight_set("arkit").target_names();
+  return names;
+}
+
+std::vector<std::string> Character::facs_names() { return faceweights::builtin_weight_set("facs").target_names(); }
 
 bool Character::has_face() const noexcept { return impl_->solver != nullptr; }
 

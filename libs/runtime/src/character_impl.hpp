@@ -9,6 +9,7 @@
 
 #include "emoface/channels/dominance.hpp"
 #include "emoface/channels/speech.hpp"
+#include "emoface/faceweights/mapper.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/mindmap/simulation.hpp"
 #include "emoface/muscles/solver.hpp"
@@ -59,6 +60,11 @@ struct Character::Impl {
   std::vector<std::array<double, 6>> esv_ring;
   std::array<double, 6> esv_out{};
   std::vector<double> params_out;
+  // engine outputs (faceweights), built on first use
+  std::unique_ptr<faceweights::Mapper> arkit, facs;
+  std::vector<double> arkit_out, facs_out;
+  std::size_t arkit_frame = std::numeric_limits<std::size_t>::max();
+  std::size_t facs_frame = std::numeric_limits<std::size_t>::max();
   // face
   std::unique_ptr<muscles::FaceSolver> solver;
   muscles::Deformation deformation;

@@ -136,6 +136,14 @@ class Character {
   /// The face parameters at output_time(), muscles::parameter_names() order (42 entries).
   const std::vector<double>& parameters() const noexcept;
   static const std::vector<std::string>& parameter_names();
+  /// The 52 ARKit blend-shape weights at output_time() (faceweights' built-in "arkit" set, in the
+  /// order of arkit_names()), computed on request and cached per frame.
+  const std::vector<double>& arkit();
+  static const std::vector<std::string>& arkit_names();
+  /// FACS action-unit intensities at output_time() (faceweights' built-in "facs" set, in the order
+  /// of facs_names()), computed on request and cached per frame.
+  const std::vector<double>& facs();
+  static std::vector<std::string> facs_names();
   /// ParleE: the 21 OCC intensities at the input clock (decayed); other sources: empty.
   std::vector<double> occ_emotions() const;
 
