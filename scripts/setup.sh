@@ -16,6 +16,7 @@ PACKAGES=(
   espeak-ng espeak-ng-data libpugixml-dev   # channels: the espeak-ng *program* (run, never linked), markup
   ffmpeg                            # core::VideoWriter: facerender, obie, mgraph, mindmap crowd videos
   liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
+  python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest   # EMOFACE_PYTHON: import emoface
 )
 
 missing=()
