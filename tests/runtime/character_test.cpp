@@ -214,6 +214,15 @@ TEST(Character, SnapshotBadInput) {
   std::string bad = snap;
   bad.replace(bad.find("\"frames_in\":"), 12, "\"frames_in\":-");
   EXPECT_THROW(restore_character(bad), FormatError);
+  std::string clock = snap;
+  const std::size_t at = clock.find("\"time\":") + 7;
+  clock.replace(at, clock.find(',', at) - at, "100000000.0");  // the mixer's frames no longer match the clock
+  try {
+    restore_character(clock, "s.json");
+    FAIL();
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("/mixer/frames_in"), std::string::npos) << e.what();
+  }
   try {
     std::string wrong = snap;
     wrong.replace(wrong.find("\"esv_out\":["), 11, "\"esv_out\":[7,");

@@ -344,8 +344,11 @@ Character restore_character(std::string_view text, const std::string& file) {
   switch (m.config.source) {
     case SourceKind::Direct: {
       const auto v = numbers(r, src.contains("values") ? src["values"] : Json(), "/source/values", 6, false);
+      for (double x : v)
+        if (!(x >= 0 && x <= 1)) r.fail("/source/values", "emotion intensities must be in [0, 1]");
       std::copy(v.begin(), v.end(), m.direct.begin());
       r.get(src, "/source", "time", m.direct_time);
+      if (!(m.direct_time >= 0 && m.direct_time <= m.time)) r.fail("/source/time", "must be in [0, /time]");
       break;
     }
     case SourceKind::Parlee: {
@@ -369,8 +372,12 @@ Character restore_character(std::string_view text, const std::string& file) {
       }
       const auto occ = numbers(r, src.contains("emotions") ? src["emotions"] : Json(), "/source/emotions",
                                parlee::kEmotionCount, false);
+      for (std::size_t i = 0; i < occ.size(); ++i)
+        if (!(occ[i] >= 0 && occ[i] <= m.config.agent.emotions.omega[i]))
+          r.fail("/source/emotions/" + std::to_string(i), "intensity must be in [0, omega]");
       std::copy(occ.begin(), occ.end(), m.occ_last.begin());
       r.get(src, "/source", "t_last", m.t_last);
+      if (!(m.t_last >= 0 && m.t_last <= m.time)) r.fail("/source/t_last", "must be in [0, /time]");
       break;
     }
     case SourceKind::MindMap: {
@@ -404,6 +411,8 @@ Character restore_character(std::string_view text, const std::string& file) {
   const Json& d = r.object(doc["display"], "/display");
   r.get(d, "/display", "any", m.shown_any);
   const auto shown = numbers(r, d.contains("shown") ? d["shown"] : Json(), "/display/shown", 6, false);
+  for (double x : shown)
+    if (!(x >= 0 && x <= 1)) r.fail("/display/shown", "emotion intensities must be in [0, 1]");
   std::copy(shown.begin(), shown.end(), m.shown.begin());
   const Json& chs = r.object(doc["channels"], "/channels");
   restore_channel(r, chs.contains("emotion") ? chs["emotion"] : Json(), "/channels/emotion", m.emotion);
@@ -451,10 +460,20 @@ Character restore_character(std::string_view text, const std::string& file) {
     r.fail("/mixer", e.what());
   }
   m.params_out = st.output;
+  // the clocks must agree (update() computes every frame n with n/fps <= time): a foreign or edited
+  // snapshot must not make the next update() loop for ages
+  const double fps = m.config.options.fps;
+  if (!(m.time >= 0 && m.time <= 1e9)) r.fail("/time", "must be in [0, 1e9] s");
+  const bool due_ok = st.frames_in == 0 ? !(0.0 <= m.time + 1e-9)
+                                         : static_cast<double>(st.frames_in - 1) / fps <= m.time + 1e-9 &&
+                                               !(static_cast<double>(st.frames_in) / fps <= m.time + 1e-9);
+  if (!due_ok) r.fail("/mixer/frames_in", "does not match /time at the configured fps");
   const Json& ring = doc["esv_ring"];
   if (!ring.is_array() || ring.size() != m.esv_ring.size()) r.fail("/esv_ring", "wrong size");
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const auto v = numbers(r, ring[i], "/esv_ring/" + std::to_string(i), 6, false);
+    for (double x : v)
+      if (!(x >= 0 && x <= 1)) r.fail("/esv_ring/" + std::to_string(i), "emotion intensities must be in [0, 1]");
     std::copy(v.begin(), v.end(), m.esv_ring[i].begin());
   }
   const auto eo = numbers(r, doc["esv_out"], "/esv_out", 6, false);
