@@ -1,7 +1,7 @@
-// runtime::Character per-frame cost (issue 16 targets: 1,000 characters at 60 Hz without deformation
-// ≥ 60,000 character-updates/s per core; with deformation on the default face ≥ 2,000/s), with
-// baselines in the same run: the offline channels::mix per frame over the same kind of channels, and
-// FaceSolver::deform alone.
+// runtime::Character per-frame cost (issue 16 targets: 1,000 characters at 60 Hz without
+// deformation ≥ 60,000 character-updates/s per core; with deformation on the default face ≥
+// 2,000/s), with baselines in the same run: the offline channels::mix per frame over the same kind
+// of channels, and FaceSolver::deform alone.
 //   build/tests/bench/runtime_bench --benchmark_min_time=2s
 #include <benchmark/benchmark.h>
 

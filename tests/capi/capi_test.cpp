@@ -1,13 +1,13 @@
 // Error paths of the C API: every bad call returns an error code with a message and never crashes
 // (run under ASan/UBSan with -DEMOFACE_SANITIZE=ON); the good paths return the runtime's values.
-#include "emoface/emoface.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include "emoface/emoface.h"
 
 namespace {
 
@@ -34,9 +34,10 @@ TEST(CApi, NamesAndCounts) {
 
 TEST(CApi, CreateFailuresReportThroughErrAndThreadLocal) {
   char err[64];
-  for (const char* bad : {"{", "[1,2]", R"({"format": "emoface.character", "version": "1.0", "fps": -1})",
-                          R"({"format": "emoface.character", "version": "9.0"})",
-                          R"({"format": "emoface.character", "version": "1.0", "source": {"kind": "parlee"}})"}) {
+  for (const char* bad :
+       {"{", "[1,2]", R"({"format": "emoface.character", "version": "1.0", "fps": -1})",
+        R"({"format": "emoface.character", "version": "9.0"})",
+        R"({"format": "emoface.character", "version": "1.0", "source": {"kind": "parlee"}})"}) {
     std::memset(err, 0, sizeof err);
     EXPECT_EQ(emoface_character_create(bad, err, sizeof err), nullptr) << bad;
     EXPECT_GT(std::strlen(err), 0u) << bad;
@@ -50,7 +51,8 @@ TEST(CApi, CreateFailuresReportThroughErrAndThreadLocal) {
   EXPECT_EQ(emoface_character_create_from_file(nullptr, err, sizeof err), nullptr);
   EXPECT_EQ(emoface_character_create_from_file("/no/such/file.json", err, sizeof err), nullptr);
   EXPECT_EQ(emoface_character_restore(nullptr, err, sizeof err), nullptr);
-  EXPECT_EQ(emoface_character_restore("{\"format\": \"emoface.character_state\"}", err, sizeof err), nullptr);
+  EXPECT_EQ(emoface_character_restore("{\"format\": \"emoface.character_state\"}", err, sizeof err),
+            nullptr);
 }
 
 TEST(CApi, NullHandlesNeverCrash) {
@@ -69,7 +71,8 @@ TEST(CApi, NullHandlesNeverCrash) {
   EXPECT_EQ(emoface_character_times(nullptr, buf, buf, buf), EMOFACE_ERROR_ARGUMENT);
   EXPECT_EQ(emoface_character_vertex_count(nullptr), 0u);
   EXPECT_EQ(emoface_character_vertices(nullptr, fbuf, 8), EMOFACE_ERROR_ARGUMENT);
-  EXPECT_EQ(emoface_character_snapshot(nullptr, text, sizeof text, &needed), EMOFACE_ERROR_ARGUMENT);
+  EXPECT_EQ(emoface_character_snapshot(nullptr, text, sizeof text, &needed),
+            EMOFACE_ERROR_ARGUMENT);
   EXPECT_STREQ(emoface_character_error(nullptr), "NULL character handle");
   emoface_character_destroy(nullptr);
 }
@@ -81,7 +84,8 @@ TEST(CApi, BadArgumentsOnAHandle) {
   EXPECT_EQ(emoface_character_event(h.c, nullptr), EMOFACE_ERROR_ARGUMENT);
   EXPECT_EQ(emoface_character_event(h.c, "not json"), EMOFACE_ERROR_SKIPPED);
   EXPECT_NE(std::string(emoface_character_error(h.c)).find("JSON"), std::string::npos);
-  EXPECT_EQ(emoface_character_event(h.c, R"({"emotions": {"happiness": 1e300}})"), EMOFACE_ERROR_SKIPPED);
+  EXPECT_EQ(emoface_character_event(h.c, R"({"emotions": {"happiness": 1e300}})"),
+            EMOFACE_ERROR_SKIPPED);
   EXPECT_EQ(emoface_character_event(h.c, R"j({"action": "(shot team)"})j"), EMOFACE_ERROR_SKIPPED);
   EXPECT_EQ(emoface_character_update(h.c, NAN), EMOFACE_ERROR_ARGUMENT);
   EXPECT_EQ(emoface_character_update(h.c, -1), EMOFACE_ERROR_ARGUMENT);
@@ -97,8 +101,10 @@ TEST(CApi, BadArgumentsOnAHandle) {
   EXPECT_EQ(emoface_character_speak(h.c, nullptr, nullptr), EMOFACE_ERROR_ARGUMENT);
   EXPECT_EQ(emoface_character_speak(h.c, "   ", nullptr), EMOFACE_ERROR_ARGUMENT);
   EXPECT_EQ(emoface_character_speak_timing(h.c, "0\tQ\n", nullptr), EMOFACE_ERROR_FORMAT);
-  EXPECT_EQ(emoface_character_speak_timing(h.c, "{\"mouthCues\": 5}", nullptr), EMOFACE_ERROR_FORMAT);
-  EXPECT_EQ(emoface_character_speak_timing(h.c, "start\tend\tphoneme\n0\tnan\ta\n", nullptr), EMOFACE_ERROR_FORMAT);
+  EXPECT_EQ(emoface_character_speak_timing(h.c, "{\"mouthCues\": 5}", nullptr),
+            EMOFACE_ERROR_FORMAT);
+  EXPECT_EQ(emoface_character_speak_timing(h.c, "start\tend\tphoneme\n0\tnan\ta\n", nullptr),
+            EMOFACE_ERROR_FORMAT);
   char small[4];
   size_t needed = 0;
   EXPECT_EQ(emoface_character_snapshot(h.c, small, sizeof small, &needed), EMOFACE_ERROR_SIZE);
@@ -147,7 +153,7 @@ TEST(CApi, EmotionsToMusclesBatch) {
   const double esv[12] = {0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   double out[38];
   ASSERT_EQ(emoface_emotions_to_muscles(esv, 2, out, 38), EMOFACE_OK);
-  EXPECT_GT(out[0], 0.3);  // zygomatic major of full happiness
+  EXPECT_GT(out[0], 0.3);                                // zygomatic major of full happiness
   for (int i = 19; i < 38; ++i) EXPECT_EQ(out[i], 0.0);  // zero emotion: neutral face
   EXPECT_EQ(emoface_emotions_to_muscles(esv, 2, out, 37), EMOFACE_ERROR_SIZE);
   EXPECT_EQ(emoface_emotions_to_muscles(nullptr, 2, out, 38), EMOFACE_ERROR_ARGUMENT);

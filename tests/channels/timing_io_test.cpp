@@ -1,12 +1,12 @@
 #include "emoface/channels/timing_io.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <unistd.h>
 
 #include "emoface/channels/dominance.hpp"
 #include "emoface/core/errors.hpp"
@@ -50,27 +50,39 @@ TEST(TimingIo, TsvRoundTrip) {
   v.kind = TimingKind::Viseme;
   expect_same(parse_timing_tsv(format_timing_tsv(v)), v);
   // CRLF and blank lines are accepted
-  expect_same(parse_timing_tsv("start\tend\tphoneme\r\n\r\n0\t0.1\th\r\n0.1\t0.3141592653589793\toU\r\n"
-                               "0.5\t0.625\t_:\r\n"),
-              t);
+  expect_same(
+      parse_timing_tsv("start\tend\tphoneme\r\n\r\n0\t0.1\th\r\n0.1\t0.3141592653589793\toU\r\n"
+                       "0.5\t0.625\t_:\r\n"),
+      t);
 }
 
 TEST(TimingIo, TsvBadInput) {
   EXPECT_NE(error_of([] { parse_timing_tsv("", "t.tsv"); }).find("t.tsv:1"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_timing_tsv("begin\tend\tphoneme\n", "t.tsv"); }).find("header"), std::string::npos);
-  const std::string h = "start\tend\tphoneme\n";
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t0.1\n", "t.tsv"); }).find("t.tsv:2"), std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\tnan\ta\n", "t.tsv"); }).find("end"), std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\tinf\ta\n", "t.tsv"); }).find("end"), std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "-1\t0.1\ta\n", "t.tsv"); }).find("start"), std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t1e9\ta\n", "t.tsv"); }).find("end"), std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0.2\t0.1\ta\n", "t.tsv"); }).find("after start"), std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t0.2\ta\n0.1\t0.3\tb\n", "t.tsv"); }).find("t.tsv:3"),
+  EXPECT_NE(error_of([] { parse_timing_tsv("begin\tend\tphoneme\n", "t.tsv"); }).find("header"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t0.1\t\n", "t.tsv"); }).find("t.tsv:2"), std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0x\t0.1\ta\n", "t.tsv"); }).find("start"), std::string::npos);
+  const std::string h = "start\tend\tphoneme\n";
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t0.1\n", "t.tsv"); }).find("t.tsv:2"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\tnan\ta\n", "t.tsv"); }).find("end"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\tinf\ta\n", "t.tsv"); }).find("end"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "-1\t0.1\ta\n", "t.tsv"); }).find("start"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t1e9\ta\n", "t.tsv"); }).find("end"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0.2\t0.1\ta\n", "t.tsv"); }).find("after start"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { parse_timing_tsv(h + "0\t0.2\ta\n0.1\t0.3\tb\n", "t.tsv"); }).find("t.tsv:3"),
+      std::string::npos);
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t0.1\t\n", "t.tsv"); }).find("t.tsv:2"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0x\t0.1\ta\n", "t.tsv"); }).find("start"),
+            std::string::npos);
   // truncated mid-line
-  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t0.", "t.tsv"); }).find("t.tsv:2"), std::string::npos);
+  EXPECT_NE(error_of([&] { parse_timing_tsv(h + "0\t0.", "t.tsv"); }).find("t.tsv:2"),
+            std::string::npos);
   SpeechTiming bad;
   bad.segments = {{"a", 0.0, std::numeric_limits<double>::quiet_NaN()}};
   EXPECT_THROW(format_timing_tsv(bad), InvalidInput);
@@ -85,27 +97,36 @@ TEST(TimingIo, JsonRoundTripAndBadInput) {
   expect_same(parse_timing_json(text), t);
   const std::string env = R"({"format":"emoface.speech_timing","version":"1.0",)";
   EXPECT_NE(error_of([] { parse_timing_json("{", "t.json"); }).find("t.json"), std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_json(env + R"("kind":"word","segments":[]})", "t.json"); }).find("/kind"),
-            std::string::npos);
-  EXPECT_NE(error_of([&] { parse_timing_json(env + R"("kind":"phoneme"})", "t.json"); }).find("/segments"),
+  EXPECT_NE(error_of([&] {
+              parse_timing_json(env + R"("kind":"word","segments":[]})", "t.json");
+            }).find("/kind"),
             std::string::npos);
   EXPECT_NE(error_of([&] {
-              parse_timing_json(env + R"("kind":"phoneme","segments":[{"start":0,"end":"x","name":"a"}]})", "t.json");
+              parse_timing_json(env + R"("kind":"phoneme"})", "t.json");
+            }).find("/segments"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              parse_timing_json(
+                  env + R"("kind":"phoneme","segments":[{"start":0,"end":"x","name":"a"}]})",
+                  "t.json");
             }).find("/segments/0/end"),
             std::string::npos);
   EXPECT_NE(error_of([&] {
-              parse_timing_json(env + R"("kind":"phoneme","segments":[{"start":0,"end":1,"name":"a","x":1}]})",
-                                "t.json");
+              parse_timing_json(
+                  env + R"("kind":"phoneme","segments":[{"start":0,"end":1,"name":"a","x":1}]})",
+                  "t.json");
             }).find("/segments/0/x"),
             std::string::npos);
   EXPECT_NE(error_of([&] {
-              parse_timing_json(env + R"("kind":"phoneme","segments":[{"start":0,"end":1,"name":"a"},)"
-                                      R"({"start":0.5,"end":2,"name":"b"}]})",
-                                "t.json");
+              parse_timing_json(
+                  env + R"("kind":"phoneme","segments":[{"start":0,"end":1,"name":"a"},)"
+                        R"({"start":0.5,"end":2,"name":"b"}]})",
+                  "t.json");
             }).find("/segments/1/start"),
             std::string::npos);
-  EXPECT_NE(error_of([] { parse_timing_json(R"({"format":"emoface.speech_timing","version":"2.0"})", "t.json"); })
-                .find("/version"),
+  EXPECT_NE(error_of([] {
+              parse_timing_json(R"({"format":"emoface.speech_timing","version":"2.0"})", "t.json");
+            }).find("/version"),
             std::string::npos);
 }
 
@@ -151,25 +172,34 @@ TEST(TimingIo, RhubarbTsvAndJson) {
 
 TEST(TimingIo, RhubarbBadInput) {
   EXPECT_NE(error_of([] { parse_rhubarb_tsv("", "r.tsv"); }).find("r.tsv"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_rhubarb_tsv("0\tX\n0.1\tQ\n", "r.tsv"); }).find("r.tsv:2"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_rhubarb_tsv("0\tX\n0\tA\n", "r.tsv"); }).find("increase"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_rhubarb_tsv("0\tX\nnan\tA\n", "r.tsv"); }).find("r.tsv:2"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_rhubarb_tsv("0 X\n", "r.tsv"); }).find("r.tsv:1"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_rhubarb_tsv("0\tX\n0.1\tQ\n", "r.tsv"); }).find("r.tsv:2"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_rhubarb_tsv("0\tX\n0\tA\n", "r.tsv"); }).find("increase"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_rhubarb_tsv("0\tX\nnan\tA\n", "r.tsv"); }).find("r.tsv:2"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_rhubarb_tsv("0 X\n", "r.tsv"); }).find("r.tsv:1"),
+            std::string::npos);
   EXPECT_NE(error_of([] { parse_rhubarb_json("[]", "r.json"); }).find("r.json"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_rhubarb_json(R"({"mouthCues":[{"start":0,"end":1,"value":"Z"}]})", "r.json"); })
-                .find("/mouthCues/0/value"),
+  EXPECT_NE(error_of([] {
+              parse_rhubarb_json(R"({"mouthCues":[{"start":0,"end":1,"value":"Z"}]})", "r.json");
+            }).find("/mouthCues/0/value"),
             std::string::npos);
-  EXPECT_NE(error_of([] { parse_rhubarb_json(R"({"mouthCues":[{"start":0,"end":1e12,"value":"A"}]})", "r.json"); })
-                .find("/mouthCues/0/end"),
+  EXPECT_NE(error_of([] {
+              parse_rhubarb_json(R"({"mouthCues":[{"start":0,"end":1e12,"value":"A"}]})", "r.json");
+            }).find("/mouthCues/0/end"),
             std::string::npos);
-  EXPECT_NE(error_of([] { parse_rhubarb_json(R"({"mouthCues":[{"start":0,"value":"A"}]})", "r.json"); })
-                .find("/mouthCues/0/end"),
+  EXPECT_NE(error_of([] {
+              parse_rhubarb_json(R"({"mouthCues":[{"start":0,"value":"A"}]})", "r.json");
+            }).find("/mouthCues/0/end"),
             std::string::npos);
-  EXPECT_NE(error_of([] { parse_rhubarb_json(R"({"metadata":{"duration":-1},"mouthCues":[]})", "r.json"); })
-                .find("/metadata/duration"),
+  EXPECT_NE(error_of([] {
+              parse_rhubarb_json(R"({"metadata":{"duration":-1},"mouthCues":[]})", "r.json");
+            }).find("/metadata/duration"),
             std::string::npos);
   std::map<std::string, std::string> table{{"A", "PBM"}};
-  EXPECT_THROW(rhubarb_to_visemes(parse_rhubarb_tsv("0\tA\n0.1\tB\n0.2\tX\n"), table), InvalidInput);
+  EXPECT_THROW(rhubarb_to_visemes(parse_rhubarb_tsv("0\tA\n0.1\tB\n0.2\tX\n"), table),
+               InvalidInput);
 }
 
 TEST(TimingIo, ExternalUtteranceAndFiles) {
@@ -187,7 +217,8 @@ TEST(TimingIo, ExternalUtteranceAndFiles) {
   WavAudio short_audio{1000, std::vector<std::int16_t>(100, 7)};
   EXPECT_THROW(external_utterance(t, short_audio), InvalidInput);
   // read_timing_file tells the formats apart by content
-  const auto dir = std::filesystem::temp_directory_path() / ("emoface_timing_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("emoface_timing_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto write = [&](const std::string& name, const std::string& text) {
     std::ofstream(dir / name, std::ios::binary) << text;

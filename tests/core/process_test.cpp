@@ -29,7 +29,8 @@ TEST(Process, ExitCodesAndStandardError) {
 }
 
 TEST(Process, ProgramThatIgnoresItsInputDoesNotKillUs) {
-  const ProcessResult r = run_process({"true"}, std::string(4 << 20, 'y'));  // SIGPIPE must not escape
+  const ProcessResult r =
+      run_process({"true"}, std::string(4 << 20, 'y'));  // SIGPIPE must not escape
   EXPECT_EQ(r.exit_code, 0);
 }
 

@@ -1,8 +1,8 @@
-// libFuzzer target (build-fuzz/tests/fuzz/fuzz_runtime_readers tests/fuzz/corpus/runtime_readers) for
-// the readers added by issue 16: the first byte picks the reader (emoface timing TSV / JSON, Rhubarb
-// TSV / JSON, WAV, espeak-ng -x output + alignment, character config, character snapshot, an event
-// pushed to a character). Accepted timing documents must round-trip exactly. Any exception other than
-// emoface's FormatError / InvalidInput is a bug (and crashes here).
+// libFuzzer target (build-fuzz/tests/fuzz/fuzz_runtime_readers tests/fuzz/corpus/runtime_readers)
+// for the readers added by issue 16: the first byte picks the reader (emoface timing TSV / JSON,
+// Rhubarb TSV / JSON, WAV, espeak-ng -x output + alignment, character config, character snapshot,
+// an event pushed to a character). Accepted timing documents must round-trip exactly. Any exception
+// other than emoface's FormatError / InvalidInput is a bug (and crashes here).
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -22,8 +22,8 @@ namespace rt = emoface::runtime;
 void same(const ch::SpeechTiming& a, const ch::SpeechTiming& b) {
   if (a.kind != b.kind || a.segments.size() != b.segments.size()) std::abort();
   for (std::size_t i = 0; i < a.segments.size(); ++i)
-    if (a.segments[i].phoneme != b.segments[i].phoneme || a.segments[i].start != b.segments[i].start ||
-        a.segments[i].end != b.segments[i].end)
+    if (a.segments[i].phoneme != b.segments[i].phoneme ||
+        a.segments[i].start != b.segments[i].start || a.segments[i].end != b.segments[i].end)
       std::abort();
 }
 
@@ -51,8 +51,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         (void)ch::parse_rhubarb_tsv(ch::format_rhubarb_tsv(r));
         break;
       }
-      case 3: (void)ch::rhubarb_to_visemes(ch::parse_rhubarb_json(text, "fuzz.json")); break;
-      case 4: (void)ch::parse_wav(text, "fuzz.wav"); break;
+      case 3:
+        (void)ch::rhubarb_to_visemes(ch::parse_rhubarb_json(text, "fuzz.json"));
+        break;
+      case 4:
+        (void)ch::parse_wav(text, "fuzz.wav");
+        break;
       case 5: {
         std::vector<std::int16_t> samples(2000, 100);
         for (std::size_t i = 0; i < samples.size() && i < text.size(); ++i)

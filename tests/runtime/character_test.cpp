@@ -65,9 +65,10 @@ TEST(Character, DirectEmotionsShowAfterTheLatencyAndSmile) {
 
 TEST(Character, BadEventsAreReportedAndSkipped) {
   Character c{CharacterConfig{}};
-  for (const char* bad : {"{", "[]", R"j({"emotions": {"joy": 1}})j", R"j({"emotions": {"happiness": 2}})j",
-                          R"j({"emotions": {"happiness": "x"}})j", R"j({"emotions": 3})j", R"j({"x": 1})j",
-                          R"j({"action": "(shot team)"})j", R"j({"stimulus": "gift"})j"}) {
+  for (const char* bad :
+       {"{", "[]", R"j({"emotions": {"joy": 1}})j", R"j({"emotions": {"happiness": 2}})j",
+        R"j({"emotions": {"happiness": "x"}})j", R"j({"emotions": 3})j", R"j({"x": 1})j",
+        R"j({"action": "(shot team)"})j", R"j({"stimulus": "gift"})j"}) {
     const EventResult r = c.push_event(bad);
     EXPECT_FALSE(r.applied) << bad;
     EXPECT_FALSE(r.message.empty()) << bad;
@@ -93,7 +94,8 @@ TEST(Character, ParleeDecayPerSecondMatchesThePerStepFormAtTheStepLength) {
     const parlee::StepRecord rec = reference.step(e);
     ASSERT_TRUE(c.push_parlee_event(events[k]).applied) << k;
     const auto occ = c.occ_emotions();
-    for (std::size_t i = 0; i < parlee::kEmotionCount; ++i) ASSERT_EQ(occ[i], rec.emotions[i]) << k << " " << i;
+    for (std::size_t i = 0; i < parlee::kEmotionCount; ++i)
+      ASSERT_EQ(occ[i], rec.emotions[i]) << k << " " << i;
   }
   // between events the decay is continuous: after another 2.5 s, E·Φ^2.5 (hand check on surprise,
   // whose per-step factor is 0.3 with the neutral personality's Φ = 0.3^(1.5 − 0.5))
@@ -160,7 +162,8 @@ TEST(Character, DeterministicWithASeed) {
 channels::Utterance hand_utterance() {
   channels::Utterance u;
   u.sample_rate = 1000;
-  u.phonemes = {{"h", 0, 0.08}, {"@", 0.08, 0.15}, {"l", 0.15, 0.22}, {"oU", 0.22, 0.5}, {"_:", 0.5, 0.6}};
+  u.phonemes = {
+      {"h", 0, 0.08}, {"@", 0.08, 0.15}, {"l", 0.15, 0.22}, {"oU", 0.22, 0.5}, {"_:", 0.5, 0.6}};
   u.samples.assign(600, 0);
   return u;
 }
@@ -192,7 +195,8 @@ TEST(Character, SnapshotRestoreContinuesBitIdentically) {
     if (cfg.source == SourceKind::Parlee)
       for (std::size_t k = 0; k < 3; ++k) ASSERT_TRUE(a.push_parlee_event(events[k]).applied);
     if (cfg.source == SourceKind::MindMap)
-      ASSERT_TRUE(a.push_event(R"j({"stimulus": "gift", "weights": {"happiness": 0.9}})j").applied) << to_string(cfg.source);
+      ASSERT_TRUE(a.push_event(R"j({"stimulus": "gift", "weights": {"happiness": 0.9}})j").applied)
+          << to_string(cfg.source);
     run(a, 0, 150);
     const std::string snap = a.snapshot();
     Character b = restore_character(snap, "snap.json");
@@ -200,7 +204,8 @@ TEST(Character, SnapshotRestoreContinuesBitIdentically) {
     const auto ra = run(a, 150, 400);
     const auto rb = run(b, 150, 400);
     ASSERT_EQ(ra.size(), rb.size());
-    for (std::size_t i = 0; i < ra.size(); ++i) ASSERT_EQ(ra[i], rb[i]) << to_string(cfg.source) << " value " << i;
+    for (std::size_t i = 0; i < ra.size(); ++i)
+      ASSERT_EQ(ra[i], rb[i]) << to_string(cfg.source) << " value " << i;
   }
 }
 
@@ -209,14 +214,17 @@ TEST(Character, SnapshotBadInput) {
   a.update(0.5);
   const std::string snap = a.snapshot();
   EXPECT_THROW(restore_character("{", "s.json"), FormatError);
-  EXPECT_THROW(restore_character(R"j({"format": "emoface.character_state", "version": "2.0"})j"), FormatError);
-  EXPECT_THROW(restore_character(R"j({"format": "emoface.character_state", "version": "1.0"})j"), FormatError);
+  EXPECT_THROW(restore_character(R"j({"format": "emoface.character_state", "version": "2.0"})j"),
+               FormatError);
+  EXPECT_THROW(restore_character(R"j({"format": "emoface.character_state", "version": "1.0"})j"),
+               FormatError);
   std::string bad = snap;
   bad.replace(bad.find("\"frames_in\":"), 12, "\"frames_in\":-");
   EXPECT_THROW(restore_character(bad), FormatError);
   std::string clock = snap;
   const std::size_t at = clock.find("\"time\":") + 7;
-  clock.replace(at, clock.find(',', at) - at, "100000000.0");  // the mixer's frames no longer match the clock
+  clock.replace(at, clock.find(',', at) - at,
+                "100000000.0");  // the mixer's frames no longer match the clock
   try {
     restore_character(clock, "s.json");
     FAIL();
@@ -250,7 +258,8 @@ TEST(Character, ConfigRoundTripAndBadInput) {
   EXPECT_NE(err(env + R"j("lookahead": 0.5})j").find("lookahead"), std::string::npos);
   EXPECT_NE(err(env + R"j("lookahead": "x"})j").find("/lookahead"), std::string::npos);
   EXPECT_NE(err(env + R"j("colour": 1})j").find("/colour"), std::string::npos);
-  EXPECT_NE(err(env + R"j("source": {"kind": "oracle"}})j").find("/source/kind"), std::string::npos);
+  EXPECT_NE(err(env + R"j("source": {"kind": "oracle"}})j").find("/source/kind"),
+            std::string::npos);
   EXPECT_NE(err(env + R"j("source": {"kind": "parlee"}})j").find("/source"), std::string::npos);
   EXPECT_NE(err(env + R"j("speech": {"rate": 1e9}})j").find("rate"), std::string::npos);
   EXPECT_NE(err("{").find("c.json"), std::string::npos);
@@ -284,7 +293,8 @@ TEST(Character, FaceVerticesOnRequest) {
   c.update(0.1);
   const facemesh::Vertices neutral = c.vertices();
   EXPECT_EQ(neutral.rows(), c.mesh().vertices.rows());
-  EXPECT_EQ((neutral - c.mesh().vertices).cwiseAbs().maxCoeff(), 0.0);  // no emotion: the neutral face
+  EXPECT_EQ((neutral - c.mesh().vertices).cwiseAbs().maxCoeff(),
+            0.0);  // no emotion: the neutral face
   c.push_emotions({0, 1, 0, 0, 0, 0});
   c.update(2.0);
   EXPECT_GT((c.vertices() - neutral).cwiseAbs().maxCoeff(), 1e-3);  // the smile moved the face (m)

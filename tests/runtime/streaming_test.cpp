@@ -48,7 +48,8 @@ TEST(StreamingChannel, EqualsConcatenatedChannelBitForBit) {
     const double fps = 50;
     for (std::size_t f = 0; f < 3000; ++f) {
       const double t = static_cast<double>(f) / fps;
-      // movements arrive just in time (before the first frame after their start), old ones are pruned
+      // movements arrive just in time (before the first frame after their start), old ones are
+      // pruned
       while (next < ms.size() && ms[next].timing.start < t + 0.5) s.append(ms[next++]);
       s.prune(t);
       double v[2];
@@ -67,14 +68,16 @@ TEST(StreamingChannel, BadInput) {
   EXPECT_THROW(s.append({{{"a", NAN}}, ch::Timing{0, 1, 0.1, 0.1}, "x"}), InvalidInput);
   EXPECT_THROW(s.append({{{"a", 1}}, ch::Timing{0, 1, 0.8, 0.8}, "x"}), InvalidInput);
   s.append({{{"a", 1.0}}, ch::Timing{1, 2, 0.1, 0.1}, "x"});
-  EXPECT_THROW(s.append({{{"a", 1.0}}, ch::Timing{0.5, 3, 0.1, 0.1}, "y"}), InvalidInput);  // earlier start
-  EXPECT_THROW(s.append({{{"a", 1.0}}, ch::Timing{1.5, 1.9, 0.1, 0.1}, "y"}), InvalidInput);  // earlier end
+  EXPECT_THROW(s.append({{{"a", 1.0}}, ch::Timing{0.5, 3, 0.1, 0.1}, "y"}),
+               InvalidInput);  // earlier start
+  EXPECT_THROW(s.append({{{"a", 1.0}}, ch::Timing{1.5, 1.9, 0.1, 0.1}, "y"}),
+               InvalidInput);  // earlier end
   EXPECT_THROW(s.value(3, 0.0), InvalidInput);
 }
 
 // Samples a timeline's channels as channels::render does, in channel index order.
-std::vector<ch::ChannelSamples> sample_channels(const ch::Timeline& tl, const ch::VisemeSet& vis, double fps,
-                                                std::size_t frames) {
+std::vector<ch::ChannelSamples> sample_channels(const ch::Timeline& tl, const ch::VisemeSet& vis,
+                                                double fps, std::size_t frames) {
   std::vector<ch::ChannelSamples> out;
   for (std::size_t c = 0; c < ch::kChannelCount; ++c) {
     ch::ChannelSamples s;
@@ -84,13 +87,15 @@ std::vector<ch::ChannelSamples> sample_channels(const ch::Timeline& tl, const ch
       const ch::Coarticulation lip(vis, tl.lip);
       s.parameters = lip.parameters();
       s.values.resize(s.parameters.size() * frames);
-      for (std::size_t p = 0; p < s.parameters.size(); ++p) lip.sample(p, 0.0, fps, frames, s.values.data() + p * frames);
+      for (std::size_t p = 0; p < s.parameters.size(); ++p)
+        lip.sample(p, 0.0, fps, frames, s.values.data() + p * frames);
     } else {
       if (tl.movements[c].empty()) continue;
       const ch::ConcatenatedChannel cc(tl.movements[c]);
       s.parameters = cc.parameters();
       s.values.resize(s.parameters.size() * frames);
-      for (std::size_t p = 0; p < s.parameters.size(); ++p) cc.sample(p, 0.0, fps, frames, s.values.data() + p * frames);
+      for (std::size_t p = 0; p < s.parameters.size(); ++p)
+        cc.sample(p, 0.0, fps, frames, s.values.data() + p * frames);
     }
     out.push_back(std::move(s));
   }
@@ -99,8 +104,9 @@ std::vector<ch::ChannelSamples> sample_channels(const ch::Timeline& tl, const ch
 
 // Feeds the samples frame by frame and returns the number of (frame, parameter) values that differ
 // from the offline mixer.
-std::size_t streaming_differences(const std::vector<ch::ChannelSamples>& samples, double fps, std::size_t frames,
-                                  std::size_t lookahead, const ch::MixOptions& mo) {
+std::size_t streaming_differences(const std::vector<ch::ChannelSamples>& samples, double fps,
+                                  std::size_t frames, std::size_t lookahead,
+                                  const ch::MixOptions& mo) {
   const auto& params = ch::default_parameter_names();
   const ch::ConflictTable conflicts = ch::default_conflict_table();
   const ch::Tracks offline = ch::mix(samples, params, fps, frames, conflicts, mo);
@@ -110,7 +116,8 @@ std::size_t streaming_differences(const std::vector<ch::ChannelSamples>& samples
     const auto c = static_cast<std::size_t>(s.channel);
     by[c] = &s;
     for (const auto& p : s.parameters)
-      cp[c].push_back(static_cast<std::size_t>(std::find(params.begin(), params.end(), p) - params.begin()));
+      cp[c].push_back(
+          static_cast<std::size_t>(std::find(params.begin(), params.end(), p) - params.begin()));
   }
   StreamingMixer mixer(params, cp, conflicts, mo, fps, lookahead);
   std::array<std::vector<double>, ch::kChannelCount> raw;
@@ -119,7 +126,8 @@ std::size_t streaming_differences(const std::vector<ch::ChannelSamples>& samples
   for (std::size_t f = 0; f < frames + lookahead; ++f) {
     std::array<const double*, ch::kChannelCount> ptr{};
     for (std::size_t c = 0; c < ch::kChannelCount; ++c) {
-      for (std::size_t i = 0; i < cp[c].size(); ++i) raw[c][i] = f < frames ? by[c]->values[i * frames + f] : 0.0;
+      for (std::size_t i = 0; i < cp[c].size(); ++i)
+        raw[c][i] = f < frames ? by[c]->values[i * frames + f] : 0.0;
       ptr[c] = raw[c].data();
     }
     mixer.push(ptr);
@@ -136,25 +144,30 @@ std::size_t streaming_differences(const std::vector<ch::ChannelSamples>& samples
 }
 
 ch::Timeline thesis_timeline(const std::string& file, bool with_speech) {
-  const ch::Script script = ch::read_script(std::string(EMOFACE_SOURCE_DIR) + "/data/channels/examples/" + file);
+  const ch::Script script =
+      ch::read_script(std::string(EMOFACE_SOURCE_DIR) + "/data/channels/examples/" + file);
   std::vector<std::vector<ch::PhonemeTiming>> utterances;
   if (with_speech) {
-    // "Oh, really? I like it very much.": libespeak-ng 1.51's phoneme events (en-us, 160 words/min),
-    // fixed here so the test needs no speech program
+    // "Oh, really? I like it very much.": libespeak-ng 1.51's phoneme events (en-us, 160
+    // words/min), fixed here so the test needs no speech program
     const std::vector<std::pair<std::string, int>> ev{
-        {"oU", 0},   {"_:", 316}, {"r", 491},  {"i@", 604}, {"l", 772},  {"i", 839},  {"_:", 905},
-        {"aI", 1255}, {"l", 1379}, {"aI", 1451}, {"k", 1613}, {"I", 1672}, {"t", 1789}, {"v", 1850},
-        {"E", 1917}, {"r", 2036}, {"i", 2091}, {"m", 2157}, {"V", 2273}, {"tS", 2459}, {"_:", 2554}};
+        {"oU", 0},   {"_:", 316},  {"r", 491},  {"i@", 604},  {"l", 772},  {"i", 839},
+        {"_:", 905}, {"aI", 1255}, {"l", 1379}, {"aI", 1451}, {"k", 1613}, {"I", 1672},
+        {"t", 1789}, {"v", 1850},  {"E", 1917}, {"r", 2036},  {"i", 2091}, {"m", 2157},
+        {"V", 2273}, {"tS", 2459}, {"_:", 2554}};
     std::vector<ch::PhonemeTiming> p;
     for (std::size_t k = 0; k < ev.size(); ++k)
-      p.push_back({ev[k].first, ev[k].second / 1000.0, (k + 1 < ev.size() ? ev[k + 1].second : 2562) / 1000.0});
+      p.push_back({ev[k].first, ev[k].second / 1000.0,
+                   (k + 1 < ev.size() ? ev[k + 1].second : 2562) / 1000.0});
     utterances.assign(script.speech.size(), p);
   }
   const auto mapper = [](const std::array<double, 6>& e) {
-    // a hand mapping with conflicting muscles: happiness smiles, surprise raises the brows and opens
-    return std::vector<ch::Target>{{"zygomatic_major_l", e[1]},       {"zygomatic_major_r", e[1]},
-                                   {"frontalis_medialis_l", e[5]},    {"frontalis_medialis_r", e[5]},
-                                   {"orbicularis_oris_pressor", 0.0}, {"masseter", 0.5 * e[5]}};
+    // a hand mapping with conflicting muscles: happiness smiles, surprise raises the brows and
+    // opens
+    return std::vector<ch::Target>{
+        {"zygomatic_major_l", e[1]},       {"zygomatic_major_r", e[1]},
+        {"frontalis_medialis_l", e[5]},    {"frontalis_medialis_r", e[5]},
+        {"orbicularis_oris_pressor", 0.0}, {"masseter", 0.5 * e[5]}};
   };
   ch::TimelineOptions to;
   return ch::build_timeline(script, utterances, ch::default_viseme_set(), mapper, to, 3);
@@ -162,16 +175,20 @@ ch::Timeline thesis_timeline(const std::string& file, bool with_speech) {
 
 TEST(StreamingMixer, EqualsOfflineMixerOnThesisExamplesOnceTheLookAheadCoversDminMinus) {
   const ch::MixOptions mo;  // Dmin− = 0.3 s
-  for (const auto& [file, speech] : {std::pair<std::string, bool>{"fig4_7.xml", false}, {"oh_really.xml", true}}) {
+  for (const auto& [file, speech] :
+       {std::pair<std::string, bool>{"fig4_7.xml", false}, {"oh_really.xml", true}}) {
     const ch::Timeline tl = thesis_timeline(file, speech);
     for (double fps : {25.0, 100.0}) {
       const auto frames = static_cast<std::size_t>(std::floor(tl.end_time() * fps)) + 1;
       const auto samples = sample_channels(tl, ch::default_viseme_set(), fps, frames);
       const auto enough = static_cast<std::size_t>(std::ceil(mo.dmin_minus * fps));
-      EXPECT_EQ(streaming_differences(samples, fps, frames, enough, mo), 0u) << file << " fps " << fps;
-      EXPECT_EQ(streaming_differences(samples, fps, frames, enough + 5, mo), 0u) << file << " fps " << fps;
+      EXPECT_EQ(streaming_differences(samples, fps, frames, enough, mo), 0u)
+          << file << " fps " << fps;
+      EXPECT_EQ(streaming_differences(samples, fps, frames, enough + 5, mo), 0u)
+          << file << " fps " << fps;
       // a look-ahead shorter than Dmin− cannot see the inhibition coming: the release starts late
-      EXPECT_GT(streaming_differences(samples, fps, frames, enough / 3, mo), 0u) << file << " fps " << fps;
+      EXPECT_GT(streaming_differences(samples, fps, frames, enough / 3, mo), 0u)
+          << file << " fps " << fps;
     }
   }
 }

@@ -83,12 +83,13 @@ emoface_character* create(char* err, std::size_t err_size, F&& make) {
   return nullptr;
 }
 
-int copy_out(const emoface_character* c, const double* src, std::size_t count, double* out, std::size_t n,
-             const char* what) {
+int copy_out(const emoface_character* c, const double* src, std::size_t count, double* out,
+             std::size_t n, const char* what) {
   if (!out) return fail(c, EMOFACE_ERROR_ARGUMENT, std::string(what) + ": NULL output buffer");
   if (n != count)
-    return fail(c, EMOFACE_ERROR_SIZE, std::string(what) + ": the buffer must hold " + std::to_string(count) +
-                                           " values (got " + std::to_string(n) + ")");
+    return fail(c, EMOFACE_ERROR_SIZE,
+                std::string(what) + ": the buffer must hold " + std::to_string(count) +
+                    " values (got " + std::to_string(n) + ")");
   std::copy(src, src + count, out);
   return EMOFACE_OK;
 }
@@ -106,7 +107,9 @@ const char* emoface_parameter_name(size_t i) {
   return i < n.size() ? n[i].c_str() : nullptr;
 }
 const char* emoface_emotion_name(size_t i) {
-  return i < emoface::parlee::kBasicEmotionNames.size() ? emoface::parlee::kBasicEmotionNames[i].data() : nullptr;
+  return i < emoface::parlee::kBasicEmotionNames.size()
+             ? emoface::parlee::kBasicEmotionNames[i].data()
+             : nullptr;
 }
 const char* emoface_arkit_name(size_t i) {
   try {
@@ -124,14 +127,16 @@ emoface_character* emoface_character_create(const char* config_json, char* err, 
   });
 }
 
-emoface_character* emoface_character_create_from_file(const char* path, char* err, size_t err_size) {
+emoface_character* emoface_character_create_from_file(const char* path, char* err,
+                                                      size_t err_size) {
   return create(err, err_size, [&] {
     if (!path) throw emoface::InvalidInput("NULL config path");
     return rt::Character(rt::read_character_config(path));
   });
 }
 
-emoface_character* emoface_character_restore(const char* snapshot_json, char* err, size_t err_size) {
+emoface_character* emoface_character_restore(const char* snapshot_json, char* err,
+                                             size_t err_size) {
   return create(err, err_size, [&] {
     if (!snapshot_json) throw emoface::InvalidInput("NULL snapshot");
     return rt::restore_character(snapshot_json, "<snapshot>");
@@ -163,7 +168,8 @@ int emoface_character_speak(emoface_character* c, const char* text, double* star
   });
 }
 
-int emoface_character_speak_timing(emoface_character* c, const char* timing_text, double* start_seconds) {
+int emoface_character_speak_timing(emoface_character* c, const char* timing_text,
+                                   double* start_seconds) {
   return guarded(c, [&]() -> int {
     if (!timing_text) return fail(c, EMOFACE_ERROR_ARGUMENT, "NULL timing");
     const std::string text(timing_text);
@@ -171,12 +177,14 @@ int emoface_character_speak_timing(emoface_character* c, const char* timing_text
     emoface::channels::SpeechTiming t;
     if (first != std::string::npos && text[first] == '{') {
       t = text.find("\"mouthCues\"") != std::string::npos
-              ? emoface::channels::rhubarb_to_visemes(emoface::channels::parse_rhubarb_json(text, "<timing>"))
+              ? emoface::channels::rhubarb_to_visemes(
+                    emoface::channels::parse_rhubarb_json(text, "<timing>"))
               : emoface::channels::parse_timing_json(text, "<timing>");
     } else if (text.find("start\t") != std::string::npos) {
       t = emoface::channels::parse_timing_tsv(text, "<timing>");
     } else {
-      t = emoface::channels::rhubarb_to_visemes(emoface::channels::parse_rhubarb_tsv(text, "<timing>"));
+      t = emoface::channels::rhubarb_to_visemes(
+          emoface::channels::parse_rhubarb_tsv(text, "<timing>"));
     }
     const double start = c->character.speak(emoface::channels::external_utterance(t));
     if (start_seconds) *start_seconds = start;
@@ -208,13 +216,15 @@ int emoface_character_parameters(const emoface_character* c, double* out, size_t
 int emoface_character_arkit(emoface_character* c, double* out, size_t n) {
   return guarded(c, [&]() -> int {
     if (!out) return fail(c, EMOFACE_ERROR_ARGUMENT, "arkit: NULL output buffer");
-    if (n != EMOFACE_ARKIT_COUNT) return fail(c, EMOFACE_ERROR_SIZE, "arkit: the buffer must hold 52 values");
+    if (n != EMOFACE_ARKIT_COUNT)
+      return fail(c, EMOFACE_ERROR_SIZE, "arkit: the buffer must hold 52 values");
     const auto& w = c->character.arkit();
     return copy_out(c, w.data(), w.size(), out, n, "arkit");
   });
 }
 
-int emoface_character_times(const emoface_character* c, double* input_time, double* output_time, double* latency) {
+int emoface_character_times(const emoface_character* c, double* input_time, double* output_time,
+                            double* latency) {
   return guarded(c, [&]() -> int {
     if (input_time) *input_time = c->character.input_time();
     if (output_time) *output_time = c->character.output_time();
@@ -238,24 +248,30 @@ size_t emoface_character_vertex_count(const emoface_character* c) {
 int emoface_character_vertices(emoface_character* c, float* out, size_t n) {
   return guarded(c, [&]() -> int {
     if (!c->character.has_face())
-      return fail(c, EMOFACE_ERROR_UNAVAILABLE, "vertices: the character has no face (config \"face\")");
+      return fail(c, EMOFACE_ERROR_UNAVAILABLE,
+                  "vertices: the character has no face (config \"face\")");
     if (!out) return fail(c, EMOFACE_ERROR_ARGUMENT, "vertices: NULL output buffer");
     const std::size_t want = 3 * static_cast<std::size_t>(c->character.mesh().vertices.rows());
     if (n != want)
-      return fail(c, EMOFACE_ERROR_SIZE, "vertices: the buffer must hold " + std::to_string(want) + " floats");
+      return fail(c, EMOFACE_ERROR_SIZE,
+                  "vertices: the buffer must hold " + std::to_string(want) + " floats");
     const auto& v = c->character.vertices();
     for (Eigen::Index i = 0; i < v.rows(); ++i)
-      for (int k = 0; k < 3; ++k) out[3 * static_cast<std::size_t>(i) + static_cast<std::size_t>(k)] = static_cast<float>(v(i, k));
+      for (int k = 0; k < 3; ++k)
+        out[3 * static_cast<std::size_t>(i) + static_cast<std::size_t>(k)] =
+            static_cast<float>(v(i, k));
     return EMOFACE_OK;
   });
 }
 
-int emoface_character_snapshot(const emoface_character* c, char* out, size_t out_size, size_t* needed) {
+int emoface_character_snapshot(const emoface_character* c, char* out, size_t out_size,
+                               size_t* needed) {
   return guarded(c, [&]() -> int {
     const std::string s = c->character.snapshot();
     if (needed) *needed = s.size() + 1;
     if (!out || out_size < s.size() + 1)
-      return fail(c, EMOFACE_ERROR_SIZE, "snapshot: the buffer needs " + std::to_string(s.size() + 1) + " bytes");
+      return fail(c, EMOFACE_ERROR_SIZE,
+                  "snapshot: the buffer needs " + std::to_string(s.size() + 1) + " bytes");
     std::memcpy(out, s.c_str(), s.size() + 1);
     return EMOFACE_OK;
   });
@@ -277,8 +293,8 @@ int emoface_emotions_to_muscles(const double* esv, size_t rows, double* out, siz
       for (std::size_t k = 0; k < 6; ++k) {
         const double v = esv[r * 6 + k];
         if (!(v >= 0 && v <= 1)) {
-          g_last_error = "emotions_to_muscles: row " + std::to_string(r) + ", emotion " + std::to_string(k) +
-                         ": intensity must be in [0, 1]";
+          g_last_error = "emotions_to_muscles: row " + std::to_string(r) + ", emotion " +
+                         std::to_string(k) + ": intensity must be in [0, 1]";
           return EMOFACE_ERROR_ARGUMENT;
         }
         e[k] = v;

@@ -25,7 +25,8 @@ void check_text(std::string_view text) {
 bool is_pause(std::string_view p) { return !p.empty() && p[0] == '_'; }
 
 bool is_stop(std::string_view p) {
-  static const char* const stops[] = {"p", "b", "t", "d", "k", "g", "tS", "dZ", "t#", "d#", "t2", "d2"};
+  static const char* const stops[] = {"p",  "b",  "t",  "d",  "k",  "g",
+                                      "tS", "dZ", "t#", "d#", "t2", "d2"};
   for (const char* s : stops)
     if (p == s) return true;
   return false;
@@ -69,7 +70,8 @@ std::vector<double> layout(const std::vector<std::pair<std::size_t, double>>& an
   return start;
 }
 
-void insert_anchor(std::vector<std::pair<std::size_t, double>>& anchors, std::size_t index, double t) {
+void insert_anchor(std::vector<std::pair<std::size_t, double>>& anchors, std::size_t index,
+                   double t) {
   auto it = std::lower_bound(anchors.begin(), anchors.end(), std::make_pair(index, -1e300));
   if (it != anchors.end() && it->first == index) {
     it->second = t;
@@ -83,7 +85,8 @@ void insert_anchor(std::vector<std::pair<std::size_t, double>>& anchors, std::si
 void SpeechOptions::validate() const {
   if (voice.empty() || voice.size() > 64) throw InvalidInput("speech: bad voice name");
   for (char c : voice)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '+' || c == '/'))
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '+' ||
+          c == '/'))
       throw InvalidInput("speech: bad character in voice name '" + voice + "'");
   if (rate < 80 || rate > 450) throw InvalidInput("speech: rate must be in [80, 450] words/min");
   if (pitch < 0 || pitch > 99) throw InvalidInput("speech: pitch must be in [0, 99]");
@@ -91,9 +94,12 @@ void SpeechOptions::validate() const {
 }
 
 void AlignOptions::validate() const {
-  if (silence_level < 0 || silence_level > 32767) throw InvalidInput("align: silence_level must be in [0, 32767]");
-  if (!(min_silence > 0 && min_silence <= 1)) throw InvalidInput("align: min_silence must be in (0, 1] s");
-  if (!(stop_tolerance > 0 && std::isfinite(stop_tolerance))) throw InvalidInput("align: stop_tolerance must be > 0");
+  if (silence_level < 0 || silence_level > 32767)
+    throw InvalidInput("align: silence_level must be in [0, 32767]");
+  if (!(min_silence > 0 && min_silence <= 1))
+    throw InvalidInput("align: min_silence must be in (0, 1] s");
+  if (!(stop_tolerance > 0 && std::isfinite(stop_tolerance)))
+    throw InvalidInput("align: stop_tolerance must be > 0");
 }
 
 std::vector<std::vector<std::string>> parse_espeak_phonemes(std::string_view text) {
@@ -138,7 +144,8 @@ std::vector<PhonemeTiming> align_phonemes(const std::vector<std::vector<std::str
   const std::size_t n = tok.size();
   std::vector<double> weight(n);
   for (std::size_t i = 0; i < n; ++i) weight[i] = nominal_ms(tok[i]);
-  // clause-final lengthening: the last vowel of a clause lasts about twice as long (same calibration)
+  // clause-final lengthening: the last vowel of a clause lasts about twice as long (same
+  // calibration)
   for (std::size_t i = 0; i < n; ++i) {
     if (!is_pause(tok[i]) || i == 0 || is_pause(tok[i - 1])) continue;
     for (std::size_t k = i; k-- > 0 && !is_pause(tok[k]);) {
@@ -161,7 +168,8 @@ std::vector<PhonemeTiming> align_phonemes(const std::vector<std::vector<std::str
       continue;
     }
     std::size_t j = i;
-    while (j < samples.size() && std::abs(static_cast<int>(samples[j])) <= options.silence_level) ++j;
+    while (j < samples.size() && std::abs(static_cast<int>(samples[j])) <= options.silence_level)
+      ++j;
     if (j - i >= min_len || j == samples.size())
       runs.push_back({static_cast<double>(i) / sample_rate, static_cast<double>(j) / sample_rate});
     i = j;
@@ -175,7 +183,8 @@ std::vector<PhonemeTiming> align_phonemes(const std::vector<std::vector<std::str
   } else {
     insert_anchor(anchors, n - 1, total);  // no trailing silence: the final pause has no time
   }
-  if (!runs.empty() && runs.front().s <= 0) used.front() = 1;  // leading silence: part of the first phoneme
+  if (!runs.empty() && runs.front().s <= 0)
+    used.front() = 1;  // leading silence: part of the first phoneme
 
   // pauses inside the text (a group of adjacent pause phonemes counts as one) take the longest
   // remaining runs, matched in order to the nearest expected times
@@ -204,7 +213,8 @@ std::vector<PhonemeTiming> align_phonemes(const std::vector<std::vector<std::str
     for (std::size_t c = 0; c < candidates.size(); ++c) {
       const Run& r = runs[candidates[c]];
       const double centre = 0.5 * (r.s + r.e);
-      const std::size_t last = pauses.size() - (candidates.size() - c);  // leave groups for the rest
+      const std::size_t last =
+          pauses.size() - (candidates.size() - c);  // leave groups for the rest
       std::size_t best = next;
       for (std::size_t k = next; k <= last; ++k)
         if (std::abs(centre_of(k) - centre) < std::abs(centre_of(best) - centre)) best = k;
@@ -252,14 +262,21 @@ std::vector<PhonemeTiming> align_phonemes(const std::vector<std::vector<std::str
   return out;
 }
 
-EspeakProgram::EspeakProgram(SpeechOptions options) : options_(std::move(options)) { options_.validate(); }
+EspeakProgram::EspeakProgram(SpeechOptions options) : options_(std::move(options)) {
+  options_.validate();
+}
 
 Utterance EspeakProgram::synthesize(std::string_view text) const {
   check_text(text);
   const std::string input(text);
-  std::vector<std::string> common{options_.program, "-v", options_.voice,
-                                  "-s", std::to_string(options_.rate),
-                                  "-p", std::to_string(options_.pitch), "--stdin"};
+  std::vector<std::string> common{options_.program,
+                                  "-v",
+                                  options_.voice,
+                                  "-s",
+                                  std::to_string(options_.rate),
+                                  "-p",
+                                  std::to_string(options_.pitch),
+                                  "--stdin"};
   const auto run = [&](std::vector<std::string> extra) {
     std::vector<std::string> argv = common;
     argv.insert(argv.begin() + 1, extra.begin(), extra.end());
@@ -292,15 +309,18 @@ void ExternalSpeech::add(std::string text, Utterance u) {
   double t = 0.0;
   for (const PhonemeTiming& p : u.phonemes) {
     if (p.phoneme.empty()) throw InvalidInput("external speech: empty phoneme name");
-    if (!(std::isfinite(p.start) && std::isfinite(p.end)) || std::abs(p.start - t) > 1e-6 || !(p.end > p.start))
+    if (!(std::isfinite(p.start) && std::isfinite(p.end)) || std::abs(p.start - t) > 1e-6 ||
+        !(p.end > p.start))
       throw InvalidInput("external speech: phonemes of '" + text + "' are not contiguous from 0");
     t = p.end;
   }
   if (u.phonemes.empty()) throw InvalidInput("external speech: no phonemes for '" + text + "'");
-  if (u.samples.empty()) u.samples.assign(static_cast<std::size_t>(std::ceil(t * u.sample_rate)), 0);
+  if (u.samples.empty())
+    u.samples.assign(static_cast<std::size_t>(std::ceil(t * u.sample_rate)), 0);
   if (t > u.duration() + 1.0 / u.sample_rate)
     throw InvalidInput("external speech: phonemes of '" + text + "' end after the audio");
-  if (u.phonemes.back().end < u.duration()) u.phonemes.push_back({"_", u.phonemes.back().end, u.duration()});
+  if (u.phonemes.back().end < u.duration())
+    u.phonemes.push_back({"_", u.phonemes.back().end, u.duration()});
   u.phonemes.back().end = u.duration();
   utterances_[std::move(text)] = std::move(u);
 }
@@ -319,13 +339,17 @@ Utterance synthesize(std::string_view text, const SpeechOptions& options) {
 std::vector<std::int16_t> place_utterances(const std::vector<Utterance>& utterances,
                                            const std::vector<double>& start_times, int sample_rate,
                                            double min_duration) {
-  if (utterances.size() != start_times.size()) throw InvalidInput("place_utterances: size mismatch");
+  if (utterances.size() != start_times.size())
+    throw InvalidInput("place_utterances: size mismatch");
   if (sample_rate <= 0) throw InvalidInput("place_utterances: bad sample rate");
-  std::size_t total = static_cast<std::size_t>(std::ceil(std::max(0.0, min_duration) * sample_rate));
+  std::size_t total =
+      static_cast<std::size_t>(std::ceil(std::max(0.0, min_duration) * sample_rate));
   std::vector<std::pair<std::size_t, std::size_t>> spans;
   for (std::size_t i = 0; i < utterances.size(); ++i) {
-    if (utterances[i].sample_rate != sample_rate) throw InvalidInput("place_utterances: sample rates differ");
-    if (!(start_times[i] >= 0 && std::isfinite(start_times[i]))) throw InvalidInput("place_utterances: bad start time");
+    if (utterances[i].sample_rate != sample_rate)
+      throw InvalidInput("place_utterances: sample rates differ");
+    if (!(start_times[i] >= 0 && std::isfinite(start_times[i])))
+      throw InvalidInput("place_utterances: bad start time");
     const auto first = static_cast<std::size_t>(std::llround(start_times[i] * sample_rate));
     spans.emplace_back(first, first + utterances[i].samples.size());
     total = std::max(total, spans.back().second);
@@ -335,23 +359,30 @@ std::vector<std::int16_t> place_utterances(const std::vector<Utterance>& utteran
     for (std::size_t j = 0; j < i; ++j)
       if (spans[i].first < spans[j].second && spans[j].first < spans[i].second)
         throw InvalidInput("place_utterances: utterances overlap");
-    std::copy(utterances[i].samples.begin(), utterances[i].samples.end(), out.begin() + static_cast<std::ptrdiff_t>(spans[i].first));
+    std::copy(utterances[i].samples.begin(), utterances[i].samples.end(),
+              out.begin() + static_cast<std::ptrdiff_t>(spans[i].first));
   }
   return out;
 }
 
 std::string format_wav(const std::vector<std::int16_t>& samples, int sample_rate) {
   if (sample_rate <= 0) throw InvalidInput("wav: bad sample rate");
-  // RIFF INFO list after the samples (readers that only know "fmt " and "data" skip it): ISFT = software.
+  // RIFF INFO list after the samples (readers that only know "fmt " and "data" skip it): ISFT =
+  // software.
   std::string software(kGenerator);
   software.push_back('\0');
-  if (software.size() % 2) software.push_back('\0');  // chunks are word-aligned
+  if (software.size() % 2) software.push_back('\0');         // chunks are word-aligned
   const std::uint64_t list_bytes = 4 + 8 + software.size();  // "INFO" + ISFT header + text
   const std::uint64_t data_bytes = samples.size() * 2;
   if (data_bytes > 0xFFFFFFF0u - 36 - 8 - list_bytes) throw InvalidInput("wav: too long");
   std::string out;
-  const auto u32 = [&](std::uint32_t v) { for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF); };
-  const auto u16 = [&](std::uint16_t v) { out += static_cast<char>(v & 0xFF); out += static_cast<char>(v >> 8); };
+  const auto u32 = [&](std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
+  };
+  const auto u16 = [&](std::uint16_t v) {
+    out += static_cast<char>(v & 0xFF);
+    out += static_cast<char>(v >> 8);
+  };
   out += "RIFF";
   u32(static_cast<std::uint32_t>(36 + data_bytes + 8 + list_bytes));
   out += "WAVEfmt ";
@@ -377,18 +408,22 @@ void write_wav(const std::string& path, const std::vector<std::int16_t>& samples
   core::write_file_atomic(path, format_wav(samples, sample_rate));
 }
 
-
 WavAudio parse_wav(std::string_view b, const std::string& name) {
-  const auto fail = [&](const std::string& m) -> WavAudio { throw FormatError({name, "", 0, 0}, m); };
+  const auto fail = [&](const std::string& m) -> WavAudio {
+    throw FormatError({name, "", 0, 0}, m);
+  };
   const auto u32 = [&](std::size_t at) {
     std::uint32_t v = 0;
-    for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
+    for (int i = 3; i >= 0; --i)
+      v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
     return v;
   };
   const auto u16 = [&](std::size_t at) {
-    return static_cast<std::uint16_t>(static_cast<unsigned char>(b[at]) | (static_cast<unsigned char>(b[at + 1]) << 8));
+    return static_cast<std::uint16_t>(static_cast<unsigned char>(b[at]) |
+                                      (static_cast<unsigned char>(b[at + 1]) << 8));
   };
-  if (b.size() < 12 || b.substr(0, 4) != "RIFF" || b.substr(8, 4) != "WAVE") return fail("not a RIFF/WAVE file");
+  if (b.size() < 12 || b.substr(0, 4) != "RIFF" || b.substr(8, 4) != "WAVE")
+    return fail("not a RIFF/WAVE file");
   std::size_t pos = 12;
   int channels = 0, rate = 0;
   bool fmt = false;
@@ -402,10 +437,13 @@ WavAudio parse_wav(std::string_view b, const std::string& name) {
       channels = u16(pos + 2);
       rate = static_cast<int>(std::min<std::uint32_t>(u32(pos + 4), 1u << 30));
       const std::uint16_t bits = u16(pos + 14);
-      if (format != 1) return fail("only PCM WAV is supported (format tag " + std::to_string(format) + ")");
-      if (bits != 16) return fail("only 16-bit samples are supported (got " + std::to_string(bits) + ")");
+      if (format != 1)
+        return fail("only PCM WAV is supported (format tag " + std::to_string(format) + ")");
+      if (bits != 16)
+        return fail("only 16-bit samples are supported (got " + std::to_string(bits) + ")");
       if (channels != 1 && channels != 2) return fail("only mono or stereo is supported");
-      if (rate < 1000 || rate > 384000) return fail("sample rate " + std::to_string(rate) + " outside [1000, 384000]");
+      if (rate < 1000 || rate > 384000)
+        return fail("sample rate " + std::to_string(rate) + " outside [1000, 384000]");
       fmt = true;
     } else if (id == "data") {
       if (!fmt) return fail("data chunk before the fmt chunk");

@@ -19,7 +19,8 @@ constexpr double kMaxSeconds = 24 * 3600.0;
 [[noreturn]] void fail_line(const std::string& file, std::size_t line, const std::string& msg) {
   throw FormatError({file, "", line, 0}, msg);
 }
-[[noreturn]] void fail_json(const std::string& file, const std::string& pointer, const std::string& msg) {
+[[noreturn]] void fail_json(const std::string& file, const std::string& pointer,
+                            const std::string& msg) {
   throw FormatError({file, pointer.empty() ? "/" : pointer, 0, 0}, msg);
 }
 
@@ -68,10 +69,13 @@ std::vector<std::string_view> split_tabs(std::string_view l) {
 }
 
 void check_name(const std::string& name) {
-  if (name.empty() || name.size() > 64) throw InvalidInput("segment name must have 1 to 64 characters");
+  if (name.empty() || name.size() > 64)
+    throw InvalidInput("segment name must have 1 to 64 characters");
   for (char c : name)
-    if (c == '\t' || c == '\n' || c == '\r' || c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20)
-      throw InvalidInput("segment name '" + name + "' has a control character, tab, quote or backslash");
+    if (c == '\t' || c == '\n' || c == '\r' || c == '"' || c == '\\' ||
+        static_cast<unsigned char>(c) < 0x20)
+      throw InvalidInput("segment name '" + name +
+                         "' has a control character, tab, quote or backslash");
   if (!core::is_valid_utf8(name)) throw InvalidInput("segment name is not valid UTF-8");
 }
 
@@ -79,14 +83,18 @@ void check_segments(const std::vector<PhonemeTiming>& s, bool contiguous) {
   if (s.size() > kMaxTimingSegments) throw InvalidInput("too many segments");
   for (std::size_t i = 0; i < s.size(); ++i) {
     check_name(s[i].phoneme);
-    if (!(std::isfinite(s[i].start) && std::isfinite(s[i].end) && s[i].start >= 0 && s[i].end <= kMaxSeconds))
-      throw InvalidInput("segment " + std::to_string(i + 1) + ": times must be finite, in [0, 86400] s");
+    if (!(std::isfinite(s[i].start) && std::isfinite(s[i].end) && s[i].start >= 0 &&
+          s[i].end <= kMaxSeconds))
+      throw InvalidInput("segment " + std::to_string(i + 1) +
+                         ": times must be finite, in [0, 86400] s");
     if (!(s[i].end > s[i].start))
       throw InvalidInput("segment " + std::to_string(i + 1) + ": end must be after start");
     if (i > 0 && s[i].start < s[i - 1].end)
-      throw InvalidInput("segment " + std::to_string(i + 1) + " starts before the previous one ends");
+      throw InvalidInput("segment " + std::to_string(i + 1) +
+                         " starts before the previous one ends");
     if (contiguous && i > 0 && s[i].start != s[i - 1].end)
-      throw InvalidInput("cue " + std::to_string(i + 1) + " does not start where the previous one ends");
+      throw InvalidInput("cue " + std::to_string(i + 1) +
+                         " does not start where the previous one ends");
   }
 }
 
@@ -99,7 +107,8 @@ template <class Json>
 double json_seconds(const Json& v, const std::string& file, const std::string& pointer) {
   if (!v.is_number()) fail_json(file, pointer, "expected a number of seconds");
   const double d = v.template get<double>();
-  if (!(std::isfinite(d) && d >= 0 && d <= kMaxSeconds)) fail_json(file, pointer, "seconds must be in [0, 86400]");
+  if (!(std::isfinite(d) && d >= 0 && d <= kMaxSeconds))
+    fail_json(file, pointer, "seconds must be in [0, 86400]");
   return d;
 }
 
@@ -119,11 +128,13 @@ void SpeechTiming::validate() const { check_segments(segments, false); }
 
 SpeechTiming parse_timing_tsv(std::string_view text, const std::string& file) {
   const auto lines = content_lines(text);
-  if (lines.empty()) fail_line(file, 1, "empty timing file (expected a header start<TAB>end<TAB>phoneme)");
+  if (lines.empty())
+    fail_line(file, 1, "empty timing file (expected a header start<TAB>end<TAB>phoneme)");
   SpeechTiming t;
   {
     const auto h = split_tabs(lines[0].second);
-    if (h.size() != 3 || h[0] != "start" || h[1] != "end" || (h[2] != "phoneme" && h[2] != "viseme"))
+    if (h.size() != 3 || h[0] != "start" || h[1] != "end" ||
+        (h[2] != "phoneme" && h[2] != "viseme"))
       fail_line(file, lines[0].first, "expected the header start<TAB>end<TAB>phoneme (or viseme)");
     t.kind = timing_kind_from_string(h[2]);
   }
@@ -131,10 +142,13 @@ SpeechTiming parse_timing_tsv(std::string_view text, const std::string& file) {
   for (std::size_t i = 1; i < lines.size(); ++i) {
     const auto [line, l] = lines[i];
     const auto f = split_tabs(l);
-    if (f.size() != 3) fail_line(file, line, "expected 3 tab-separated fields, got " + std::to_string(f.size()));
+    if (f.size() != 3)
+      fail_line(file, line, "expected 3 tab-separated fields, got " + std::to_string(f.size()));
     PhonemeTiming p;
-    if (!parse_seconds(f[0], p.start)) fail_line(file, line, "start: not a number of seconds in [0, 86400]");
-    if (!parse_seconds(f[1], p.end)) fail_line(file, line, "end: not a number of seconds in [0, 86400]");
+    if (!parse_seconds(f[0], p.start))
+      fail_line(file, line, "start: not a number of seconds in [0, 86400]");
+    if (!parse_seconds(f[1], p.end))
+      fail_line(file, line, "end: not a number of seconds in [0, 86400]");
     p.phoneme = std::string(f[2]);
     try {
       check_name(p.phoneme);
@@ -155,7 +169,8 @@ std::string format_timing_tsv(const SpeechTiming& t) {
   out += "start\tend\t";
   out += to_string(t.kind);
   out += '\n';
-  for (const auto& s : t.segments) out += number(s.start) + '\t' + number(s.end) + '\t' + s.phoneme + '\n';
+  for (const auto& s : t.segments)
+    out += number(s.start) + '\t' + number(s.end) + '\t' + s.phoneme + '\n';
   return out;
 }
 
@@ -163,12 +178,13 @@ SpeechTiming parse_timing_json(std::string_view text, const std::string& file) {
   const auto doc = core::parse_json(text, file);
   core::check_envelope(doc, "speech_timing", kTimingVersion, file);
   for (auto it = doc.begin(); it != doc.end(); ++it)
-    if (it.key() != "format" && it.key() != "version" && it.key() != "generator" && it.key() != "kind" &&
-        it.key() != "segments")
+    if (it.key() != "format" && it.key() != "version" && it.key() != "generator" &&
+        it.key() != "kind" && it.key() != "segments")
       fail_json(file, "/" + core::json_pointer_token(it.key()), "unknown field");
   SpeechTiming t;
   const auto kind = doc.find("kind");
-  if (kind == doc.end() || !kind->is_string()) fail_json(file, "/kind", "expected \"phoneme\" or \"viseme\"");
+  if (kind == doc.end() || !kind->is_string())
+    fail_json(file, "/kind", "expected \"phoneme\" or \"viseme\"");
   try {
     t.kind = timing_kind_from_string(kind->get<std::string>());
   } catch (const InvalidInput& e) {
@@ -187,7 +203,8 @@ SpeechTiming parse_timing_json(std::string_view text, const std::string& file) {
     PhonemeTiming p;
     if (!s.contains("start")) fail_json(file, ptr + "/start", "missing");
     if (!s.contains("end")) fail_json(file, ptr + "/end", "missing");
-    if (!s.contains("name") || !s["name"].is_string()) fail_json(file, ptr + "/name", "expected a string");
+    if (!s.contains("name") || !s["name"].is_string())
+      fail_json(file, ptr + "/name", "expected a string");
     p.start = json_seconds(s["start"], file, ptr + "/start");
     p.end = json_seconds(s["end"], file, ptr + "/end");
     p.phoneme = s["name"].get<std::string>();
@@ -208,14 +225,16 @@ std::string format_timing_json(const SpeechTiming& t) {
   auto doc = core::make_envelope("speech_timing", kTimingVersion);
   doc["kind"] = std::string(to_string(t.kind));
   auto& seg = doc["segments"] = nlohmann::ordered_json::array();
-  for (const auto& s : t.segments) seg.push_back({{"start", s.start}, {"end", s.end}, {"name", s.phoneme}});
+  for (const auto& s : t.segments)
+    seg.push_back({{"start", s.start}, {"end", s.end}, {"name", s.phoneme}});
   return doc.dump(1) + "\n";
 }
 
 void RhubarbCues::validate() const {
   check_segments(cues, true);
   for (const auto& c : cues)
-    if (!rhubarb_shapes().count(c.phoneme)) throw InvalidInput("unknown Rhubarb mouth shape '" + c.phoneme + "'");
+    if (!rhubarb_shapes().count(c.phoneme))
+      throw InvalidInput("unknown Rhubarb mouth shape '" + c.phoneme + "'");
 }
 
 RhubarbCues parse_rhubarb_tsv(std::string_view text, const std::string& file) {
@@ -229,9 +248,11 @@ RhubarbCues parse_rhubarb_tsv(std::string_view text, const std::string& file) {
     const auto f = split_tabs(l);
     if (f.size() != 2) fail_line(file, line, "expected <start><TAB><shape>");
     double t = 0;
-    if (!parse_seconds(f[0], t)) fail_line(file, line, "start: not a number of seconds in [0, 86400]");
+    if (!parse_seconds(f[0], t))
+      fail_line(file, line, "start: not a number of seconds in [0, 86400]");
     const std::string shape(f[1]);
-    if (!rhubarb_shapes().count(shape)) fail_line(file, line, "unknown mouth shape '" + shape + "' (A-H, X)");
+    if (!rhubarb_shapes().count(shape))
+      fail_line(file, line, "unknown mouth shape '" + shape + "' (A-H, X)");
     if (prev >= 0) {
       if (!(t > prev)) fail_line(file, line, "cue times must increase");
       r.cues.push_back({prev_shape, prev, t});
@@ -260,7 +281,8 @@ RhubarbCues parse_rhubarb_json(std::string_view text, const std::string& file) {
       if (!sf->is_string()) fail_json(file, "/metadata/soundFile", "expected a string");
       r.sound_file = sf->get<std::string>();
     }
-    if (const auto d = m->find("duration"); d != m->end()) json_seconds(*d, file, "/metadata/duration");
+    if (const auto d = m->find("duration"); d != m->end())
+      json_seconds(*d, file, "/metadata/duration");
   }
   const auto cues = doc.find("mouthCues");
   if (cues == doc.end() || !cues->is_array()) fail_json(file, "/mouthCues", "expected an array");
@@ -271,10 +293,12 @@ RhubarbCues parse_rhubarb_json(std::string_view text, const std::string& file) {
     if (!c.is_object()) fail_json(file, ptr, "expected an object");
     if (!c.contains("start")) fail_json(file, ptr + "/start", "missing");
     if (!c.contains("end")) fail_json(file, ptr + "/end", "missing");
-    if (!c.contains("value") || !c["value"].is_string()) fail_json(file, ptr + "/value", "expected a shape letter");
+    if (!c.contains("value") || !c["value"].is_string())
+      fail_json(file, ptr + "/value", "expected a shape letter");
     PhonemeTiming p{c["value"].get<std::string>(), json_seconds(c["start"], file, ptr + "/start"),
                     json_seconds(c["end"], file, ptr + "/end")};
-    if (!rhubarb_shapes().count(p.phoneme)) fail_json(file, ptr + "/value", "unknown mouth shape (A-H, X)");
+    if (!rhubarb_shapes().count(p.phoneme))
+      fail_json(file, ptr + "/value", "unknown mouth shape (A-H, X)");
     if (!(p.end > p.start)) fail_json(file, ptr + "/end", "end must be after start");
     if (!r.cues.empty() && p.start < r.cues.back().end)
       fail_json(file, ptr + "/start", "cue starts before the previous one ends");
@@ -286,20 +310,23 @@ RhubarbCues parse_rhubarb_json(std::string_view text, const std::string& file) {
 std::string format_rhubarb_json(const RhubarbCues& r) {
   r.validate();
   nlohmann::ordered_json doc;
-  doc["metadata"] = {{"soundFile", r.sound_file}, {"duration", r.cues.empty() ? 0.0 : r.cues.back().end}};
+  doc["metadata"] = {{"soundFile", r.sound_file},
+                     {"duration", r.cues.empty() ? 0.0 : r.cues.back().end}};
   auto& cues = doc["mouthCues"] = nlohmann::ordered_json::array();
-  for (const auto& c : r.cues) cues.push_back({{"start", c.start}, {"end", c.end}, {"value", c.phoneme}});
+  for (const auto& c : r.cues)
+    cues.push_back({{"start", c.start}, {"end", c.end}, {"value", c.phoneme}});
   return doc.dump(2) + "\n";
 }
 
 const std::map<std::string, std::string>& default_rhubarb_visemes() {
-  static const std::map<std::string, std::string> m{{"A", "PBM"}, {"B", "SZ"}, {"C", "EH"},
-                                                    {"D", "AA"},  {"E", "OH"}, {"F", "UW"},
+  static const std::map<std::string, std::string> m{{"A", "PBM"}, {"B", "SZ"},   {"C", "EH"},
+                                                    {"D", "AA"},  {"E", "OH"},   {"F", "UW"},
                                                     {"G", "FV"},  {"H", "TDNL"}, {"X", "sil"}};
   return m;
 }
 
-SpeechTiming rhubarb_to_visemes(const RhubarbCues& cues, const std::map<std::string, std::string>& table) {
+SpeechTiming rhubarb_to_visemes(const RhubarbCues& cues,
+                                const std::map<std::string, std::string>& table) {
   SpeechTiming t;
   t.kind = TimingKind::Viseme;
   for (const auto& c : cues.cues) {
@@ -314,12 +341,14 @@ SpeechTiming read_timing_file(const std::string& path) {
   const std::string text = core::read_file(path);
   const std::size_t first = text.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
   if (first != std::string::npos && text[first] == '{') {
-    if (text.find("\"mouthCues\"") != std::string::npos && text.find("\"emoface.speech_timing\"") == std::string::npos)
+    if (text.find("\"mouthCues\"") != std::string::npos &&
+        text.find("\"emoface.speech_timing\"") == std::string::npos)
       return rhubarb_to_visemes(parse_rhubarb_json(text, path));
     return parse_timing_json(text, path);
   }
   const auto lines = content_lines(text);
-  if (!lines.empty() && lines[0].second.rfind("start\t", 0) == 0) return parse_timing_tsv(text, path);
+  if (!lines.empty() && lines[0].second.rfind("start\t", 0) == 0)
+    return parse_timing_tsv(text, path);
   return rhubarb_to_visemes(parse_rhubarb_tsv(text, path));
 }
 
@@ -335,10 +364,11 @@ Utterance external_utterance(const SpeechTiming& timing, const WavAudio& audio) 
     u.phonemes.push_back(s);
     t = s.end;
   }
-  if (u.samples.empty()) u.samples.assign(static_cast<std::size_t>(std::ceil(t * u.sample_rate)), 0);
+  if (u.samples.empty())
+    u.samples.assign(static_cast<std::size_t>(std::ceil(t * u.sample_rate)), 0);
   if (t > u.duration() + 1.0 / u.sample_rate)
-    throw InvalidInput("external speech: the timing ends at " + number(t) + " s, after the audio (" +
-                       number(u.duration()) + " s)");
+    throw InvalidInput("external speech: the timing ends at " + number(t) +
+                       " s, after the audio (" + number(u.duration()) + " s)");
   if (t < u.duration()) u.phonemes.push_back({"_", t, u.duration()});
   u.phonemes.back().end = u.duration();
   return u;

@@ -50,7 +50,8 @@ ProcessResult run_process(const std::vector<std::string>& args, std::string_view
                           const ProcessOptions& options) {
   if (args.empty() || args[0].empty()) throw InvalidInput("run_process: empty command");
   for (const auto& a : args)
-    if (a.find('\0') != std::string::npos) throw InvalidInput("run_process: argument with a NUL byte");
+    if (a.find('\0') != std::string::npos)
+      throw InvalidInput("run_process: argument with a NUL byte");
   if (options.max_output == 0) throw InvalidInput("run_process: max_output must be > 0");
   std::vector<char*> argv;
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));

@@ -5,13 +5,14 @@
 #include <limits>
 #include <optional>
 
+#include "character_impl.hpp"
 #include "emoface/channels/parameters.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
-#include "emoface/faceweights/names.hpp"
-#include "emoface/faceweights/weight_set.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/io.hpp"
+#include "emoface/faceweights/names.hpp"
+#include "emoface/faceweights/weight_set.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/fuzzyexpr/names.hpp"
 #include "emoface/mindmap/simulation.hpp"
@@ -19,7 +20,6 @@
 #include "emoface/muscles/solver.hpp"
 #include "emoface/parlee/emotion.hpp"
 #include "emoface/runtime/streaming.hpp"
-#include "character_impl.hpp"
 #include "json_util.hpp"
 
 namespace emoface::runtime {
@@ -35,7 +35,8 @@ constexpr std::uint64_t kBlinkStream = 1, kGazeStream = 2, kHeadStream = 3;
 std::size_t param_index(const std::string& name) {
   const auto& names = ch::default_parameter_names();
   const auto it = std::find(names.begin(), names.end(), name);
-  if (it == names.end()) throw Error("runtime: parameter '" + name + "' missing from the parameter list");
+  if (it == names.end())
+    throw Error("runtime: parameter '" + name + "' missing from the parameter list");
   return static_cast<std::size_t>(it - names.begin());
 }
 
@@ -49,9 +50,12 @@ std::vector<std::string> side_names() {
 
 std::string_view to_string(SourceKind kind) noexcept {
   switch (kind) {
-    case SourceKind::Parlee: return "parlee";
-    case SourceKind::MindMap: return "mindmap";
-    default: return "direct";
+    case SourceKind::Parlee:
+      return "parlee";
+    case SourceKind::MindMap:
+      return "mindmap";
+    default:
+      return "direct";
   }
 }
 
@@ -59,7 +63,8 @@ SourceKind source_kind_from_string(std::string_view name) {
   if (name == "direct") return SourceKind::Direct;
   if (name == "parlee") return SourceKind::Parlee;
   if (name == "mindmap") return SourceKind::MindMap;
-  throw InvalidInput("unknown emotion source '" + std::string(name) + "' (direct, parlee, mindmap)");
+  throw InvalidInput("unknown emotion source '" + std::string(name) +
+                     "' (direct, parlee, mindmap)");
 }
 
 void DisplayOptions::validate() const {
@@ -75,12 +80,14 @@ void CharacterOptions::validate() const {
   blink.validate();
   gaze.validate();
   head.validate();
-  if (!(chunk_seconds >= 1 && chunk_seconds <= 600)) throw InvalidInput("chunk_seconds must be in [1, 600]");
+  if (!(chunk_seconds >= 1 && chunk_seconds <= 600))
+    throw InvalidInput("chunk_seconds must be in [1, 600]");
   mix.validate();
   coarticulation.validate();
   if (!(silence_pad > 0 && silence_pad <= 2)) throw InvalidInput("silence_pad must be in (0, 2] s");
   speech.validate();
-  if (!(step_seconds > 0 && step_seconds <= 3600)) throw InvalidInput("step_seconds must be in (0, 3600]");
+  if (!(step_seconds > 0 && step_seconds <= 3600))
+    throw InvalidInput("step_seconds must be in (0, 3600]");
   if (!(direct_decay_per_second > 0 && direct_decay_per_second <= 1))
     throw InvalidInput("direct_decay_per_second must be in (0, 1]");
 }
@@ -109,7 +116,8 @@ Character::Impl::Impl(CharacterConfig c) : config(std::move(c)) {
     phi = parlee::decay_multipliers(config.agent.emotions, config.agent.personality);
   } else if (config.source == SourceKind::MindMap) {
     world = std::make_unique<mindmap::World>(std::vector<mindmap::MindMap>{config.map});
-    for (std::size_t k = 0; k < 6; ++k) mood_node[k] = config.map.find_emotion(parlee::kBasicEmotionNames[k]);
+    for (std::size_t k = 0; k < 6; ++k)
+      mood_node[k] = config.map.find_emotion(parlee::kBasicEmotionNames[k]);
   }
   emotion = StreamingChannel(side_names());
   blinks = StreamingChannel({"eye_blink_l", "eye_blink_r"});
@@ -129,16 +137,20 @@ Character::Impl::Impl(CharacterConfig c) : config(std::move(c)) {
   cp[static_cast<std::size_t>(ch::Channel::Gaze)] = indices(gaze.parameters());
   cp[static_cast<std::size_t>(ch::Channel::Head)] = indices(head.parameters());
   for (std::size_t k = 0; k < ch::kChannelCount; ++k) raw[k].assign(cp[k].size(), 0.0);
-  mixer = StreamingMixer(ch::default_parameter_names(), cp, ch::default_conflict_table(), o.mix, o.fps, lookahead);
+  mixer = StreamingMixer(ch::default_parameter_names(), cp, ch::default_conflict_table(), o.mix,
+                         o.fps, lookahead);
   esv_ring.assign(lookahead + 1, std::array<double, 6>{});
   params_out.assign(ch::default_parameter_names().size(), 0.0);
   if (!config.face.empty()) {
-    facemesh::Face face = config.face == "default" ? facemesh::make_default_face() : facemesh::load_face(config.face);
+    facemesh::Face face =
+        config.face == "default" ? facemesh::make_default_face() : facemesh::load_face(config.face);
     solver = std::make_unique<muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig));
   }
 }
 
-void Character::Impl::make_agent() { agent = std::make_unique<parlee::Agent>(*domain, config.agent); }
+void Character::Impl::make_agent() {
+  agent = std::make_unique<parlee::Agent>(*domain, config.agent);
+}
 
 std::array<double, 6> Character::Impl::esv_at(double t) {
   std::array<double, 6> e{};
@@ -152,14 +164,16 @@ std::array<double, 6> Character::Impl::esv_at(double t) {
     case SourceKind::Parlee: {
       parlee::EmotionVector occ{};
       const double steps = (t - t_last) / config.options.step_seconds;
-      for (std::size_t i = 0; i < parlee::kEmotionCount; ++i) occ[i] = occ_last[i] * std::pow(phi[i], steps);
+      for (std::size_t i = 0; i < parlee::kEmotionCount; ++i)
+        occ[i] = occ_last[i] * std::pow(phi[i], steps);
       e = parlee::basic_emotions(occ, config.agent.emotions);
       break;
     }
     case SourceKind::MindMap: {
       if (t > world->time()) world->advance_to(t, nullptr);
       const auto& mood = world->mood(0);
-      for (std::size_t k = 0; k < 6; ++k) e[k] = mood_node[k] ? std::clamp(mood[*mood_node[k]], 0.0, 1.0) : 0.0;
+      for (std::size_t k = 0; k < 6; ++k)
+        e[k] = mood_node[k] ? std::clamp(mood[*mood_node[k]], 0.0, 1.0) : 0.0;
       break;
     }
   }
@@ -196,7 +210,8 @@ void Character::Impl::generate_chunks(double t) {
 void Character::Impl::build_utt(Utt& u) const {
   u.co = std::make_unique<ch::Coarticulation>(visemes, u.segs, config.options.coarticulation);
   u.col.assign(lip_params.size(), -1);
-  for (std::size_t i = 0; i < lip_params.size(); ++i) u.col[i] = u.co->parameter_index(lip_params[i]);
+  for (std::size_t i = 0; i < lip_params.size(); ++i)
+    u.col[i] = u.co->parameter_index(lip_params[i]);
 }
 
 void Character::Impl::raw_frame() {
@@ -205,15 +220,20 @@ void Character::Impl::raw_frame() {
   generate_chunks(t);
   const std::array<double, 6> esv = esv_at(t);
   // emotion display (channel 4): a new held display when the felt ESV moved past the tolerance
-  double moved = shown_any ? 0.0 : (std::any_of(esv.begin(), esv.end(), [](double v) { return v > 0; }) ? 1.0 : 0.0);
-  for (std::size_t k = 0; k < 6 && shown_any; ++k) moved = std::max(moved, std::abs(esv[k] - shown[k]));
+  double moved =
+      shown_any ? 0.0
+                : (std::any_of(esv.begin(), esv.end(), [](double v) { return v > 0; }) ? 1.0 : 0.0);
+  for (std::size_t k = 0; k < 6 && shown_any; ++k)
+    moved = std::max(moved, std::abs(esv[k] - shown[k]));
   if (moved > config.options.display.tolerance && t > emotion.last_start()) {
     fuzzyexpr::Esv in{};
     for (std::size_t k = 0; k < 6; ++k) in[k] = esv[k];
     const auto sides = fuzzyexpr::expand_to_sides(engine.convert(in));
     ch::Movement m;
-    for (std::size_t i = 0; i < sides.size(); ++i) m.targets.push_back({emotion.parameters()[i], sides[i]});
-    m.timing = ch::Timing{t, t + kHold, config.options.display.onset, config.options.display.offset};
+    for (std::size_t i = 0; i < sides.size(); ++i)
+      m.targets.push_back({emotion.parameters()[i], sides[i]});
+    m.timing =
+        ch::Timing{t, t + kHold, config.options.display.onset, config.options.display.offset};
     m.label = "display";
     emotion.append(m);
     shown = esv;
@@ -244,14 +264,15 @@ void Character::Impl::raw_frame() {
   }
 }
 
-EventResult Character::Impl::emotions_event(const std::array<double, 6>& e, const std::array<bool, 6>& given,
-                                            bool replace) {
+EventResult Character::Impl::emotions_event(const std::array<double, 6>& e,
+                                            const std::array<bool, 6>& given, bool replace) {
   if (config.source != SourceKind::Direct)
     return {false, "emotion input needs a character with the direct source (this one is " +
                        std::string(to_string(config.source)) + ")"};
   for (std::size_t k = 0; k < 6; ++k)
     if (given[k] && !(e[k] >= 0 && e[k] <= 1))
-      return {false, "emotion '" + std::string(parlee::kBasicEmotionNames[k]) + "' must be in [0, 1]"};
+      return {false,
+              "emotion '" + std::string(parlee::kBasicEmotionNames[k]) + "' must be in [0, 1]"};
   const std::array<double, 6> now = esv_at(time);
   for (std::size_t k = 0; k < 6; ++k) direct[k] = given[k] ? e[k] : (replace ? 0.0 : now[k]);
   direct_time = time;
@@ -276,8 +297,8 @@ EventResult Character::Impl::parlee_event(parlee::Event e, bool log) {
   const double steps = (time - t_last) / config.options.step_seconds;
   parlee::EmotionVector decay{};
   for (std::size_t i = 0; i < parlee::kEmotionCount; ++i) decay[i] = std::pow(phi[i], steps);
-  const parlee::EmotionVector alpha =
-      parlee::motivated_alpha(config.agent.emotions, agent->motivation(), config.agent.motivation_options);
+  const parlee::EmotionVector alpha = parlee::motivated_alpha(
+      config.agent.emotions, agent->motivation(), config.agent.motivation_options);
   parlee::update_emotions(occ_last, rec.impulse, config.agent.emotions, alpha, decay);
   t_last = time;
   return {true, ""};
@@ -292,7 +313,8 @@ EventResult Character::Impl::mind_event(mindmap::Event e, bool log) {
   try {
     world->apply(e, nullptr);
   } catch (const std::exception& ex) {
-    return {false, std::string("stimulus skipped: ") + ex.what()};  // World::apply leaves it unchanged
+    return {false,
+            std::string("stimulus skipped: ") + ex.what()};  // World::apply leaves it unchanged
   }
   if (log) mind_log.push_back(e);
   return {true, ""};
@@ -312,8 +334,12 @@ EventResult Character::push_emotions(const std::array<double, 6>& esv, bool repl
   return impl_->emotions_event(esv, given, replace);
 }
 
-EventResult Character::push_parlee_event(const parlee::Event& event) { return impl_->parlee_event(event, true); }
-EventResult Character::push_stimulus(const mindmap::Event& event) { return impl_->mind_event(event, true); }
+EventResult Character::push_parlee_event(const parlee::Event& event) {
+  return impl_->parlee_event(event, true);
+}
+EventResult Character::push_stimulus(const mindmap::Event& event) {
+  return impl_->mind_event(event, true);
+}
 
 EventResult Character::push_event(std::string_view text) {
   Json doc;
@@ -330,17 +356,21 @@ EventResult Character::push_event(std::string_view text) {
       std::array<double, 6> e{};
       std::array<bool, 6> given{};
       for (auto it = em.begin(); it != em.end(); ++it) {
-        const auto pos = std::find(parlee::kBasicEmotionNames.begin(), parlee::kBasicEmotionNames.end(), it.key());
+        const auto pos = std::find(parlee::kBasicEmotionNames.begin(),
+                                   parlee::kBasicEmotionNames.end(), it.key());
         if (pos == parlee::kBasicEmotionNames.end())
-          return {false, "unknown emotion '" + it.key() + "' (sadness happiness anger fear disgust surprise)"};
+          return {false, "unknown emotion '" + it.key() +
+                             "' (sadness happiness anger fear disgust surprise)"};
         if (!it.value().is_number()) return {false, "emotion '" + it.key() + "' must be a number"};
         const auto k = static_cast<std::size_t>(pos - parlee::kBasicEmotionNames.begin());
         e[k] = it.value().get<double>();
         given[k] = true;
       }
       for (auto it = doc.begin(); it != doc.end(); ++it)
-        if (it.key() != "emotions" && it.key() != "replace") return {false, "unknown field '" + it.key() + "'"};
-      const bool replace = doc.contains("replace") && doc["replace"].is_boolean() && doc["replace"].get<bool>();
+        if (it.key() != "emotions" && it.key() != "replace")
+          return {false, "unknown field '" + it.key() + "'"};
+      const bool replace =
+          doc.contains("replace") && doc["replace"].is_boolean() && doc["replace"].get<bool>();
       return impl_->emotions_event(e, given, replace);
     }
     if (doc.contains("action")) {
@@ -368,9 +398,11 @@ EventResult Character::push_event(std::string_view text) {
         if (k == "stimulus" || k == "source" || k == "target") {
           if (!it.value().is_string()) return {false, "\"" + k + "\" must be a string"};
         } else if (k == "weights") {
-          if (!it.value().is_object()) return {false, "\"weights\" must be an object of emotion: weight"};
+          if (!it.value().is_object())
+            return {false, "\"weights\" must be an object of emotion: weight"};
           for (auto w = it.value().begin(); w != it.value().end(); ++w) {
-            if (!w.value().is_number()) return {false, "weight of '" + w.key() + "' must be a number"};
+            if (!w.value().is_number())
+              return {false, "weight of '" + w.key() + "' must be a number"};
             e.weights.emplace_back(w.key(), w.value().get<double>());
           }
         } else {
@@ -388,7 +420,9 @@ EventResult Character::push_event(std::string_view text) {
   return {false, "event has none of \"emotions\", \"action\", \"stimulus\""};
 }
 
-void Character::set_synthesizer(std::shared_ptr<const ch::SpeechSynthesizer> s) { impl_->synth = std::move(s); }
+void Character::set_synthesizer(std::shared_ptr<const ch::SpeechSynthesizer> s) {
+  impl_->synth = std::move(s);
+}
 
 double Character::speak(const ch::Utterance& u) {
   Impl& m = *impl_;
@@ -401,9 +435,11 @@ double Character::speak(const ch::Utterance& u) {
   utt.segs.push_back({m.visemes.silence, start - pad, start, 0.0, "pad"});
   double prev = 0.0;
   for (const ch::PhonemeTiming& p : u.phonemes) {
-    if (!(std::isfinite(p.start) && std::isfinite(p.end) && p.end > p.start && p.start >= prev - 1e-9))
+    if (!(std::isfinite(p.start) && std::isfinite(p.end) && p.end > p.start &&
+          p.start >= prev - 1e-9))
       throw InvalidInput("speak: phoneme timings must increase");
-    utt.segs.push_back({m.visemes.viseme_for_phoneme(p.phoneme), start + p.start, start + p.end, 0.0, p.phoneme});
+    utt.segs.push_back(
+        {m.visemes.viseme_for_phoneme(p.phoneme), start + p.start, start + p.end, 0.0, p.phoneme});
     prev = p.end;
   }
   utt.end = start + prev + pad;
@@ -414,7 +450,8 @@ double Character::speak(const ch::Utterance& u) {
 }
 
 ch::Utterance Character::speak(std::string_view text, double* start) {
-  if (!impl_->synth) impl_->synth = std::make_shared<ch::EspeakProgram>(impl_->config.options.speech);
+  if (!impl_->synth)
+    impl_->synth = std::make_shared<ch::EspeakProgram>(impl_->config.options.speech);
   ch::Utterance u = impl_->synth->synthesize(text);
   const double s = speak(u);
   if (start) *start = s;
@@ -422,10 +459,12 @@ ch::Utterance Character::speak(std::string_view text, double* start) {
 }
 
 void Character::update(double dt) {
-  if (!(std::isfinite(dt) && dt >= 0 && dt <= 3600)) throw InvalidInput("update: dt must be in [0, 3600] s");
+  if (!(std::isfinite(dt) && dt >= 0 && dt <= 3600))
+    throw InvalidInput("update: dt must be in [0, 3600] s");
   Impl& m = *impl_;
   m.time += dt;
-  while (static_cast<double>(m.mixer.frames_in()) / m.config.options.fps <= m.time + 1e-9) m.raw_frame();
+  while (static_cast<double>(m.mixer.frames_in()) / m.config.options.fps <= m.time + 1e-9)
+    m.raw_frame();
 }
 
 double Character::input_time() const noexcept { return impl_->time; }
@@ -438,14 +477,17 @@ double Character::latency() const noexcept {
 }
 const std::array<double, 6>& Character::emotions() const noexcept { return impl_->esv_out; }
 const std::vector<double>& Character::parameters() const noexcept { return impl_->params_out; }
-const std::vector<std::string>& Character::parameter_names() { return ch::default_parameter_names(); }
+const std::vector<std::string>& Character::parameter_names() {
+  return ch::default_parameter_names();
+}
 const CharacterConfig& Character::config() const noexcept { return impl_->config; }
 
 std::vector<double> Character::occ_emotions() const {
   if (impl_->config.source != SourceKind::Parlee) return {};
   std::vector<double> out(parlee::kEmotionCount);
   const double steps = (impl_->time - impl_->t_last) / impl_->config.options.step_seconds;
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = impl_->occ_last[i] * std::pow(impl_->phi[i], steps);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = impl_->occ_last[i] * std::pow(impl_->phi[i], steps);
   return out;
 }
 
@@ -454,7 +496,8 @@ const std::vector<double>& mapped(std::unique_ptr<faceweights::Mapper>& mapper, 
                                   std::vector<double>& out, std::size_t& frame, std::size_t now,
                                   const std::vector<double>& params) {
   if (!mapper)
-    mapper = std::make_unique<faceweights::Mapper>(faceweights::builtin_weight_set(set), ch::default_parameter_names());
+    mapper = std::make_unique<faceweights::Mapper>(faceweights::builtin_weight_set(set),
+                                                   ch::default_parameter_names());
   if (frame != now || out.size() != mapper->target_count()) {
     out.resize(mapper->target_count());
     mapper->forward(params.data(), out.data());
@@ -475,11 +518,14 @@ const std::vector<double>& Character::facs() {
 }
 
 const std::vector<std::string>& Character::arkit_names() {
-  static const std::vector<std::string> names = faceweights::builtin_weight_set("arkit").target_names();
+  static const std::vector<std::string> names =
+      faceweights::builtin_weight_set("arkit").target_names();
   return names;
 }
 
-std::vector<std::string> Character::facs_names() { return faceweights::builtin_weight_set("facs").target_names(); }
+std::vector<std::string> Character::facs_names() {
+  return faceweights::builtin_weight_set("facs").target_names();
+}
 
 bool Character::has_face() const noexcept { return impl_->solver != nullptr; }
 

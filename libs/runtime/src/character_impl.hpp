@@ -77,10 +77,10 @@ struct Character::Impl {
   std::array<double, 6> esv_at(double t);
   void generate_chunks(double t);
   void raw_frame();
-  EventResult emotions_event(const std::array<double, 6>& e, const std::array<bool, 6>& given, bool replace);
+  EventResult emotions_event(const std::array<double, 6>& e, const std::array<bool, 6>& given,
+                             bool replace);
   EventResult parlee_event(parlee::Event e, bool log);
   EventResult mind_event(mindmap::Event e, bool log);
 };
-
 
 }  // namespace emoface::runtime

@@ -1,10 +1,12 @@
 // The runtime's documents: the character config ("emoface.character") and the snapshot of a whole
 // character ("emoface.character_state").
+#include "emoface/core/io.hpp"
+
 #include <algorithm>
 #include <filesystem>
 
+#include "character_impl.hpp"
 #include "emoface/channels/parameters.hpp"
-#include "emoface/core/io.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/mindmap/io.hpp"
 #include "emoface/mindmap/simulation.hpp"
@@ -13,7 +15,6 @@
 #include "emoface/parlee/io.hpp"
 #include "emoface/runtime/character.hpp"
 #include "emoface/runtime/streaming.hpp"
-#include "character_impl.hpp"
 #include "json_util.hpp"
 
 namespace emoface::runtime {
@@ -43,13 +44,22 @@ void read_timing(const Reader& r, const Json& o, const std::string& p, ch::Timin
 
 }  // namespace
 
-CharacterConfig parse_character_config(std::string_view text, const std::string& file, const std::string& base_dir) {
+CharacterConfig parse_character_config(std::string_view text, const std::string& file,
+                                       const std::string& base_dir) {
   const Json doc = core::parse_json(text, file);
   core::check_envelope(doc, "character", kConfigVersion, file);
   const Reader r{file};
-  r.only(doc, "", {"format", "version", "generator", "source", "face", "fps", "lookahead", "seed", "display",
-                   "blinks", "gaze_noise", "head_noise", "blink", "gaze", "head", "chunk_seconds", "mix",
-                   "coarticulation", "silence_pad", "speech", "step_seconds", "direct_decay_per_second"});
+  r.only(doc, "", {"format",       "version",
+                   "generator",    "source",
+                   "face",         "fps",
+                   "lookahead",    "seed",
+                   "display",      "blinks",
+                   "gaze_noise",   "head_noise",
+                   "blink",        "gaze",
+                   "head",         "chunk_seconds",
+                   "mix",          "coarticulation",
+                   "silence_pad",  "speech",
+                   "step_seconds", "direct_decay_per_second"});
   CharacterConfig c;
   CharacterOptions& o = c.options;
   if (doc.contains("source")) {
@@ -74,7 +84,8 @@ CharacterConfig parse_character_config(std::string_view text, const std::string&
         r.fail("/source", "a parlee source needs \"domain\" (text) or \"domain_file\"");
       }
       if (s.contains("agent")) {
-        c.agent = parlee::parse_agent(r.object(s["agent"], "/source/agent").dump(), file + " /source/agent");
+        c.agent = parlee::parse_agent(r.object(s["agent"], "/source/agent").dump(),
+                                      file + " /source/agent");
       } else if (s.contains("agent_file")) {
         std::string path;
         r.get(s, "/source", "agent_file", path);
@@ -84,7 +95,8 @@ CharacterConfig parse_character_config(std::string_view text, const std::string&
     if (c.source == SourceKind::MindMap) {
       r.only(s, "/source", {"kind", "map", "map_file"});
       if (s.contains("map")) {
-        c.map = mindmap::parse_mind_map(r.object(s["map"], "/source/map").dump(), file + " /source/map");
+        c.map = mindmap::parse_mind_map(r.object(s["map"], "/source/map").dump(),
+                                        file + " /source/map");
       } else if (s.contains("map_file")) {
         std::string path;
         r.get(s, "/source", "map_file", path);
@@ -113,7 +125,8 @@ CharacterConfig parse_character_config(std::string_view text, const std::string&
   r.get(doc, "", "head_noise", o.head_noise);
   if (doc.contains("blink")) {
     const Json& b = r.object(doc["blink"], "/blink");
-    r.only(b, "/blink", {"mean_interval", "min_interval", "duration", "onset", "offset", "closure"});
+    r.only(b, "/blink",
+           {"mean_interval", "min_interval", "duration", "onset", "offset", "closure"});
     r.get(b, "/blink", "mean_interval", o.blink.mean_interval);
     r.get(b, "/blink", "min_interval", o.blink.min_interval);
     r.get(b, "/blink", "duration", o.blink.duration);
@@ -141,9 +154,11 @@ CharacterConfig parse_character_config(std::string_view text, const std::string&
     r.get(m, "/mix", "active_threshold", o.mix.active_threshold);
     if (m.contains("priority")) {
       const Json& pr = m["priority"];
-      if (!pr.is_array() || pr.size() != ch::kChannelCount) r.fail("/mix/priority", "expected 6 integers");
+      if (!pr.is_array() || pr.size() != ch::kChannelCount)
+        r.fail("/mix/priority", "expected 6 integers");
       for (std::size_t k = 0; k < ch::kChannelCount; ++k) {
-        if (!pr[k].is_number_integer()) r.fail("/mix/priority/" + std::to_string(k), "expected an integer");
+        if (!pr[k].is_number_integer())
+          r.fail("/mix/priority/" + std::to_string(k), "expected an integer");
         o.mix.priority[k] = pr[k].get<int>();
       }
     }
@@ -195,23 +210,35 @@ std::string format_character_config(const CharacterConfig& c) {
   doc["fps"] = o.fps;
   doc["lookahead"] = o.lookahead;
   doc["seed"] = o.seed;
-  doc["display"] = {{"onset", o.display.onset}, {"offset", o.display.offset}, {"tolerance", o.display.tolerance}};
+  doc["display"] = {
+      {"onset", o.display.onset}, {"offset", o.display.offset}, {"tolerance", o.display.tolerance}};
   doc["blinks"] = o.blinks;
   doc["gaze_noise"] = o.gaze_noise;
   doc["head_noise"] = o.head_noise;
-  doc["blink"] = {{"mean_interval", o.blink.mean_interval}, {"min_interval", o.blink.min_interval},
-                  {"duration", o.blink.duration},           {"onset", o.blink.onset},
-                  {"offset", o.blink.offset},               {"closure", o.blink.closure}};
-  for (const auto& [key, n] : {std::pair<const char*, const ch::NoiseOptions*>{"gaze", &o.gaze}, {"head", &o.head}})
-    doc[key] = {{"amplitude", n->amplitude}, {"mean_hold", n->mean_hold}, {"min_hold", n->min_hold},
+  doc["blink"] = {{"mean_interval", o.blink.mean_interval},
+                  {"min_interval", o.blink.min_interval},
+                  {"duration", o.blink.duration},
+                  {"onset", o.blink.onset},
+                  {"offset", o.blink.offset},
+                  {"closure", o.blink.closure}};
+  for (const auto& [key, n] :
+       {std::pair<const char*, const ch::NoiseOptions*>{"gaze", &o.gaze}, {"head", &o.head}})
+    doc[key] = {{"amplitude", n->amplitude},
+                {"mean_hold", n->mean_hold},
+                {"min_hold", n->min_hold},
                 {"transition", n->transition}};
   doc["chunk_seconds"] = o.chunk_seconds;
-  doc["mix"] = {{"dmin_plus", o.mix.dmin_plus}, {"dmin_minus", o.mix.dmin_minus},
-                {"active_threshold", o.mix.active_threshold}, {"priority", o.mix.priority}};
+  doc["mix"] = {{"dmin_plus", o.mix.dmin_plus},
+                {"dmin_minus", o.mix.dmin_minus},
+                {"active_threshold", o.mix.active_threshold},
+                {"priority", o.mix.priority}};
   doc["coarticulation"] = {{"time_unit", o.coarticulation.time_unit},
-                           {"rest_dominance", o.coarticulation.rest_dominance}, {"cutoff", o.coarticulation.cutoff}};
+                           {"rest_dominance", o.coarticulation.rest_dominance},
+                           {"cutoff", o.coarticulation.cutoff}};
   doc["silence_pad"] = o.silence_pad;
-  doc["speech"] = {{"voice", o.speech.voice}, {"rate", o.speech.rate}, {"pitch", o.speech.pitch},
+  doc["speech"] = {{"voice", o.speech.voice},
+                   {"rate", o.speech.rate},
+                   {"pitch", o.speech.pitch},
                    {"program", o.speech.program}};
   doc["step_seconds"] = o.step_seconds;
   doc["direct_decay_per_second"] = o.direct_decay_per_second;
@@ -225,8 +252,11 @@ namespace {
 Json channel_json(const StreamingChannel& c) {
   Json items = Json::array();
   for (const auto& it : c.items()) {
-    items.push_back({{"timing", {{"start", it.timing.start}, {"end", it.timing.end}, {"onset", it.timing.onset},
-                                 {"offset", it.timing.offset}}},
+    items.push_back({{"timing",
+                      {{"start", it.timing.start},
+                       {"end", it.timing.end},
+                       {"onset", it.timing.onset},
+                       {"offset", it.timing.offset}}},
                      {"target", it.target},
                      {"start_value", it.start_value},
                      {"overlaps", it.overlaps},
@@ -236,13 +266,16 @@ Json channel_json(const StreamingChannel& c) {
   return items;
 }
 
-std::vector<double> numbers(const Reader& r, const Json& j, const std::string& p, std::size_t n, bool allow_null) {
+std::vector<double> numbers(const Reader& r, const Json& j, const std::string& p, std::size_t n,
+                            bool allow_null) {
   if (!j.is_array() || (n != SIZE_MAX && j.size() != n))
-    r.fail(p, "expected an array of " + (n == SIZE_MAX ? std::string("numbers") : std::to_string(n) + " numbers"));
+    r.fail(p, "expected an array of " +
+                  (n == SIZE_MAX ? std::string("numbers") : std::to_string(n) + " numbers"));
   std::vector<double> out;
   out.reserve(j.size());
   for (std::size_t i = 0; i < j.size(); ++i)
-    out.push_back(allow_null ? r.number(j[i], p + "/" + std::to_string(i)) : r.finite(j[i], p + "/" + std::to_string(i)));
+    out.push_back(allow_null ? r.number(j[i], p + "/" + std::to_string(i))
+                             : r.finite(j[i], p + "/" + std::to_string(i)));
   return out;
 }
 
@@ -253,16 +286,19 @@ void restore_channel(const Reader& r, const Json& j, const std::string& p, Strea
   for (std::size_t k = 0; k < j.size(); ++k) {
     const std::string q = p + "/" + std::to_string(k);
     const Json& o = r.object(j[k], q);
-    r.only(o, q, {"timing", "target", "start_value", "overlaps", "previous_offset", "previous_end"});
+    r.only(o, q,
+           {"timing", "target", "start_value", "overlaps", "previous_offset", "previous_end"});
     StreamingChannel::Item it;
     if (!o.contains("timing")) r.fail(q + "/timing", "missing");
     read_timing(r, r.object(o["timing"], q + "/timing"), q + "/timing", it.timing);
-    if (!o.contains("target") || !o.contains("start_value")) r.fail(q, "missing target or start_value");
+    if (!o.contains("target") || !o.contains("start_value"))
+      r.fail(q, "missing target or start_value");
     it.target = numbers(r, o["target"], q + "/target", np, false);
     it.start_value = numbers(r, o["start_value"], q + "/start_value", np, false);
     r.get(o, q, "overlaps", it.overlaps);
     r.get(o, q, "previous_offset", it.previous_offset);
-    it.previous_end = o.contains("previous_end") ? r.number(o["previous_end"], q + "/previous_end") : -INFINITY;
+    it.previous_end =
+        o.contains("previous_end") ? r.number(o["previous_end"], q + "/previous_end") : -INFINITY;
     items.push_back(std::move(it));
   }
   try {
@@ -287,7 +323,8 @@ std::string Character::snapshot() const {
     case SourceKind::Parlee: {
       Json events = Json::array();
       for (const auto& e : m.parlee_log) {
-        Json ev = {{"time", e.time}, {"action", e.action}, {"outcome", e.outcome}, {"note", e.note}};
+        Json ev = {
+            {"time", e.time}, {"action", e.action}, {"outcome", e.outcome}, {"note", e.note}};
         if (e.feedback) ev["feedback"] = *e.feedback;
         events.push_back(ev);
       }
@@ -299,7 +336,10 @@ std::string Character::snapshot() const {
       for (const auto& e : m.mind_log) {
         Json w = Json::object();
         for (const auto& [k, v] : e.weights) w[k] = v;
-        events.push_back({{"time", e.time}, {"target", e.target}, {"stimulus", e.stimulus}, {"source", e.source},
+        events.push_back({{"time", e.time},
+                          {"target", e.target},
+                          {"stimulus", e.stimulus},
+                          {"source", e.source},
                           {"weights", w}});
       }
       src = {{"events", events}, {"world_time", m.world->time()}};
@@ -308,8 +348,10 @@ std::string Character::snapshot() const {
   }
   doc["source"] = src;
   doc["display"] = {{"any", m.shown_any}, {"shown", m.shown}};
-  doc["channels"] = {{"emotion", channel_json(m.emotion)}, {"blinks", channel_json(m.blinks)},
-                     {"gaze", channel_json(m.gaze)}, {"head", channel_json(m.head)}};
+  doc["channels"] = {{"emotion", channel_json(m.emotion)},
+                     {"blinks", channel_json(m.blinks)},
+                     {"gaze", channel_json(m.gaze)},
+                     {"head", channel_json(m.head)}};
   doc["chunks"] = m.chunks;
   Json utts = Json::array();
   for (const auto& u : m.utts) {
@@ -321,7 +363,10 @@ std::string Character::snapshot() const {
   const StreamingMixer::State ms = m.mixer.state();
   Json inh = Json::array();
   for (double v : ms.last_inhibited) inh.push_back(num(v));
-  doc["mixer"] = {{"frames_in", ms.frames_in}, {"ring", ms.ring}, {"last_inhibited", inh}, {"output", ms.output}};
+  doc["mixer"] = {{"frames_in", ms.frames_in},
+                  {"ring", ms.ring},
+                  {"last_inhibited", inh},
+                  {"output", ms.output}};
   doc["esv_ring"] = m.esv_ring;
   doc["esv_out"] = m.esv_out;
   return doc.dump() + "\n";
@@ -331,10 +376,11 @@ Character restore_character(std::string_view text, const std::string& file) {
   const Json doc = core::parse_json(text, file);
   core::check_envelope(doc, "character_state", kStateVersion, file);
   const Reader r{file};
-  r.only(doc, "", {"format", "version", "generator", "config", "time", "source", "display", "channels", "chunks",
-                   "speech", "mixer", "esv_ring", "esv_out"});
-  for (const char* k : {"config", "time", "source", "display", "channels", "chunks", "speech", "mixer", "esv_ring",
-                        "esv_out"})
+  r.only(doc, "",
+         {"format", "version", "generator", "config", "time", "source", "display", "channels",
+          "chunks", "speech", "mixer", "esv_ring", "esv_out"});
+  for (const char* k : {"config", "time", "source", "display", "channels", "chunks", "speech",
+                        "mixer", "esv_ring", "esv_out"})
     if (!doc.contains(k)) r.fail(std::string("/") + k, "missing");
   auto impl = std::make_unique<Character::Impl>(
       parse_character_config(r.object(doc["config"], "/config").dump(), file + " /config"));
@@ -343,12 +389,14 @@ Character restore_character(std::string_view text, const std::string& file) {
   const Json& src = r.object(doc["source"], "/source");
   switch (m.config.source) {
     case SourceKind::Direct: {
-      const auto v = numbers(r, src.contains("values") ? src["values"] : Json(), "/source/values", 6, false);
+      const auto v =
+          numbers(r, src.contains("values") ? src["values"] : Json(), "/source/values", 6, false);
       for (double x : v)
         if (!(x >= 0 && x <= 1)) r.fail("/source/values", "emotion intensities must be in [0, 1]");
       std::copy(v.begin(), v.end(), m.direct.begin());
       r.get(src, "/source", "time", m.direct_time);
-      if (!(m.direct_time >= 0 && m.direct_time <= m.time)) r.fail("/source/time", "must be in [0, /time]");
+      if (!(m.direct_time >= 0 && m.direct_time <= m.time))
+        r.fail("/source/time", "must be in [0, /time]");
       break;
     }
     case SourceKind::Parlee: {
@@ -370,8 +418,8 @@ Character restore_character(std::string_view text, const std::string& file) {
         }
         m.parlee_log.push_back(pe);
       }
-      const auto occ = numbers(r, src.contains("emotions") ? src["emotions"] : Json(), "/source/emotions",
-                               parlee::kEmotionCount, false);
+      const auto occ = numbers(r, src.contains("emotions") ? src["emotions"] : Json(),
+                               "/source/emotions", parlee::kEmotionCount, false);
       for (std::size_t i = 0; i < occ.size(); ++i)
         if (!(occ[i] >= 0 && occ[i] <= m.config.agent.emotions.omega[i]))
           r.fail("/source/emotions/" + std::to_string(i), "intensity must be in [0, omega]");
@@ -410,12 +458,14 @@ Character restore_character(std::string_view text, const std::string& file) {
   }
   const Json& d = r.object(doc["display"], "/display");
   r.get(d, "/display", "any", m.shown_any);
-  const auto shown = numbers(r, d.contains("shown") ? d["shown"] : Json(), "/display/shown", 6, false);
+  const auto shown =
+      numbers(r, d.contains("shown") ? d["shown"] : Json(), "/display/shown", 6, false);
   for (double x : shown)
     if (!(x >= 0 && x <= 1)) r.fail("/display/shown", "emotion intensities must be in [0, 1]");
   std::copy(shown.begin(), shown.end(), m.shown.begin());
   const Json& chs = r.object(doc["channels"], "/channels");
-  restore_channel(r, chs.contains("emotion") ? chs["emotion"] : Json(), "/channels/emotion", m.emotion);
+  restore_channel(r, chs.contains("emotion") ? chs["emotion"] : Json(), "/channels/emotion",
+                  m.emotion);
   restore_channel(r, chs.contains("blinks") ? chs["blinks"] : Json(), "/channels/blinks", m.blinks);
   restore_channel(r, chs.contains("gaze") ? chs["gaze"] : Json(), "/channels/gaze", m.gaze);
   restore_channel(r, chs.contains("head") ? chs["head"] : Json(), "/channels/head", m.head);
@@ -436,8 +486,9 @@ Character restore_character(std::string_view text, const std::string& file) {
       const Json& s = segs[k];
       if (!s.is_array() || s.size() != 5 || !s[0].is_string() || !s[4].is_string())
         r.fail(q, "expected [viseme, start, end, apex, label]");
-      utt.segs.push_back({s[0].get<std::string>(), r.finite(s[1], q + "/1"), r.finite(s[2], q + "/2"),
-                          r.finite(s[3], q + "/3"), s[4].get<std::string>()});
+      utt.segs.push_back({s[0].get<std::string>(), r.finite(s[1], q + "/1"),
+                          r.finite(s[2], q + "/2"), r.finite(s[3], q + "/3"),
+                          s[4].get<std::string>()});
     }
     try {
       m.build_utt(utt);
@@ -448,12 +499,14 @@ Character restore_character(std::string_view text, const std::string& file) {
   }
   const Json& mx = r.object(doc["mixer"], "/mixer");
   StreamingMixer::State st;
-  if (!mx.contains("frames_in") || !mx["frames_in"].is_number_unsigned()) r.fail("/mixer/frames_in", "expected an integer");
+  if (!mx.contains("frames_in") || !mx["frames_in"].is_number_unsigned())
+    r.fail("/mixer/frames_in", "expected an integer");
   st.frames_in = mx["frames_in"].get<std::size_t>();
   st.ring = numbers(r, mx.contains("ring") ? mx["ring"] : Json(), "/mixer/ring", SIZE_MAX, false);
   st.last_inhibited = numbers(r, mx.contains("last_inhibited") ? mx["last_inhibited"] : Json(),
                               "/mixer/last_inhibited", SIZE_MAX, true);
-  st.output = numbers(r, mx.contains("output") ? mx["output"] : Json(), "/mixer/output", SIZE_MAX, false);
+  st.output =
+      numbers(r, mx.contains("output") ? mx["output"] : Json(), "/mixer/output", SIZE_MAX, false);
   try {
     m.mixer.restore(st);
   } catch (const InvalidInput& e) {
@@ -464,16 +517,18 @@ Character restore_character(std::string_view text, const std::string& file) {
   // snapshot must not make the next update() loop for ages
   const double fps = m.config.options.fps;
   if (!(m.time >= 0 && m.time <= 1e9)) r.fail("/time", "must be in [0, 1e9] s");
-  const bool due_ok = st.frames_in == 0 ? !(0.0 <= m.time + 1e-9)
-                                         : static_cast<double>(st.frames_in - 1) / fps <= m.time + 1e-9 &&
-                                               !(static_cast<double>(st.frames_in) / fps <= m.time + 1e-9);
+  const bool due_ok = st.frames_in == 0
+                          ? !(0.0 <= m.time + 1e-9)
+                          : static_cast<double>(st.frames_in - 1) / fps <= m.time + 1e-9 &&
+                                !(static_cast<double>(st.frames_in) / fps <= m.time + 1e-9);
   if (!due_ok) r.fail("/mixer/frames_in", "does not match /time at the configured fps");
   const Json& ring = doc["esv_ring"];
   if (!ring.is_array() || ring.size() != m.esv_ring.size()) r.fail("/esv_ring", "wrong size");
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const auto v = numbers(r, ring[i], "/esv_ring/" + std::to_string(i), 6, false);
     for (double x : v)
-      if (!(x >= 0 && x <= 1)) r.fail("/esv_ring/" + std::to_string(i), "emotion intensities must be in [0, 1]");
+      if (!(x >= 0 && x <= 1))
+        r.fail("/esv_ring/" + std::to_string(i), "emotion intensities must be in [0, 1]");
     std::copy(v.begin(), v.end(), m.esv_ring[i].begin());
   }
   const auto eo = numbers(r, doc["esv_out"], "/esv_out", 6, false);

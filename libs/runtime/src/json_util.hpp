@@ -1,12 +1,11 @@
 #pragma once
-// Private JSON helpers of the runtime's readers: typed field access with FormatError naming the file
-// and the JSON pointer.
+// Private JSON helpers of the runtime's readers: typed field access with FormatError naming the
+// file and the JSON pointer.
 #include <cmath>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
-
-#include <nlohmann/json.hpp>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -24,7 +23,8 @@ struct Reader {
     if (!j.is_object()) fail(ptr, "expected an object");
     return j;
   }
-  void only(const Json& j, const std::string& ptr, std::initializer_list<std::string_view> keys) const {
+  void only(const Json& j, const std::string& ptr,
+            std::initializer_list<std::string_view> keys) const {
     for (auto it = j.begin(); it != j.end(); ++it) {
       bool ok = false;
       for (auto k : keys) ok |= it.key() == k;
@@ -32,7 +32,8 @@ struct Reader {
     }
   }
   double number(const Json& j, const std::string& ptr) const {
-    if (j.is_null()) return -INFINITY;  // the writers store −inf (never inhibited, no previous) as null
+    if (j.is_null())
+      return -INFINITY;  // the writers store −inf (never inhibited, no previous) as null
     if (!j.is_number()) fail(ptr, "expected a number");
     return j.get<double>();
   }

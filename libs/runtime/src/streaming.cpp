@@ -20,15 +20,20 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // ------------------------------------------------------------------------------------ channel
 
-StreamingChannel::StreamingChannel(std::vector<std::string> parameters) : parameters_(std::move(parameters)) {
+StreamingChannel::StreamingChannel(std::vector<std::string> parameters)
+    : parameters_(std::move(parameters)) {
   for (std::size_t i = 0; i < parameters_.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (parameters_[i] == parameters_[j])
         throw InvalidInput("StreamingChannel: parameter '" + parameters_[i] + "' repeated");
 }
 
-double StreamingChannel::last_start() const noexcept { return items_.empty() ? -kInf : items_.back().timing.start; }
-double StreamingChannel::last_end() const noexcept { return items_.empty() ? -kInf : items_.back().timing.end; }
+double StreamingChannel::last_start() const noexcept {
+  return items_.empty() ? -kInf : items_.back().timing.start;
+}
+double StreamingChannel::last_end() const noexcept {
+  return items_.empty() ? -kInf : items_.back().timing.end;
+}
 
 void StreamingChannel::append(const ch::Movement& m) {
   m.timing.validate();
@@ -48,8 +53,11 @@ void StreamingChannel::append(const ch::Movement& m) {
       throw InvalidInput("StreamingChannel: movement '" + m.label + "' targets '" + tg.parameter +
                          "', not a parameter of this channel");
     const auto p = static_cast<std::size_t>(pos - parameters_.begin());
-    if (seen[p]) throw InvalidInput("StreamingChannel: movement '" + m.label + "' targets " + tg.parameter + " twice");
-    if (!std::isfinite(tg.value)) throw InvalidInput("StreamingChannel: non-finite target of " + tg.parameter);
+    if (seen[p])
+      throw InvalidInput("StreamingChannel: movement '" + m.label + "' targets " + tg.parameter +
+                         " twice");
+    if (!std::isfinite(tg.value))
+      throw InvalidInput("StreamingChannel: non-finite target of " + tg.parameter);
     seen[p] = 1;
     it.target[p] = tg.value;
   }
@@ -60,12 +68,14 @@ void StreamingChannel::append(const ch::Movement& m) {
     it.overlaps = m.timing.start < prev.timing.end;
     it.previous_offset = prev.timing.offset;
     it.previous_end = prev.timing.end;
-    for (std::size_t p = 0; p < parameters_.size(); ++p) it.start_value[p] = value_in(p, prev, m.timing.start);
+    for (std::size_t p = 0; p < parameters_.size(); ++p)
+      it.start_value[p] = value_in(p, prev, m.timing.start);
   }
   items_.push_back(std::move(it));
 }
 
-// Same arithmetic as ConcatenatedChannel::value_in (channels/src/channel.cpp), so both agree exactly.
+// Same arithmetic as ConcatenatedChannel::value_in (channels/src/channel.cpp), so both agree
+// exactly.
 double StreamingChannel::value_in(std::size_t p, const Item& m, double t) const {
   const double pv = m.target[p];
   const double own = ch::activity(pv, m.timing, t);
@@ -78,7 +88,8 @@ double StreamingChannel::value_in(std::size_t p, const Item& m, double t) const 
 }
 
 double StreamingChannel::value(std::size_t p, double t) const {
-  if (p >= parameters_.size()) throw InvalidInput("StreamingChannel::value: parameter index out of range");
+  if (p >= parameters_.size())
+    throw InvalidInput("StreamingChannel::value: parameter index out of range");
   const auto it = std::lower_bound(items_.begin(), items_.end(), t,
                                    [](const Item& m, double tt) { return m.timing.start < tt; });
   if (it == items_.begin()) return 0.0;
@@ -106,7 +117,8 @@ void StreamingChannel::prune(double t) {
 void StreamingChannel::restore(std::vector<Item> items) {
   for (std::size_t k = 0; k < items.size(); ++k) {
     items[k].timing.validate();
-    if (items[k].target.size() != parameters_.size() || items[k].start_value.size() != parameters_.size())
+    if (items[k].target.size() != parameters_.size() ||
+        items[k].start_value.size() != parameters_.size())
       throw InvalidInput("StreamingChannel::restore: wrong number of parameters");
     if (k > 0 && !(items[k].timing.start > items[k - 1].timing.start))
       throw InvalidInput("StreamingChannel::restore: movements out of order");
@@ -116,14 +128,19 @@ void StreamingChannel::restore(std::vector<Item> items) {
 
 // ------------------------------------------------------------------------------------ mixer
 
-StreamingMixer::StreamingMixer(std::vector<std::string> parameters,
-                               std::array<std::vector<std::size_t>, ch::kChannelCount> channel_parameters,
-                               const ch::ConflictTable& conflicts, const ch::MixOptions& options, double fps,
-                               std::size_t lookahead_frames)
-    : parameters_(std::move(parameters)), chan_params_(std::move(channel_parameters)), options_(options),
-      fps_(fps), lookahead_(lookahead_frames) {
+StreamingMixer::StreamingMixer(
+    std::vector<std::string> parameters,
+    std::array<std::vector<std::size_t>, ch::kChannelCount> channel_parameters,
+    const ch::ConflictTable& conflicts, const ch::MixOptions& options, double fps,
+    std::size_t lookahead_frames)
+    : parameters_(std::move(parameters)),
+      chan_params_(std::move(channel_parameters)),
+      options_(options),
+      fps_(fps),
+      lookahead_(lookahead_frames) {
   options_.validate();
-  if (!(std::isfinite(fps) && fps > 0 && fps <= 10000)) throw InvalidInput("StreamingMixer: fps must be in (0, 10000]");
+  if (!(std::isfinite(fps) && fps > 0 && fps <= 10000))
+    throw InvalidInput("StreamingMixer: fps must be in (0, 10000]");
   if (lookahead_frames > 100000) throw InvalidInput("StreamingMixer: look-ahead too long");
   const std::size_t np = parameters_.size();
   for (std::size_t c = 0; c < ch::kChannelCount; ++c) {
@@ -142,7 +159,8 @@ StreamingMixer::StreamingMixer(std::vector<std::string> parameters,
   order_.resize(ch::kChannelCount);
   std::iota(order_.begin(), order_.end(), 0);
   prio_.assign(options_.priority.begin(), options_.priority.end());
-  std::stable_sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return prio_[a] < prio_[b]; });
+  std::stable_sort(order_.begin(), order_.end(),
+                   [&](std::size_t a, std::size_t b) { return prio_[a] < prio_[b]; });
   const std::size_t w = lookahead_ + 1;
   ring_.assign(w * width_, 0.0);
   mod_.assign(w * width_, 0.0);
@@ -186,7 +204,8 @@ void StreamingMixer::push(const std::array<const double*, ch::kChannelCount>& ra
       for (std::size_t i = 0; i < chan_params_[c].size(); ++i) {
         const std::size_t e = offset_[c] + i;
         const std::size_t p = chan_params_[c][i];
-        for (std::size_t j = 0; j < w; ++j) mod_[j * width_ + e] = ring_[((f + j) % w) * width_ + e];
+        for (std::size_t j = 0; j < w; ++j)
+          mod_[j * width_ + e] = ring_[((f + j) % w) * width_ + e];
         group_active_[e] = 0;
         if (!has_conflict_[e]) continue;
         bool any = false;
@@ -201,7 +220,8 @@ void StreamingMixer::push(const std::array<const double*, ch::kChannelCount>& ra
         // next inhibited frame after j inside the window (beyond it: unknown, taken as none)
         double t_next = kInf;
         for (std::size_t j = w; j-- > 0;) {
-          // Ψ→ for frame j uses the next inhibited frame at or after j (an inhibited frame is 0 anyway)
+          // Ψ→ for frame j uses the next inhibited frame at or after j (an inhibited frame is 0
+          // anyway)
           const double t = static_cast<double>(f + j) / fps_;
           double& v = mod_[j * width_ + e];
           if (inh_[j]) {
@@ -253,10 +273,13 @@ void StreamingMixer::push(const std::array<const double*, ch::kChannelCount>& ra
   }
 }
 
-StreamingMixer::State StreamingMixer::state() const { return State{frames_in_, ring_, last_inh_, output_}; }
+StreamingMixer::State StreamingMixer::state() const {
+  return State{frames_in_, ring_, last_inh_, output_};
+}
 
 void StreamingMixer::restore(const State& s) {
-  if (s.ring.size() != ring_.size() || s.last_inhibited.size() != last_inh_.size() || s.output.size() != output_.size())
+  if (s.ring.size() != ring_.size() || s.last_inhibited.size() != last_inh_.size() ||
+      s.output.size() != output_.size())
     throw InvalidInput("StreamingMixer::restore: state of a different mixer (sizes differ)");
   frames_in_ = s.frames_in;
   ring_ = s.ring;

@@ -24,11 +24,11 @@
 namespace emoface::channels {
 
 struct SpeechOptions {
-  std::string voice = "en-us";         ///< an espeak-ng voice name
-  int rate = 160;                      ///< words per minute, in [80, 450]
-  int pitch = 50;                      ///< espeak-ng pitch, in [0, 99]
-  std::string program = "espeak-ng";   ///< the espeak-ng executable (looked up on PATH)
-  void validate() const;               ///< throws InvalidInput
+  std::string voice = "en-us";        ///< an espeak-ng voice name
+  int rate = 160;                     ///< words per minute, in [80, 450]
+  int pitch = 50;                     ///< espeak-ng pitch, in [0, 99]
+  std::string program = "espeak-ng";  ///< the espeak-ng executable (looked up on PATH)
+  void validate() const;              ///< throws InvalidInput
 };
 
 /// One utterance: 16-bit mono PCM and its phonemes (seconds from the first sample).
@@ -63,8 +63,8 @@ class EspeakProgram final : public SpeechSynthesizer {
 /// Timings made elsewhere (any TTS or forced aligner) with the user's own audio, looked up by text.
 class ExternalSpeech final : public SpeechSynthesizer {
  public:
-  /// Registers the utterance for `text`. Its phonemes must be contiguous from 0 and end at or before
-  /// the audio's end (an utterance without samples gets silence of the phonemes' length at
+  /// Registers the utterance for `text`. Its phonemes must be contiguous from 0 and end at or
+  /// before the audio's end (an utterance without samples gets silence of the phonemes' length at
   /// `sample_rate`). Phoneme names may be espeak-ng mnemonics or viseme names
   /// (VisemeSet::viseme_for_phoneme). Throws InvalidInput otherwise.
   void add(std::string text, Utterance utterance);
@@ -84,17 +84,19 @@ Utterance synthesize(std::string_view text, const SpeechOptions& options = {});
 std::vector<std::vector<std::string>> parse_espeak_phonemes(std::string_view text);
 
 struct AlignOptions {
-  int silence_level = 4;         ///< |sample| <= this counts as silence, [0, 32767]
-  double min_silence = 0.02;     ///< shortest run of silence used as an anchor, s, (0, 1]
-  double stop_tolerance = 0.08;  ///< a closure anchors a stop expected at most this far away, s, > 0
+  int silence_level = 4;      ///< |sample| <= this counts as silence, [0, 32767]
+  double min_silence = 0.02;  ///< shortest run of silence used as an anchor, s, (0, 1]
+  double stop_tolerance =
+      0.08;  ///< a closure anchors a stop expected at most this far away, s, > 0
   void validate() const;
 };
 
 /// Places the phonemes of `clauses` (parse_espeak_phonemes) on `samples`: a pause phoneme "_:" is
-/// appended to every clause; pauses take the longest runs of silence (in order), a stop (p b t d k g
-/// tS dZ) starts where a shorter run of silence (its closure) ends, and the phonemes between anchors
-/// share the time in proportion to nominal durations (vowels and diphthongs long, stops short).
-/// The result is contiguous from 0 to samples.size()/sample_rate (zero-length phonemes dropped).
+/// appended to every clause; pauses take the longest runs of silence (in order), a stop (p b t d k
+/// g tS dZ) starts where a shorter run of silence (its closure) ends, and the phonemes between
+/// anchors share the time in proportion to nominal durations (vowels and diphthongs long, stops
+/// short). The result is contiguous from 0 to samples.size()/sample_rate (zero-length phonemes
+/// dropped).
 std::vector<PhonemeTiming> align_phonemes(const std::vector<std::vector<std::string>>& clauses,
                                           const std::vector<std::int16_t>& samples, int sample_rate,
                                           const AlignOptions& options = {});

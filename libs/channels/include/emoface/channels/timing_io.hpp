@@ -7,7 +7,8 @@
 //    "...<TAB>viseme"), then one segment per line, seconds.
 //  * emoface timing JSON: {"format": "emoface.speech_timing", "version": "1.0", "generator": ...,
 //    "kind": "phoneme"|"viseme", "segments": [{"start": 0, "end": 0.12, "name": "h"}, ...]}.
-//  * Rhubarb Lip Sync TSV (`-f tsv`): "<start><TAB><shape>" per line; each cue lasts until the next,
+//  * Rhubarb Lip Sync TSV (`-f tsv`): "<start><TAB><shape>" per line; each cue lasts until the
+//  next,
 //    the last one marks the end. JSON (`-f json`): {"metadata": {"soundFile", "duration"},
 //    "mouthCues": [{"start", "end", "value"}, ...]}. Shapes A–H and X (Rhubarb's README).
 //
@@ -24,7 +25,7 @@
 namespace emoface::channels {
 
 enum class TimingKind { Phoneme, Viseme };
-std::string_view to_string(TimingKind kind) noexcept;  ///< "phoneme", "viseme"
+std::string_view to_string(TimingKind kind) noexcept;       ///< "phoneme", "viseme"
 TimingKind timing_kind_from_string(std::string_view name);  ///< throws InvalidInput
 
 struct SpeechTiming {
@@ -57,14 +58,15 @@ std::string format_rhubarb_tsv(const RhubarbCues& cues);
 RhubarbCues parse_rhubarb_json(std::string_view text, const std::string& file = "<rhubarb>");
 std::string format_rhubarb_json(const RhubarbCues& cues);
 
-/// Rhubarb shape → emoface viseme (default_viseme_set names), after the shapes in Rhubarb Lip Sync's
-/// README: A closed (P B M) → PBM; B slightly open, clenched teeth (K S T EE) → SZ; C open (EH AE) →
-/// EH; D wide open (AA) → AA; E slightly rounded (AO ER) → OH; F puckered (UW OW W) → UW; G upper
-/// teeth on the lower lip (F V) → FV; H tongue raised (L) → TDNL; X idle → sil.
+/// Rhubarb shape → emoface viseme (default_viseme_set names), after the shapes in Rhubarb Lip
+/// Sync's README: A closed (P B M) → PBM; B slightly open, clenched teeth (K S T EE) → SZ; C open
+/// (EH AE) → EH; D wide open (AA) → AA; E slightly rounded (AO ER) → OH; F puckered (UW OW W) → UW;
+/// G upper teeth on the lower lip (F V) → FV; H tongue raised (L) → TDNL; X idle → sil.
 const std::map<std::string, std::string>& default_rhubarb_visemes();
 /// Throws InvalidInput for a shape missing from `table`.
-SpeechTiming rhubarb_to_visemes(const RhubarbCues& cues,
-                                const std::map<std::string, std::string>& table = default_rhubarb_visemes());
+SpeechTiming rhubarb_to_visemes(
+    const RhubarbCues& cues,
+    const std::map<std::string, std::string>& table = default_rhubarb_visemes());
 
 /// An utterance for ExternalSpeech: the timing's segments made contiguous from 0 (gaps become the
 /// pause "_"), with `audio` (empty samples: silence as long as the timing, at 22050 Hz). Throws

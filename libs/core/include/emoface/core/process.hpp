@@ -10,9 +10,9 @@
 namespace emoface::core {
 
 struct ProcessResult {
-  int exit_code = 0;       ///< the program's exit status; 128 + signal number if it was killed
-  std::string out;         ///< everything it wrote to standard output
-  std::string err;         ///< everything it wrote to standard error
+  int exit_code = 0;  ///< the program's exit status; 128 + signal number if it was killed
+  std::string out;    ///< everything it wrote to standard output
+  std::string err;    ///< everything it wrote to standard error
 };
 
 struct ProcessOptions {

@@ -1,29 +1,29 @@
 #pragma once
 // emoface::runtime::Character — one animated character for a game engine or any real-time host,
 // updated frame by frame (issue 16). It owns
-//   an emotion source: direct emotion input, a ParleE agent (thesis ch. 5) or a mind map (paper §6),
-//   the fuzzy mapper (thesis ch. 6: ESV → FMCV → 35 face parameters),
-//   the channels of thesis ch. 4 in streaming form (runtime/streaming.hpp): emotion displays
-//   (channel 4), speech visemes (channel 2), blinks (1), gaze (5) and head (6) noise, mixed with a
-//   bounded look-ahead (a fixed output latency ≤ 0.3 s),
-//   optionally a face (any rig: the default face or a rig file, e.g. one fitted by `retarget`) for
-//   deformed vertices on request.
+//   an emotion source: direct emotion input, a ParleE agent (thesis ch. 5) or a mind map (paper
+//   §6), the fuzzy mapper (thesis ch. 6: ESV → FMCV → 35 face parameters), the channels of thesis
+//   ch. 4 in streaming form (runtime/streaming.hpp): emotion displays (channel 4), speech visemes
+//   (channel 2), blinks (1), gaze (5) and head (6) noise, mixed with a bounded look-ahead (a fixed
+//   output latency ≤ 0.3 s), optionally a face (any rig: the default face or a rig file, e.g. one
+//   fitted by `retarget`) for deformed vertices on request.
 //
 //   runtime::Character c(runtime::parse_character_config(json_text));
 //   c.push_event(R"({"emotions": {"happiness": 0.9}})");
 //   c.speak("Hello there!");
-//   for (;;) { c.update(1.0 / 60); use(c.parameters()); }   // 42 values, muscles::parameter_names()
+//   for (;;) { c.update(1.0 / 60); use(c.parameters()); }   // 42 values,
+//   muscles::parameter_names()
 //
 // Time: update(dt) advances the input clock by dt seconds; the outputs (emotions(), parameters(),
-// vertices()) are those of output_time() = the last internal frame mixed, `latency()` seconds behind
-// the input clock. Events and speech act at the input clock.
-// Emotion decay is per second: a thesis per-step factor d (ParleE's decayFactor, Φ of §5.6.3) applies
-// as d^(Δt/step_seconds) over Δt seconds, step_seconds being the length of one thesis step (one match
-// minute in ch. 7 = 1 s of animation by default); with events step_seconds apart it is exactly the
-// per-step update of §5.6.4 (tested).
-// Determinism: the same config (seed), events and update steps give bit-identical outputs; snapshot()
-// captures the whole state as JSON and restore_character() continues bit-identically (tested).
-// Not thread-safe: one thread per Character (different Characters are independent).
+// vertices()) are those of output_time() = the last internal frame mixed, `latency()` seconds
+// behind the input clock. Events and speech act at the input clock. Emotion decay is per second: a
+// thesis per-step factor d (ParleE's decayFactor, Φ of §5.6.3) applies as d^(Δt/step_seconds) over
+// Δt seconds, step_seconds being the length of one thesis step (one match minute in ch. 7 = 1 s of
+// animation by default); with events step_seconds apart it is exactly the per-step update of §5.6.4
+// (tested). Determinism: the same config (seed), events and update steps give bit-identical
+// outputs; snapshot() captures the whole state as JSON and restore_character() continues
+// bit-identically (tested). Not thread-safe: one thread per Character (different Characters are
+// independent).
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -43,7 +43,7 @@
 namespace emoface::runtime {
 
 enum class SourceKind { Direct, Parlee, MindMap };
-std::string_view to_string(SourceKind kind) noexcept;      ///< "direct", "parlee", "mindmap"
+std::string_view to_string(SourceKind kind) noexcept;       ///< "direct", "parlee", "mindmap"
 SourceKind source_kind_from_string(std::string_view name);  ///< throws InvalidInput
 
 /// How emotions become emotion displays (channel 4): the displayed ESV follows the felt one; a new
@@ -57,9 +57,10 @@ struct DisplayOptions {
 };
 
 struct CharacterOptions {
-  double fps = 60.0;          ///< internal frame rate, [10, 1000]
-  double lookahead = 0.3;     ///< mixer look-ahead = output latency, s, [0, 0.3] (rounded up to frames)
-  std::uint64_t seed = 1;     ///< blinks, gaze and head noise (and the agent's own seed stays its own)
+  double fps = 60.0;  ///< internal frame rate, [10, 1000]
+  double lookahead =
+      0.3;  ///< mixer look-ahead = output latency, s, [0, 0.3] (rounded up to frames)
+  std::uint64_t seed = 1;  ///< blinks, gaze and head noise (and the agent's own seed stays its own)
   DisplayOptions display;
   bool blinks = true;
   bool gaze_noise = true;
@@ -70,21 +71,22 @@ struct CharacterOptions {
   double chunk_seconds = 10.0;  ///< blinks/noise are generated this far ahead, s, [1, 600]
   channels::MixOptions mix;
   channels::CoarticulationOptions coarticulation;
-  double silence_pad = 0.2;   ///< silence viseme before and after each utterance, s, (0, 2]
+  double silence_pad = 0.2;        ///< silence viseme before and after each utterance, s, (0, 2]
   channels::SpeechOptions speech;  ///< the espeak-ng program (speak(text) without a synthesizer)
-  /// Seconds per thesis step for the per-step decay constants (ParleE), (0, 3600]; also converts the
-  /// agent's clock (event times are output_time / step_seconds steps).
+  /// Seconds per thesis step for the per-step decay constants (ParleE), (0, 3600]; also converts
+  /// the agent's clock (event times are output_time / step_seconds steps).
   double step_seconds = 1.0;
-  /// Direct source: fraction of each emotion left after one second, (0, 1] (1 = held until changed).
+  /// Direct source: fraction of each emotion left after one second, (0, 1] (1 = held until
+  /// changed).
   double direct_decay_per_second = 1.0;
   void validate() const;  ///< throws InvalidInput naming the field
 };
 
 struct CharacterConfig {
   SourceKind source = SourceKind::Direct;
-  std::string domain_text;           ///< Parlee: domain (thesis or PPDDL text)
-  parlee::AgentConfig agent;         ///< Parlee
-  mindmap::MindMap map;              ///< MindMap: the character's map
+  std::string domain_text;    ///< Parlee: domain (thesis or PPDDL text)
+  parlee::AgentConfig agent;  ///< Parlee
+  mindmap::MindMap map;       ///< MindMap: the character's map
   CharacterOptions options;
   /// Face for vertices(): "" = none, "default" = the built-in face, otherwise a rig file path.
   std::string face;
@@ -129,8 +131,9 @@ class Character {
   void update(double dt);
 
   double input_time() const noexcept;
-  double output_time() const noexcept;  ///< time of the current outputs, s (0 before the first frame)
-  double latency() const noexcept;      ///< lookahead frames / fps, s
+  double output_time()
+      const noexcept;               ///< time of the current outputs, s (0 before the first frame)
+  double latency() const noexcept;  ///< lookahead frames / fps, s
   /// Basic emotions at output_time(), ESV order (sadness happiness anger fear disgust surprise).
   const std::array<double, 6>& emotions() const noexcept;
   /// The face parameters at output_time(), muscles::parameter_names() order (42 entries).
@@ -176,7 +179,8 @@ Character restore_character(std::string_view snapshot_json, const std::string& f
 /// "blinks", "gaze_noise", "head_noise", "step_seconds", "direct_decay_per_second", "speech":
 /// {"voice", "rate", "pitch", "program"}, "mix": {"dmin_plus", "dmin_minus"}}. Relative paths are
 /// resolved against `base_dir`. Throws FormatError naming the field.
-CharacterConfig parse_character_config(std::string_view json_text, const std::string& file = "<config>",
+CharacterConfig parse_character_config(std::string_view json_text,
+                                       const std::string& file = "<config>",
                                        const std::string& base_dir = "");
 CharacterConfig read_character_config(const std::string& path);
 /// The config as JSON (inline domain/agent/map), parse_character_config gives it back.

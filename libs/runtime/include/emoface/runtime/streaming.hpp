@@ -2,9 +2,10 @@
 // Streaming forms of the channel machinery of thesis ch. 4, for a character updated frame by frame:
 //
 //  * StreamingChannel — the in-channel concatenation of §4.5.2 (channels::ConcatenatedChannel) with
-//    movements appended while time runs and old ones pruned; for the same movements it gives the same
-//    values as ConcatenatedChannel, bit for bit (tested).
-//  * StreamingMixer — the cross-channel combination of §4.6 (channels::mix) with a bounded look-ahead:
+//    movements appended while time runs and old ones pruned; for the same movements it gives the
+//    same values as ConcatenatedChannel, bit for bit (tested).
+//  * StreamingMixer — the cross-channel combination of §4.6 (channels::mix) with a bounded
+//  look-ahead:
 //    the offline mixer's Ψ→ looks at the next inhibited frame T→, which is only ever needed within
 //    Dmin− of t (Ψ→ = 1 beyond it), so a mixer that knows the raw channel activities L frames ahead
 //    produces frame f once frame f + L is in: a fixed latency of L/fps seconds. With L/fps ≥ Dmin−
@@ -71,12 +72,12 @@ class StreamingChannel {
 class StreamingMixer {
  public:
   StreamingMixer() = default;
-  /// `parameters`: output columns; `channel_parameters[c]`: indices into `parameters` that channel c
-  /// may drive (others are absent, as in channels::mix). lookahead_frames ≥ 0.
+  /// `parameters`: output columns; `channel_parameters[c]`: indices into `parameters` that channel
+  /// c may drive (others are absent, as in channels::mix). lookahead_frames ≥ 0.
   StreamingMixer(std::vector<std::string> parameters,
                  std::array<std::vector<std::size_t>, channels::kChannelCount> channel_parameters,
-                 const channels::ConflictTable& conflicts, const channels::MixOptions& options, double fps,
-                 std::size_t lookahead_frames);
+                 const channels::ConflictTable& conflicts, const channels::MixOptions& options,
+                 double fps, std::size_t lookahead_frames);
 
   /// Feeds raw frame n = frames_in() (time n/fps): raw[c][i] is channel c's activity of
   /// channel_parameters[c][i]. Once n ≥ lookahead, frame n − lookahead is mixed into output().
@@ -94,7 +95,7 @@ class StreamingMixer {
   /// (−inf = never inhibited) and the counters; restore() takes it back.
   struct State {
     std::size_t frames_in = 0;
-    std::vector<double> ring;       ///< (lookahead+1) frames × all channel parameters
+    std::vector<double> ring;  ///< (lookahead+1) frames × all channel parameters
     std::vector<double> last_inhibited;
     std::vector<double> output;
   };
@@ -110,17 +111,17 @@ class StreamingMixer {
   std::vector<int> prio_;
   std::vector<std::vector<std::size_t>> conflict_;  // per output parameter
   std::vector<char> is_signed_;
-  std::vector<char> has_conflict_;                  // per (channel block) entry
+  std::vector<char> has_conflict_;  // per (channel block) entry
   channels::MixOptions options_;
   double fps_ = 60.0;
   std::size_t lookahead_ = 0;
   std::size_t frames_in_ = 0;
-  std::vector<double> ring_;            // (lookahead+1) × width_
-  std::vector<double> last_inh_;        // per width_ entry
+  std::vector<double> ring_;      // (lookahead+1) × width_
+  std::vector<double> last_inh_;  // per width_ entry
   std::vector<double> output_;
   // scratch (allocation-free push)
-  std::vector<double> mod_;             // (lookahead+1) × width_: modified activity in the window
-  std::vector<char> active_;            // (lookahead+1) × parameters: activated by higher groups
+  std::vector<double> mod_;   // (lookahead+1) × width_: modified activity in the window
+  std::vector<char> active_;  // (lookahead+1) × parameters: activated by higher groups
   std::vector<char> group_active_;
   std::vector<char> inh_;
 };
