@@ -241,6 +241,25 @@ TEST(Character, SnapshotBadInput) {
   }
 }
 
+TEST(Character, ShippedConfigs) {
+  const CharacterConfig obie = read_character_config(kData + "/runtime/obie.json");
+  EXPECT_EQ(obie.source, SourceKind::Parlee);
+  EXPECT_EQ(obie.face, "default");
+  Character o(obie);
+  o.update(1.0);
+  EXPECT_TRUE(o.push_parlee_event(match_events()[0]).applied);
+  const CharacterConfig ana = read_character_config(kData + "/runtime/ana.json");
+  EXPECT_EQ(ana.map.character, "ana");
+  Character a(ana);
+  EXPECT_TRUE(a.push_event(R"j({"stimulus": "gift"})j").applied);
+  const EventResult unknown = a.push_event(R"j({"stimulus": "no-such-stimulus"})j");
+  EXPECT_FALSE(unknown.applied);
+  EXPECT_FALSE(unknown.message.empty());
+  a.update(2.0);
+  EXPECT_GT(a.emotions()[1], 0.1);  // the gift made ana happy (her map: gift → happiness 0.9)
+  EXPECT_EQ(read_character_config(kData + "/runtime/direct.json").source, SourceKind::Direct);
+}
+
 TEST(Character, ConfigRoundTripAndBadInput) {
   const CharacterConfig c = parse_character_config(format_character_config(parlee_config()));
   EXPECT_EQ(c.source, SourceKind::Parlee);
