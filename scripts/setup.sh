@@ -17,10 +17,11 @@ PACKAGES=(
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app
   libpng-dev zlib1g-dev             # PNG output (facemesh renders, parlee/channels charts, motiongraph sheets)
   libtinygltf-dev                   # facemesh: animated glTF export
-  libespeak-ng-dev espeak-ng-data libpugixml-dev   # channels / talkinghead: speech, markup
+  espeak-ng espeak-ng-data libpugixml-dev   # channels: the espeak-ng *program* (run, never linked), markup
   ffmpeg                            # core::VideoWriter: facerender, obie, mgraph, mindmap crowd videos
   liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
   nodejs                            # test-only: the Khronos glTF-Validator (scripts/setup_npm.sh)
+  python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest   # EMOFACE_PYTHON: import emoface
 )
 if [ "$BROWSER" = 1 ]; then PACKAGES+=(chromium); fi
 # Debian's npm package; a nodejs from elsewhere (e.g. NodeSource) bundles npm and conflicts with it.

@@ -1,10 +1,12 @@
 // talkinghead: marked-up text → parameter tracks (JSON/CSV) + speech WAV (thesis chapter 4).
 #include <algorithm>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "emoface/channels/io.hpp"
 #include "emoface/channels/talking_head.hpp"
+#include "emoface/channels/timing_io.hpp"
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/faceweights/tracks.hpp"
@@ -48,6 +50,12 @@ int main(int argc, char** argv) {
   app.add_option("--duration", o.render.duration, "seconds of output (0 = until the last movement)")->capture_default_str();
   app.add_option("--voice", o.speech.voice, "espeak-ng voice")->capture_default_str();
   app.add_option("--rate", o.speech.rate, "speech rate, words per minute")->capture_default_str();
+  std::vector<std::string> timing_paths, timing_wavs;
+  app.add_option("--timings", timing_paths,
+                 "external phoneme/viseme timings instead of espeak-ng, one file per <PHONEME> element in "
+                 "order (emoface TSV/JSON or Rhubarb Lip Sync TSV/JSON; docs/formats.md)");
+  app.add_option("--timings-wav", timing_wavs,
+                 "the speech audio of each --timings file, same order (16-bit PCM WAV; default: silence)");
   app.add_option("--onset", onset, "default onset of elements without one, s")->capture_default_str();
   app.add_option("--offset", offset, "default offset of elements without one, s")->capture_default_str();
   app.add_option("--dmin-plus", o.render.mix.dmin_plus, "Dmin+ of the conflict resolution, s")->capture_default_str();
@@ -81,6 +89,21 @@ int main(int argc, char** argv) {
     const ch::VisemeSet visemes = visemes_path.empty() ? ch::default_viseme_set() : ch::read_visemes(visemes_path);
     const ch::ConflictTable conflicts =
         conflicts_path.empty() ? ch::default_conflict_table() : ch::read_conflicts(conflicts_path);
+    if (!timing_paths.empty()) {
+      if (timing_paths.size() != script.speech.size())
+        throw emoface::cli::UsageError("--timings: " + std::to_string(timing_paths.size()) + " files for " +
+                                       std::to_string(script.speech.size()) + " <PHONEME> elements");
+      if (!timing_wavs.empty() && timing_wavs.size() != timing_paths.size())
+        throw emoface::cli::UsageError("--timings-wav: give one WAV per --timings file");
+      auto external = std::make_shared<ch::ExternalSpeech>();
+      for (std::size_t i = 0; i < timing_paths.size(); ++i) {
+        const ch::WavAudio wav = timing_wavs.empty() ? ch::WavAudio{} : ch::read_wav(timing_wavs[i]);
+        external->add(script.speech[i].text, ch::external_utterance(ch::read_timing_file(timing_paths[i]), wav));
+      }
+      o.synthesizer = external;
+    } else if (!timing_wavs.empty()) {
+      throw emoface::cli::UsageError("--timings-wav needs --timings");
+    }
     const ch::TalkingHead th = ch::run_talking_head(script, visemes, conflicts, emoface::obie::fuzzy_emotion_mapper(), o);
 
     if (weights_format.empty() != weights_path.empty())

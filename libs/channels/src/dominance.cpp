@@ -65,6 +65,7 @@ const Viseme* VisemeSet::find(std::string_view name) const {
 const std::string& VisemeSet::viseme_for_phoneme(std::string_view phoneme) const {
   auto it = phoneme_to_viseme.find(std::string(phoneme));
   if (it != phoneme_to_viseme.end()) return it->second;
+  if (const Viseme* v = find(phoneme)) return v->name;  // viseme-level timings (e.g. Rhubarb cues)
   std::string stripped(phoneme);
   while (!stripped.empty() && (stripped.back() == ':' || stripped.back() == ';' || stripped.back() == '#'))
     stripped.pop_back();

@@ -21,8 +21,10 @@ TalkingHead run_talking_head(const Script& script, const VisemeSet& visemes, con
   std::vector<Utterance> utterances;
   std::vector<std::vector<PhonemeTiming>> phonemes;
   std::vector<double> starts;
+  std::shared_ptr<const SpeechSynthesizer> synth = options.synthesizer;
+  if (!synth && !script.speech.empty()) synth = std::make_shared<EspeakProgram>(options.speech);
   for (const SpeechItem& s : script.speech) {
-    utterances.push_back(synthesize(s.text, options.speech));
+    utterances.push_back(synth->synthesize(s.text));
     phonemes.push_back(utterances.back().phonemes);
     starts.push_back(s.time);
     out.sample_rate = utterances.back().sample_rate;

@@ -17,6 +17,7 @@
 #include "emoface/muscles/solver.hpp"
 #include "emoface/parlee/domain.hpp"
 #include "emoface/retarget/rbf.hpp"
+#include "emoface/runtime/character.hpp"
 
 namespace {
 int failures = 0;
@@ -67,6 +68,11 @@ int main() {
   check(emoface::mindmotion::to_string(emoface::mindmotion::SegmentKind::Idle) == "idle", "mindmotion: segment kinds");
 
   check(emoface::bridge::FitOptions{}.sample_levels.size() > 0, "bridge: fit options");
+
+  emoface::runtime::Character character{emoface::runtime::CharacterConfig{}};
+  character.push_emotions({0, 1, 0, 0, 0, 0});
+  character.update(2.0);
+  check(character.parameters().size() == 42 && character.parameters()[0] > 0.3, "runtime: a character smiles");
 
   return failures == 0 ? 0 : 1;
 }

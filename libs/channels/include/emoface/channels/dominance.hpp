@@ -44,8 +44,9 @@ struct VisemeSet {
   void validate() const;
   /// The viseme with this name, or nullptr.
   const Viseme* find(std::string_view name) const;
-  /// Viseme name of a phoneme: exact match, then the phoneme without trailing length/stress marks
-  /// (":", ";", "#"), then `silence`.
+  /// Viseme name of a phoneme: exact match in phoneme_to_viseme, then a viseme of that name
+  /// (viseme-level timings), then the phoneme without trailing length/stress marks (":", ";", "#"),
+  /// then `silence`.
   const std::string& viseme_for_phoneme(std::string_view phoneme) const;
   /// Union of all viseme target parameters, in first-use order.
   std::vector<std::string> parameters() const;

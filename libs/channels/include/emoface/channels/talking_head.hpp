@@ -1,7 +1,9 @@
 #pragma once
-// The whole talking-head pipeline of thesis Fig. 4.1: marked-up text → phonemes (espeak-ng) →
+// The whole talking-head pipeline of thesis Fig. 4.1: marked-up text → phonemes (a SpeechSynthesizer:
+// the espeak-ng program by default, or external timings with the user's audio) →
 // visemes → channels → combined parameter tracks, plus the synthesized speech on the same clock.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "emoface/channels/conflicts.hpp"
@@ -13,7 +15,9 @@
 namespace emoface::channels {
 
 struct TalkingHeadOptions {
-  SpeechOptions speech;
+  SpeechOptions speech;      ///< the espeak-ng program's voice, rate, pitch (when no synthesizer)
+  /// Where speech comes from; null = EspeakProgram(speech).
+  std::shared_ptr<const SpeechSynthesizer> synthesizer;
   TimelineOptions timeline;
   RenderOptions render;      ///< fps, output parameters, mixing and coarticulation options
   std::uint64_t seed = 0;    ///< seeds blinks and gaze/head noise

@@ -12,8 +12,8 @@
 //   obie::ObieResult r = obie::run_obie(match, agent, face, obie::ObieOptions{}, progress, &video);
 //
 // The library never prints; progress goes through the callback. Deterministic: the same inputs and
-// seed give the same result, except that espeak-ng's phoneme timing depends on what it synthesized
-// earlier in the same process (channels/speech.hpp): one run per process is byte-reproducible.
+// seed give the same result (speech runs the espeak-ng program, a fresh process per utterance,
+// channels/speech.hpp).
 #include <array>
 #include <cstddef>
 #include <cstdint>
