@@ -106,6 +106,8 @@ int run_command(const RunArgs& a) {
   std::vector<std::vector<StepRecord>> runs;
   for (const auto& file : a.agents) {
     AgentConfig config = read_agent_file(file);
+    if (a.horizon >= 0) config.planning.horizon = a.horizon;
+    if (a.depth >= -1) config.planning.model_depth = a.depth;
     Agent agent(domain, config);
     std::vector<StepRecord> run{agent.initial_record()};
     for (std::size_t i = 0; i < events.size(); ++i) {

@@ -194,3 +194,91 @@ TEST(Agent, FeedbackBecomesPraiseworthiness) {
   const StepRecord r = a.step(e);
   EXPECT_NEAR(r.impulse[index(Emotion::Pride)], 0.8, 1e-12);
 }
+
+// Obie's 0-0 state at the kick-off, by hand. With H = 3 the turns are: against team (only the for
+// team's kick-off is applicable: every other team action needs (not (kickoff))), Obie, against
+// team (the for team holds the ball in its own half: a pass, a tackle or a block, none scores).
+// So P(win within 3) = 0 and P(not-lose within 3) = 1 (the 0-0 already holds). §5.6.2:
+//   signed sum  S = 1·(0 − 0.5) + 0.5·(1 − 0.5) = −0.25  → Fear 0.25, Hope 0
+//   per goal    Fear = 1·0.5 = 0.5, Hope = 0.5·0.5 = 0.25
+TEST(Agent, ObieHopeAndFearAtZeroZeroByHand) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  Planner planner(d, PlanOptions{3});
+  auto goal_index = [&](const std::string& name) {
+    for (std::size_t g = 0; g < d.goals().size(); ++g)
+      if (d.goals()[g].name == name) return static_cast<int>(g);
+    return -1;
+  };
+  const int win = goal_index("win"), not_lose = goal_index("not-lose");
+  ASSERT_GE(win, 0);
+  ASSERT_GE(not_lose, 0);
+  const double p_win = planner.goal_probability(static_cast<std::size_t>(win), d.initial_state());
+  const double p_nl = planner.goal_probability(static_cast<std::size_t>(not_lose), d.initial_state());
+  EXPECT_EQ(p_win, 0.0);
+  EXPECT_EQ(p_nl, 1.0);
+  AppraisalInput in;
+  for (auto [p, imp] : {std::pair{p_win, 1.0}, std::pair{p_nl, 0.5}}) {
+    GoalAppraisal g;
+    g.p_before = g.p_after = p;
+    g.importance = imp;
+    in.goals.push_back(g);
+  }
+  auto r = appraise(in, Personality{});
+  EXPECT_NEAR(r.impulse[index(Emotion::Fear)], 0.25, 1e-12);
+  EXPECT_EQ(r.impulse[index(Emotion::Hope)], 0.0);
+  AppraisalOptions per_goal;
+  per_goal.prospect = ProspectMode::PerGoal;
+  r = appraise(in, Personality{}, per_goal);
+  EXPECT_NEAR(r.impulse[index(Emotion::Fear)], 0.5, 1e-12);
+  EXPECT_NEAR(r.impulse[index(Emotion::Hope)], 0.25, 1e-12);
+}
+
+// §7.3: the against team is an agent with a goal (the against team winning); Obie predicts its
+// choices with the d-level model (§5.7.4) instead of uniformly.
+TEST(Agent, AgainstTeamIsPredictedByItsGoal) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  Agent obie(d, read_agent_file(kData + "agents/neutral.json"));
+  const auto events = read_events_file(kData + "match.ndjson");
+  std::size_t k = 0;
+  for (; events[k].time < 12.0; ++k) obie.step(events[k]);
+  // 11': the against team holds the ball in the for team's penalty area, on turn
+  const State s = obie.state();
+  ASSERT_EQ(d.spec().agents[static_cast<std::size_t>(d.turn(s))], "oteam");
+  const auto acts = d.applicable_actions(s);
+  const auto uniform = obie.planner().action_distribution(s, 0);
+  const auto model = obie.planner().action_distribution(s, 1);
+  std::size_t shot = acts.size();
+  for (std::size_t i = 0; i < acts.size(); ++i)
+    if (d.action_text(acts[i]).rfind("(shot oteam", 0) == 0) shot = i;
+  ASSERT_LT(shot, acts.size());
+  EXPECT_NEAR(uniform[shot], 1.0 / static_cast<double>(acts.size()), 1e-12);
+  // a 1-level against team looks one action ahead: only the shot can make it lead → P = 1
+  EXPECT_NEAR(model[shot], 1.0, 1e-12);
+  // so the goal at 12' is expected: P(event) = 0.25 (the shot's goal outcome), no surprise
+  const StepRecord r = obie.step(events[k]);
+  EXPECT_GT(r.actions.front().p_event, 0.06);
+}
+
+TEST_F(Obie, HappinessRisesWithTheAttackAndNotAtTheDrawWhistle) {
+  const auto& r = runs_["neutral"];
+  // the long free-kick reaching the penalty area raises P(win) (0.01 → 0.16 at H = 7): joy before
+  // the goal (Fig. 7.5)
+  EXPECT_GT(at(r, 40, kHappy), at(r, 39, kHappy) + 0.05);
+  // the draw at 90': `win` fails (fears confirmed), `not-lose` succeeds but with the signed sum
+  // there was no hope to satisfy (Fear = 1·0.5 − 0.5·0.5 > 0): no happiness
+  const StepRecord& last = r.back();
+  EXPECT_EQ(last.impulse[index(Emotion::Satisfaction)], 0.0);
+  EXPECT_EQ(last.impulse[index(Emotion::Relief)], 0.0);
+  EXPECT_GT(last.impulse[index(Emotion::FearsConfirmed)], 0.2);
+  EXPECT_EQ(last.basic[kHappy], 0.0);
+}
+
+TEST_F(Obie, RealisticDiffersFromNeutral) {
+  // §5.6.5 P' = P^(perceivingFocus + 0.5) = P^1.4: events look less likely, so more unexpected
+  const auto& n = runs_["neutral"];
+  const auto& re = runs_["realistic"];
+  EXPECT_GT(at(re, 12, kSad), at(n, 12, kSad) + 0.02);
+  EXPECT_GT(at(re, 80, kSad), at(n, 80, kSad) + 0.02);
+  EXPECT_GT(at(re, 12, kSurprise), at(n, 12, kSurprise) + 0.1);
+  EXPECT_GT(at(re, 30, kHappy), at(n, 30, kHappy));
+}

@@ -42,6 +42,8 @@ TEST(AgentFile, RoundTrip) {
   c.liking["user"] = -0.25;
   c.praiseworthiness["eat"] = 0.5;
   c.body_events["eat"] = BodyEvent::Eat;
+  c.appraisal.prospect = ProspectMode::PerGoal;
+  c.appraisal.surprise_threshold = 0.25;
   const std::string text = write_agent(c);
   const AgentConfig d = parse_agent(text, "x.json");
   EXPECT_EQ(write_agent(d), text);
@@ -49,6 +51,8 @@ TEST(AgentFile, RoundTrip) {
   EXPECT_EQ(d.emotions.effect, c.emotions.effect);
   EXPECT_EQ(d.planning.semantics, GoalSemantics::AtHorizon);
   EXPECT_EQ(d.liking.at("user"), -0.25);
+  EXPECT_EQ(d.appraisal.prospect, ProspectMode::PerGoal);
+  EXPECT_EQ(d.appraisal.surprise_threshold, 0.25);
 }
 
 TEST(AgentFile, ShippedFilesParse) {
@@ -76,6 +80,11 @@ TEST(AgentFile, BadInputNamesThePointer) {
   EXPECT_EQ(pointer_of(head + R"("seed":-1})"), "/seed");
   EXPECT_EQ(pointer_of(head + R"("bogus":1})"), "/bogus");
   EXPECT_EQ(pointer_of(head + R"("body_events":{"eat":"nap"}})"), "/body_events/eat");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"prospect":"clamp"}})"), "/appraisal/prospect");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"prospect":3}})"), "/appraisal/prospect");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":0}})"), "/appraisal/surprise_threshold");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":1.5}})"), "/appraisal/surprise_threshold");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"pivot":0.5}})"), "/appraisal/pivot");
   EXPECT_NE(pointer_of(R"({"format":"emoface.parlee_agent","version":"2.0"})"), "");
   EXPECT_NE(pointer_of(R"({"format":"emoface.rig","version":"1.0"})"), "");
   EXPECT_NE(pointer_of(head + R"("name":"x")"), "");  // truncated

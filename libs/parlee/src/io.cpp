@@ -8,7 +8,7 @@ namespace emoface::parlee {
 namespace {
 
 using Json = nlohmann::ordered_json;
-constexpr core::FormatVersion kAgentVersion{1, 0};
+constexpr core::FormatVersion kAgentVersion{1, 1};  // 1.1: appraisal, display
 
 struct Reader {
   const std::string& file;
@@ -147,6 +147,21 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
           }
         } else r.fail(p, "unknown field '" + k + "'");
       }
+    } else if (key == "appraisal") {
+      for (const auto& [k, x] : r.object(v, ptr).items()) {
+        const std::string p = ptr + "/" + tok(k);
+        if (k == "prospect") {
+          try {
+            c.appraisal.prospect = prospect_mode_from_string(r.string(x, p));
+          } catch (const InvalidInput& e) {
+            r.fail(p, e.what());
+          }
+        } else if (k == "surprise_threshold") {
+          c.appraisal.surprise_threshold = r.number(x, p, 1e-9, 1.0);
+        } else {
+          r.fail(p, "unknown field '" + k + "'");
+        }
+      }
     } else if (key == "learning") {
       for (const auto& [k, x] : r.object(v, ptr).items()) {
         const std::string p = ptr + "/" + tok(k);
@@ -205,6 +220,8 @@ std::string write_agent(const AgentConfig& c) {
                      {"thirst", c.motivation.thirst}, {"pain", c.motivation.pain}};
   j["planning"] = {{"horizon", c.planning.horizon}, {"model_depth", c.planning.model_depth},
                    {"semantics", to_string(c.planning.semantics)}};
+  j["appraisal"] = {{"prospect", std::string(to_string(c.appraisal.prospect))},
+                    {"surprise_threshold", c.appraisal.surprise_threshold}};
   j["learning"] = {{"outcomes", c.learn_outcomes}, {"prior_count", c.learning_prior}, {"liking_rate", c.liking_rate}};
   Json l = Json::object();
   for (const auto& [k, v] : c.liking) l[k] = v;
