@@ -6,6 +6,7 @@
 #include "emoface/core/errors.hpp"
 #include "emoface/parlee/agent.hpp"
 #include "emoface/parlee/io.hpp"
+#include "naive_planner.hpp"
 
 using namespace emoface::parlee;
 
@@ -281,4 +282,28 @@ TEST_F(Obie, RealisticDiffersFromNeutral) {
   EXPECT_GT(at(re, 80, kSad), at(n, 80, kSad) + 0.02);
   EXPECT_GT(at(re, 12, kSurprise), at(n, 12, kSurprise) + 0.1);
   EXPECT_GT(at(re, 30, kHappy), at(n, 30, kHappy));
+}
+
+// §5.5: "any planner that can produce the same output would fit into ParleE". A second planner
+// (memo-free transcription of §5.7.4) plugged through the GoalPlanner interface gives the same
+// timeline of the §7.4 match as the memoised DP, line for line (H = 5, d = H − 1).
+TEST(Agent, PluggedPlannerGivesTheSameTimeline) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  AgentConfig c = read_agent_file(kData + "agents/neutral.json");
+  c.planning.horizon = 5;
+  const PlannerFactory naive = [](const Domain& dom, const PlanOptions& o) {
+    return std::unique_ptr<GoalPlanner>(std::make_unique<test::NaivePlanner>(dom, o));
+  };
+  Agent dp(d, c), other(d, c, naive);
+  EXPECT_NE(dynamic_cast<test::NaivePlanner*>(&other.planner()), nullptr);
+  EXPECT_EQ(timeline_line(dp.initial_record()), timeline_line(other.initial_record()));
+  std::size_t n = 0;
+  for (const auto& e : read_events_file(kData + "match.ndjson")) {
+    const std::string a = timeline_line(dp.step(e)), b = timeline_line(other.step(e));
+    ASSERT_EQ(a, b) << "event " << n;
+    ++n;
+  }
+  EXPECT_EQ(n, 91u);
+  const PlannerFactory none = [](const Domain&, const PlanOptions&) { return nullptr; };
+  EXPECT_THROW(Agent(d, c, none), emoface::InvalidInput);
 }

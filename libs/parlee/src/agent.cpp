@@ -32,10 +32,15 @@ void AgentConfig::validate() const {
     if (!(v >= -1.0 && v <= 1.0)) throw InvalidInput("praiseworthiness of '" + k + "' must be in [-1,1]");
 }
 
-Agent::Agent(const Domain& domain, AgentConfig config)
+Agent::Agent(const Domain& domain, AgentConfig config, const PlannerFactory& make_planner)
     : domain_(std::make_unique<Domain>(domain)), config_(std::move(config)), rng_(config_.seed, 0) {
   config_.validate();
-  planner_ = std::make_unique<Planner>(*domain_, config_.planning);
+  if (make_planner) {
+    planner_ = make_planner(*domain_, config_.planning);
+    if (!planner_) throw InvalidInput("Agent: the planner factory returned no planner");
+  } else {
+    planner_ = std::make_unique<Planner>(*domain_, config_.planning);
+  }
   if (!config_.self.empty()) {
     self_ = domain_->agent_index(config_.self);
     if (self_ < 0) throw InvalidInput("agent '" + config_.self + "' is not an agent of the domain");
@@ -72,7 +77,7 @@ GoalStatus Agent::confirm(std::size_t k, const State& s) const {
 
 std::vector<double> Agent::own_goal_probabilities(const State& s) {
   std::vector<double> p;
-  for (auto g : own_goals_) p.push_back(planner_->goal_probability(g, s));
+  for (auto g : own_goals_) p.push_back(planner_->goal_probability(g, s, -1));
   return p;
 }
 
@@ -123,7 +128,7 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
     std::vector<double> w(acts.size(), 1.0);
     const int g = planner_->primary_goal(who, s);
     if (g >= 0) {
-      auto q = planner_->action_values(static_cast<std::size_t>(g), s);
+      auto q = planner_->action_values(static_cast<std::size_t>(g), s, -1);
       double sum = 0.0;
       for (double v : q) sum += v;
       if (sum > 0.0) w = q;
@@ -202,7 +207,7 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
     for (std::size_t g = 0; g < domain_->goals().size(); ++g) {
       if (domain_->goals()[g].agent != static_cast<int>(b)) continue;
       other.importance.push_back(domain_->goals()[g].importance);
-      other.impact.push_back(planner_->goal_probability(g, after) - planner_->goal_probability(g, s));
+      other.impact.push_back(planner_->goal_probability(g, after, -1) - planner_->goal_probability(g, s, -1));
     }
     if (!other.impact.empty()) in.others.push_back(std::move(other));
   }

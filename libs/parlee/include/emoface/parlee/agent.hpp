@@ -74,7 +74,8 @@ class Agent {
  public:
   /// Copies `domain` (the agent's beliefs; learning changes the copy). Throws InvalidInput if the
   /// config is invalid or names an unknown agent.
-  Agent(const Domain& domain, AgentConfig config);
+  /// `make_planner` builds the agent's planner (default: the DP `Planner` of §5.7).
+  Agent(const Domain& domain, AgentConfig config, const PlannerFactory& make_planner = {});
   Agent(const Agent&) = delete;
   Agent& operator=(const Agent&) = delete;
 
@@ -94,7 +95,7 @@ class Agent {
   int self() const noexcept { return self_; }
   /// Actions the agent on turn may take now ("(unload-food bread car1)").
   std::vector<std::string> applicable() const;
-  Planner& planner() noexcept { return *planner_; }
+  GoalPlanner& planner() noexcept { return *planner_; }
 
  private:
   void act(const std::optional<std::size_t>& forced, const std::string& outcome, StepRecord& rec,
@@ -107,7 +108,7 @@ class Agent {
 
   std::unique_ptr<Domain> domain_;
   AgentConfig config_;
-  std::unique_ptr<Planner> planner_;
+  std::unique_ptr<GoalPlanner> planner_;
   int self_ = 0;
   State state_;
   double time_ = 0.0;
