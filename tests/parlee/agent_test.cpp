@@ -8,6 +8,8 @@
 #include "emoface/parlee/io.hpp"
 #include "naive_planner.hpp"
 
+#include <nlohmann/json.hpp>
+
 using namespace emoface::parlee;
 
 namespace {
@@ -122,6 +124,7 @@ TEST(Agent, RejectsInapplicableEventsAndUnknownAgents) {
   const Domain d(read_domain_files({kData + "football.domain"}));
   AgentConfig c;
   c.self = "agent";
+  c.on_disallowed = DisallowedEvent::Stop;
   Agent a(d, c);
   Event e;
   e.time = 1;
@@ -140,6 +143,43 @@ TEST(Agent, RejectsInapplicableEventsAndUnknownAgents) {
   EXPECT_THROW(a.step(e), emoface::InvalidInput);
   c.self = "referee";
   EXPECT_THROW(Agent(d, c), emoface::InvalidInput);
+  EXPECT_EQ(disallowed_event_from_string(to_string(DisallowedEvent::Skip)), DisallowedEvent::Skip);
+  EXPECT_EQ(disallowed_event_from_string(to_string(DisallowedEvent::Stop)), DisallowedEvent::Stop);
+  EXPECT_THROW(disallowed_event_from_string("ignore"), emoface::InvalidInput);
+}
+
+// §5.5 (the default): an event the agent's model does not allow is reported and skipped; the
+// rest of the match goes on exactly as without it.
+TEST(Agent, DisallowedEventsAreReportedAndSkipped) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  const AgentConfig c = read_agent_file(kData + "agents/neutral.json");
+  ASSERT_EQ(c.on_disallowed, DisallowedEvent::Skip);
+  auto events = read_events_file(kData + "match.ndjson");
+  Agent clean(d, c), noisy(d, c);
+  std::vector<std::string> a, b;
+  for (const auto& e : events) a.push_back(timeline_line(clean.step(e)));
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    if (k == 20) {  // 21': the for team holds the ball in its half; an against shot is impossible
+      Event bad = events[k - 1];
+      bad.action = "(shot oteam)";
+      const StepRecord r = noisy.step(bad);
+      EXPECT_NE(r.skipped.find("'(shot oteam)' is not applicable; applicable:"), std::string::npos) << r.skipped;
+      EXPECT_NE(timeline_line(r).find("\"skipped\""), std::string::npos);
+      Event outcome = events[k];  // applicable, but no such outcome
+      outcome.time = events[k - 1].time;
+      outcome.outcome = "exploded";
+      EXPECT_NE(noisy.step(outcome).skipped.find("has no outcome 'exploded'"), std::string::npos);
+    }
+    b.push_back(timeline_line(noisy.step(events[k])));
+  }
+  // the skipped steps decay the emotions (time passes) but change no fact: from 21' on the state
+  // and the goal probabilities are those of the clean run
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const auto ja = nlohmann::json::parse(a[k]), jb = nlohmann::json::parse(b[k]);
+    EXPECT_EQ(ja["state"], jb["state"]) << k;
+    EXPECT_EQ(ja["goals"], jb["goals"]) << k;
+  }
+  EXPECT_EQ(a.back().find("skipped"), std::string::npos);
 }
 
 TEST(Agent, LearnsOutcomeProbabilities) {

@@ -44,6 +44,7 @@ TEST(AgentFile, RoundTrip) {
   c.body_events["eat"] = BodyEvent::Eat;
   c.appraisal.prospect = ProspectMode::PerGoal;
   c.appraisal.surprise_threshold = 0.25;
+  c.on_disallowed = DisallowedEvent::Stop;
   const std::string text = write_agent(c);
   const AgentConfig d = parse_agent(text, "x.json");
   EXPECT_EQ(write_agent(d), text);
@@ -53,6 +54,7 @@ TEST(AgentFile, RoundTrip) {
   EXPECT_EQ(d.liking.at("user"), -0.25);
   EXPECT_EQ(d.appraisal.prospect, ProspectMode::PerGoal);
   EXPECT_EQ(d.appraisal.surprise_threshold, 0.25);
+  EXPECT_EQ(d.on_disallowed, DisallowedEvent::Stop);
 }
 
 TEST(AgentFile, ShippedFilesParse) {
@@ -85,6 +87,8 @@ TEST(AgentFile, BadInputNamesThePointer) {
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":0}})"), "/appraisal/surprise_threshold");
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":1.5}})"), "/appraisal/surprise_threshold");
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"pivot":0.5}})"), "/appraisal/pivot");
+  EXPECT_EQ(pointer_of(head + R"("on_disallowed":"ignore"})"), "/on_disallowed");
+  EXPECT_EQ(pointer_of(head + R"("on_disallowed":true})"), "/on_disallowed");
   EXPECT_NE(pointer_of(R"({"format":"emoface.parlee_agent","version":"2.0"})"), "");
   EXPECT_NE(pointer_of(R"({"format":"emoface.rig","version":"1.0"})"), "");
   EXPECT_NE(pointer_of(head + R"("name":"x")"), "");  // truncated

@@ -66,7 +66,11 @@ std::vector<parlee::StepRecord> run_match(const MatchScript& match, const parlee
   match.validate();
   config.validate();
   const parlee::Domain domain(parlee::read_domain_files(match.domain_paths()));
-  parlee::Agent agent(domain, config);
+  // A match script is authored data: an event Obie's model does not allow is a located error here
+  // (`parlee run` skips and reports such events instead, DisallowedEvent::Skip).
+  parlee::AgentConfig strict = config;
+  strict.on_disallowed = parlee::DisallowedEvent::Stop;
+  parlee::Agent agent(domain, strict);
   std::vector<parlee::StepRecord> records{agent.initial_record()};
   const auto events = to_parlee_events(match);
   for (std::size_t i = 0; i < events.size(); ++i) {

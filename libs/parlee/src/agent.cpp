@@ -17,6 +17,14 @@ std::string effects_text(const Domain& d, const GroundOutcome& o) {
 
 }  // namespace
 
+std::string_view to_string(DisallowedEvent d) { return d == DisallowedEvent::Skip ? "skip" : "stop"; }
+
+DisallowedEvent disallowed_event_from_string(std::string_view s) {
+  if (s == "skip") return DisallowedEvent::Skip;
+  if (s == "stop") return DisallowedEvent::Stop;
+  throw InvalidInput("unknown on_disallowed '" + std::string(s) + "' (skip, stop)");
+}
+
 void AgentConfig::validate() const {
   personality.validate();
   emotions.validate();
@@ -152,18 +160,12 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
       x -= ga.outcomes[k].probability;
     }
   } else {
-    bool found = false;
-    for (std::size_t k = 0; k < ga.outcomes.size() && !found; ++k) {
+    if (auto bad = outcome_problem(a, outcome_spec); !bad.empty()) throw InvalidInput(bad);
+    for (std::size_t k = 0; k < ga.outcomes.size(); ++k) {
       if (ga.outcomes[k].label == outcome_spec || std::to_string(k + 1) == outcome_spec) {
         o = k;
-        found = true;
+        break;
       }
-    }
-    if (!found) {
-      std::string labels;
-      for (const auto& oc : ga.outcomes) labels += " " + oc.label;
-      throw InvalidInput("action " + domain_->action_text(a) + " has no outcome '" + outcome_spec +
-                         "' (outcomes:" + labels + ")");
     }
   }
   const State after = domain_->apply(s, a, o);
@@ -246,6 +248,16 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
   p_goal_ = config_.learn_outcomes ? own_goal_probabilities(after) : p_after;
 }
 
+std::string Agent::outcome_problem(std::size_t a, const std::string& spec) const {
+  if (spec.empty()) return {};
+  const GroundAction& ga = domain_->actions()[a];
+  for (std::size_t k = 0; k < ga.outcomes.size(); ++k)
+    if (ga.outcomes[k].label == spec || std::to_string(k + 1) == spec) return {};
+  std::string labels;
+  for (const auto& oc : ga.outcomes) labels += " " + oc.label;
+  return "action " + domain_->action_text(a) + " has no outcome '" + spec + "' (outcomes:" + labels + ")";
+}
+
 void Agent::self_act(StepRecord& rec, EmotionVector& impulse) { act(std::nullopt, "", rec, impulse); }
 
 StepRecord Agent::step(const Event& event) {
@@ -272,13 +284,18 @@ StepRecord Agent::step(const Event& event) {
     rec.actions.push_back({domain_->spec().agents[static_cast<std::size_t>(actor)], "pass", "", 1.0, ""});
   } else {
     const long a = find();
+    std::string why;
     if (a < 0) {
       std::string list;
       for (const auto& t : applicable()) list += " " + t;
-      throw InvalidInput("event at time " + std::to_string(event.time) + ": '" + event.action + "' is " +
-                         (a == -2 ? "ambiguous" : "not applicable") + "; applicable:" + (list.empty() ? " none" : list));
+      why = "event at time " + std::to_string(event.time) + ": '" + event.action + "' is " +
+            (a == -2 ? "ambiguous" : "not applicable") + "; applicable:" + (list.empty() ? " none" : list);
+    } else if (auto bad = outcome_problem(static_cast<std::size_t>(a), event.outcome); !bad.empty()) {
+      why = "event at time " + std::to_string(event.time) + ": " + bad;
     }
-    act(static_cast<std::size_t>(a), event.outcome, rec, impulse);
+    if (!why.empty() && config_.on_disallowed == DisallowedEvent::Stop) throw InvalidInput(why);
+    if (why.empty()) act(static_cast<std::size_t>(a), event.outcome, rec, impulse);
+    rec.skipped = why;
   }
   if (actor != self_ && domain_->turn(state_) == self_ && domain_->agent_count() > 1) self_act(rec, impulse);
 

@@ -147,6 +147,12 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
           }
         } else r.fail(p, "unknown field '" + k + "'");
       }
+    } else if (key == "on_disallowed") {
+      try {
+        c.on_disallowed = disallowed_event_from_string(r.string(v, ptr));
+      } catch (const InvalidInput& e) {
+        r.fail(ptr, e.what());
+      }
     } else if (key == "appraisal") {
       for (const auto& [k, x] : r.object(v, ptr).items()) {
         const std::string p = ptr + "/" + tok(k);
@@ -220,6 +226,7 @@ std::string write_agent(const AgentConfig& c) {
                      {"thirst", c.motivation.thirst}, {"pain", c.motivation.pain}};
   j["planning"] = {{"horizon", c.planning.horizon}, {"model_depth", c.planning.model_depth},
                    {"semantics", to_string(c.planning.semantics)}};
+  j["on_disallowed"] = std::string(to_string(c.on_disallowed));
   j["appraisal"] = {{"prospect", std::string(to_string(c.appraisal.prospect))},
                     {"surprise_threshold", c.appraisal.surprise_threshold}};
   j["learning"] = {{"outcomes", c.learn_outcomes}, {"prior_count", c.learning_prior}, {"liking_rate", c.liking_rate}};
@@ -316,6 +323,7 @@ std::string timeline_line(const StepRecord& r) {
   for (const auto& [k, v] : r.liking) l[k] = v;
   j["liking"] = l;
   j["state"] = r.state;
+  if (!r.skipped.empty()) j["skipped"] = r.skipped;
   return j.dump() + "\n";
 }
 

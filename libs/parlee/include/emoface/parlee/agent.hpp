@@ -17,6 +17,15 @@
 
 namespace emoface::parlee {
 
+/// What the agent does with an event its model of the world does not allow (the action is not
+/// applicable in the believed state, ambiguous, or has no such outcome).
+enum class DisallowedEvent : std::uint8_t {
+  Skip,  ///< report it in StepRecord::skipped and go on (the step still passes: own turn, decay)
+  Stop,  ///< throw InvalidInput
+};
+std::string_view to_string(DisallowedEvent d);
+DisallowedEvent disallowed_event_from_string(std::string_view s);  ///< throws InvalidInput
+
 struct AgentConfig {
   std::string name = "agent";        ///< label of this configuration ("neutral", "pessimistic", …)
   std::string self;                  ///< the domain agent this is; empty = the first agent
@@ -35,6 +44,7 @@ struct AgentConfig {
   /// hit when anyone performs it (the agent is hit). Every own action also counts as `action`.
   std::map<std::string, BodyEvent> body_events;
   std::uint64_t seed = 1;            ///< own action choices and unspecified outcomes
+  DisallowedEvent on_disallowed = DisallowedEvent::Skip;  ///< events the model does not allow
   void validate() const;
 };
 
@@ -68,6 +78,7 @@ struct StepRecord {
   std::array<double, 6> basic{};          ///< basic_emotions(): sadness … surprise
   std::map<std::string, double> liking;
   std::string state;                      ///< facts after the step
+  std::string skipped;                    ///< why the event was skipped (DisallowedEvent::Skip)
 };
 
 class Agent {
@@ -81,8 +92,11 @@ class Agent {
 
   /// Applies one event (the agent acts first if it is its turn, then the event, then the agent
   /// responds if the turn came back), appraises each action, decays and updates the emotions.
-  /// Throws InvalidInput if the event's action is not applicable (message lists what is); the agent
-  /// may by then have taken its own turn, so treat the agent as spent after an exception.
+  /// An event the agent's model does not allow (action not applicable or ambiguous, unknown
+  /// outcome) is skipped and reported in StepRecord::skipped (message lists what is applicable);
+  /// with DisallowedEvent::Stop it throws InvalidInput instead, and the agent may by then have
+  /// taken its own turn, so treat the agent as spent after that exception. A time earlier than the
+  /// previous event's or bad feedback always throws.
   StepRecord step(const Event& event);
   /// The record of the initial state (step 0): goal probabilities and the resting emotions.
   StepRecord initial_record();
@@ -101,6 +115,7 @@ class Agent {
   void act(const std::optional<std::size_t>& forced, const std::string& outcome, StepRecord& rec,
            EmotionVector& impulse);
   void self_act(StepRecord& rec, EmotionVector& impulse);
+  std::string outcome_problem(std::size_t action, const std::string& outcome) const;  ///< "" if ok
   std::vector<double> own_goal_probabilities(const State& s);
   GoalStatus confirm(std::size_t k, const State& s) const;
   void fill(StepRecord& rec);
