@@ -347,3 +347,51 @@ TEST(Agent, PluggedPlannerGivesTheSameTimeline) {
   const PlannerFactory none = [](const Domain&, const PlanOptions&) { return nullptr; };
   EXPECT_THROW(Agent(d, c, none), emoface::InvalidInput);
 }
+
+// §5.5.4: "high values [of the motivational states] will generate a goal for the agent, viz. the
+// agent wants to reduce these values" (replenishment goals). The bread agent's goal feed-self is
+// its replenishment goal for hunger: dormant while hunger < 0.495, it appears when one more action
+// (+0.01) takes hunger from 0.49 to 0.50, and disappears when the agent has eaten.
+TEST(Agent, ReplenishmentGoalAppearsWithHungerAndGoesWhenFed) {
+  const Domain d(read_domain_files({kData + "bread.domain"}));
+  AgentConfig c = read_agent_file(kData + "agents/bread_neutral.json");
+  c.motivation.hunger = 0.49;
+  c.replenishment = {{"feed-self", Need::Hunger, 0.495}};
+  c.body_events["eat"] = BodyEvent::Eat;
+  Agent a(d, c);
+  const StepRecord r0 = a.initial_record();
+  ASSERT_EQ(r0.goal_active.size(), 1u);
+  EXPECT_FALSE(r0.goal_active[0]);
+  EXPECT_NE(timeline_line(r0).find(R"("active":false)"), std::string::npos);
+  Event pass;  // the user passes; the agent acts
+  pass.time = 1;
+  const StepRecord r1 = a.step(pass);  // the agent's first action: hunger 0.49 → 0.50
+  EXPECT_NEAR(a.motivation().hunger, 0.50, 1e-12);
+  EXPECT_TRUE(r1.goal_active[0]);
+  EXPECT_GT(r1.impulse[index(Emotion::Hope)] + r1.impulse[index(Emotion::Fear)], 0.0);
+  bool fed = false;
+  for (int t = 2; t <= 12 && !fed; ++t) {
+    pass.time = t;
+    const StepRecord r = a.step(pass);
+    if (a.motivation().hunger == 0.0) {  // the agent ate (BodyEvent::Eat resets hunger)
+      fed = true;
+      EXPECT_FALSE(r.goal_active[0]);
+      EXPECT_EQ(r.goal_status[0], GoalStatus::Success);
+      EXPECT_GT(r.impulse[index(Emotion::Satisfaction)] + r.impulse[index(Emotion::Relief)], 0.0);
+    } else {
+      EXPECT_TRUE(r.goal_active[0]) << t;
+    }
+  }
+  EXPECT_TRUE(fed);
+  // without the rule the same agent would have had the goal (and fear about it) from the start
+  AgentConfig plain = c;
+  plain.replenishment.clear();
+  Agent b(d, plain);
+  EXPECT_TRUE(b.initial_record().goal_active[0]);
+  c.replenishment = {{"fly", Need::Hunger, 0.5}};
+  EXPECT_THROW(Agent(d, c), emoface::InvalidInput);
+  c.replenishment = {{"feed-self", Need::Hunger, 0.0}};
+  EXPECT_THROW(Agent(d, c), emoface::InvalidInput);
+  EXPECT_EQ(need_from_string(to_string(Need::Pain)), Need::Pain);
+  EXPECT_THROW(need_from_string("boredom"), emoface::InvalidInput);
+}

@@ -45,6 +45,7 @@ TEST(AgentFile, RoundTrip) {
   c.appraisal.prospect = ProspectMode::PerGoal;
   c.appraisal.surprise_threshold = 0.25;
   c.on_disallowed = DisallowedEvent::Stop;
+  c.replenishment = {{"feed-self", Need::Thirst, 0.75}};
   const std::string text = write_agent(c);
   const AgentConfig d = parse_agent(text, "x.json");
   EXPECT_EQ(write_agent(d), text);
@@ -55,6 +56,9 @@ TEST(AgentFile, RoundTrip) {
   EXPECT_EQ(d.appraisal.prospect, ProspectMode::PerGoal);
   EXPECT_EQ(d.appraisal.surprise_threshold, 0.25);
   EXPECT_EQ(d.on_disallowed, DisallowedEvent::Stop);
+  ASSERT_EQ(d.replenishment.size(), 1u);
+  EXPECT_EQ(d.replenishment[0].need, Need::Thirst);
+  EXPECT_EQ(d.replenishment[0].threshold, 0.75);
 }
 
 TEST(AgentFile, ShippedFilesParse) {
@@ -89,6 +93,11 @@ TEST(AgentFile, BadInputNamesThePointer) {
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"pivot":0.5}})"), "/appraisal/pivot");
   EXPECT_EQ(pointer_of(head + R"("on_disallowed":"ignore"})"), "/on_disallowed");
   EXPECT_EQ(pointer_of(head + R"("on_disallowed":true})"), "/on_disallowed");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":{}})"), "/replenishment");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"need":"hunger"}]})"), "/replenishment/0");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","need":"boredom"}]})"), "/replenishment/0/need");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","threshold":0}]})"), "/replenishment/0/threshold");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","x":1}]})"), "/replenishment/0/x");
   EXPECT_NE(pointer_of(R"({"format":"emoface.parlee_agent","version":"2.0"})"), "");
   EXPECT_NE(pointer_of(R"({"format":"emoface.rig","version":"1.0"})"), "");
   EXPECT_NE(pointer_of(head + R"("name":"x")"), "");  // truncated

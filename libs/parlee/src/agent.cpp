@@ -38,6 +38,9 @@ void AgentConfig::validate() const {
     if (!(v >= -1.0 && v <= 1.0)) throw InvalidInput("liking of '" + k + "' must be in [-1,1]");
   for (const auto& [k, v] : praiseworthiness)
     if (!(v >= -1.0 && v <= 1.0)) throw InvalidInput("praiseworthiness of '" + k + "' must be in [-1,1]");
+  for (const auto& r : replenishment)
+    if (!(r.threshold > 0.0 && r.threshold <= 1.0))
+      throw InvalidInput("replenishment threshold of '" + r.goal + "' must be in (0,1]");
 }
 
 Agent::Agent(const Domain& domain, AgentConfig config, const PlannerFactory& make_planner)
@@ -65,9 +68,19 @@ Agent::Agent(const Domain& domain, AgentConfig config, const PlannerFactory& mak
     m.add(v);
     feedback_[op] = m;
   }
+  for (const auto& r : config_.replenishment) {
+    std::size_t k = 0;
+    while (k < own_goals_.size() && domain_->goals()[own_goals_[k]].name != r.goal) ++k;
+    if (k == own_goals_.size())
+      throw InvalidInput("replenishment goal '" + r.goal + "' is not a goal of agent '" +
+                         domain_->spec().agents[static_cast<std::size_t>(self_)] + "'");
+    replenish_.emplace_back(k, r);
+  }
   state_ = domain_->initial_state();
   p_goal_ = own_goal_probabilities(state_);
   status_.assign(own_goals_.size(), GoalStatus::Unconfirmed);
+  active_.assign(own_goals_.size(), true);
+  for (const auto& [k, r] : replenish_) active_[k] = level(config_.motivation, r.need) >= r.threshold;
   prev_hope_.assign(own_goals_.size(), 0.0);
   prev_fear_.assign(own_goals_.size(), 0.0);
 }
@@ -134,7 +147,7 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
   } else {
     // thesis §5.7.4: action i chosen with probability P_goal(a|s,i)/Σ_j P_goal(a|s,j), 1/n if Σ = 0
     std::vector<double> w(acts.size(), 1.0);
-    const int g = planner_->primary_goal(who, s);
+    const int g = who == self_ ? own_primary_goal(s) : planner_->primary_goal(who, s);
     if (g >= 0) {
       auto q = planner_->action_values(static_cast<std::size_t>(g), s, -1);
       double sum = 0.0;
@@ -177,6 +190,7 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
   in.actor = who == self_ ? Actor::Self : Actor::Other;
   std::vector<double> importance, impact;
   for (std::size_t k = 0; k < own_goals_.size(); ++k) {
+    if (!active_[k]) continue;  // a dormant replenishment goal (§5.5.4)
     const auto& g = domain_->goals()[own_goals_[k]];
     GoalAppraisal ga_k;
     ga_k.importance = g.importance;
@@ -299,9 +313,13 @@ StepRecord Agent::step(const Event& event) {
   }
   if (actor != self_ && domain_->turn(state_) == self_ && domain_->agent_count() > 1) self_act(rec, impulse);
 
+  update_replenishment();  // §5.5.4: motivational states changed by the actions of this step
   // Prospect emotions (§5.6.2 Hope/Fear) and deadline-driven goal confirmation on the final state.
   AppraisalInput in;
+  std::vector<std::size_t> appraised;
   for (std::size_t k = 0; k < own_goals_.size(); ++k) {
+    if (!active_[k]) continue;
+    appraised.push_back(k);
     const auto& g = domain_->goals()[own_goals_[k]];
     GoalAppraisal ga;
     ga.importance = g.importance;
@@ -316,8 +334,12 @@ StepRecord Agent::step(const Event& event) {
   }
   const AppraisalResult pr = appraise(in, config_.personality, config_.appraisal);
   for (std::size_t i = 0; i < kEmotionCount; ++i) impulse[i] += pr.impulse[i];
-  prev_hope_ = pr.hope;
-  prev_fear_ = pr.fear;
+  prev_hope_.assign(own_goals_.size(), 0.0);
+  prev_fear_.assign(own_goals_.size(), 0.0);
+  for (std::size_t j = 0; j < appraised.size(); ++j) {
+    prev_hope_[appraised[j]] = pr.hope[j];
+    prev_fear_[appraised[j]] = pr.fear[j];
+  }
 
   const EmotionVector alpha = motivated_alpha(config_.emotions, config_.motivation, config_.motivation_options);
   update_emotions(emotions_, impulse, config_.emotions, alpha,
@@ -325,6 +347,31 @@ StepRecord Agent::step(const Event& event) {
   rec.impulse = impulse;
   fill(rec);
   return rec;
+}
+
+void Agent::update_replenishment() {
+  for (const auto& [k, r] : replenish_) {
+    const bool now = level(config_.motivation, r.need) >= r.threshold;
+    if (now && !active_[k]) {  // the goal appears: unconfirmed, judged afresh from here
+      status_[k] = GoalStatus::Unconfirmed;
+      p_goal_[k] = planner_->goal_probability(own_goals_[k], state_, -1);
+      prev_hope_[k] = prev_fear_[k] = 0.0;
+    }
+    active_[k] = now;
+  }
+}
+
+// The agent's own choices follow its highest-priority active goal that does not hold yet (Within).
+int Agent::own_primary_goal(const State& s) const {
+  int best = -1;
+  const bool within = config_.planning.semantics == GoalSemantics::Within;
+  for (std::size_t k = 0; k < own_goals_.size(); ++k) {
+    if (!active_[k] || (within && domain_->goal_holds(own_goals_[k], s))) continue;
+    const auto& g = domain_->goals()[own_goals_[k]];
+    if (best < 0 || g.priority > domain_->goals()[static_cast<std::size_t>(best)].priority)
+      best = static_cast<int>(own_goals_[k]);
+  }
+  return best;
 }
 
 StepRecord Agent::initial_record() {
@@ -338,6 +385,7 @@ void Agent::fill(StepRecord& rec) {
   for (std::size_t k = 0; k < own_goals_.size(); ++k) rec.goal_names.push_back(domain_->goals()[own_goals_[k]].name);
   rec.goal_probability = p_goal_;
   rec.goal_status = status_;
+  rec.goal_active = active_;
   rec.emotions = emotions_;
   rec.basic = basic_emotions(emotions_, config_.emotions);
   rec.liking = liking_;

@@ -200,6 +200,32 @@ std::string_view to_string(BodyEvent e) {
   return kNames.at(static_cast<std::size_t>(e));
 }
 
+std::string_view to_string(Need n) {
+  switch (n) {
+    case Need::Hunger: return "hunger";
+    case Need::Fatigue: return "fatigue";
+    case Need::Thirst: return "thirst";
+    case Need::Pain: return "pain";
+  }
+  return "hunger";
+}
+
+Need need_from_string(std::string_view s) {
+  for (Need n : {Need::Hunger, Need::Fatigue, Need::Thirst, Need::Pain})
+    if (to_string(n) == s) return n;
+  throw InvalidInput("unknown motivational variable '" + std::string(s) + "' (hunger, fatigue, thirst, pain)");
+}
+
+double level(const MotivationalState& m, Need n) {
+  switch (n) {
+    case Need::Hunger: return m.hunger;
+    case Need::Fatigue: return m.fatigue;
+    case Need::Thirst: return m.thirst;
+    case Need::Pain: return m.pain;
+  }
+  return 0.0;
+}
+
 BodyEvent body_event_from_string(std::string_view s) {
   for (auto e : {BodyEvent::Action, BodyEvent::Eat, BodyEvent::Drink, BodyEvent::Rest, BodyEvent::Hit})
     if (to_string(e) == s) return e;

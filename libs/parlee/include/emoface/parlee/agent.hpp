@@ -26,6 +26,17 @@ enum class DisallowedEvent : std::uint8_t {
 std::string_view to_string(DisallowedEvent d);
 DisallowedEvent disallowed_event_from_string(std::string_view s);  ///< throws InvalidInput
 
+/// §5.5.4: a high motivational state generates a replenishment goal ("the agent wants to reduce
+/// these values"). The named goal of the agent (declared in the domain, e.g. `feed-self`) exists
+/// for the agent only while `need` ≥ `threshold`: below it the goal is dormant (not planned for,
+/// not appraised); when the need rises past the threshold the goal appears (unconfirmed, with
+/// fresh hope/fear); when the need falls (the agent ate, drank, rested) it disappears again.
+struct ReplenishmentGoal {
+  std::string goal;          ///< name of one of the agent's goals in the domain
+  Need need = Need::Hunger;
+  double threshold = 0.5;    ///< the goal exists while level(need) ≥ threshold, (0,1]
+};
+
 struct AgentConfig {
   std::string name = "agent";        ///< label of this configuration ("neutral", "pessimistic", …)
   std::string self;                  ///< the domain agent this is; empty = the first agent
@@ -43,6 +54,7 @@ struct AgentConfig {
   /// §5.5.4: operator name → what it does to the body: eat/drink/rest when the agent performs it,
   /// hit when anyone performs it (the agent is hit). Every own action also counts as `action`.
   std::map<std::string, BodyEvent> body_events;
+  std::vector<ReplenishmentGoal> replenishment;     ///< §5.5.4 goals created by motivational states
   std::uint64_t seed = 1;            ///< own action choices and unspecified outcomes
   DisallowedEvent on_disallowed = DisallowedEvent::Skip;  ///< events the model does not allow
   void validate() const;
@@ -73,6 +85,7 @@ struct StepRecord {
   std::vector<std::string> goal_names;
   std::vector<double> goal_probability;   ///< after the step (planner, horizon H)
   std::vector<GoalStatus> goal_status;
+  std::vector<bool> goal_active;          ///< false: a dormant replenishment goal (§5.5.4)
   EmotionVector impulse{};                ///< summed impulses of the step
   EmotionVector emotions{};               ///< emotion state after decay + update
   std::array<double, 6> basic{};          ///< basic_emotions(): sadness … surprise
@@ -118,6 +131,8 @@ class Agent {
   std::string outcome_problem(std::size_t action, const std::string& outcome) const;  ///< "" if ok
   std::vector<double> own_goal_probabilities(const State& s);
   GoalStatus confirm(std::size_t k, const State& s) const;
+  void update_replenishment();
+  int own_primary_goal(const State& s) const;
   void fill(StepRecord& rec);
   double event_probability(const State& s, std::size_t action, const State& after);
 
@@ -133,6 +148,8 @@ class Agent {
   std::vector<std::size_t> own_goals_;
   std::vector<double> p_goal_;
   std::vector<GoalStatus> status_;
+  std::vector<bool> active_;                        ///< per own goal
+  std::vector<std::pair<std::size_t, ReplenishmentGoal>> replenish_;  ///< own goal index k, rule
   std::vector<double> prev_hope_, prev_fear_;
   std::map<std::string, double> liking_;
   std::map<std::string, RunningMean> feedback_;

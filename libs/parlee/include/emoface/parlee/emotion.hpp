@@ -118,6 +118,12 @@ struct MotivationOptions {
 EmotionVector motivated_alpha(const EmotionParams& params, const MotivationalState& m,
                               const MotivationOptions& options = {});
 
+/// One of the four motivational variables (§5.5.4).
+enum class Need : std::uint8_t { Hunger, Fatigue, Thirst, Pain };
+std::string_view to_string(Need n);                ///< "hunger", "fatigue", "thirst", "pain"
+Need need_from_string(std::string_view s);         ///< throws InvalidInput
+double level(const MotivationalState& m, Need n);  ///< the variable's value, [0,1]
+
 enum class BodyEvent : std::uint8_t { Action, Eat, Drink, Rest, Hit };
 std::string_view to_string(BodyEvent e);                ///< "action", "eat", "drink", "rest", "hit"
 BodyEvent body_event_from_string(std::string_view s);  ///< throws InvalidInput
