@@ -79,7 +79,7 @@ def main():
                 for h in (3, 5, 7):
                     for d in (0, 1, 2, -1):
                         agent = {"format": "emoface.parlee_agent", "version": "1.1", "self": "agent",
-                                 "seed": 7, "name": "neutral",
+                                 "seed": 7, "name": "neutral", "appraisal": {"compound": "standards"},
                                  "emotions": {"alpha": {"surprise": alpha}}}
                         domain = f"{DATA}/football.domain" if not_lose else win_only_domain(tmp)
                         plot = None

@@ -236,3 +236,37 @@ TEST(Appraisal, HopeAndFearAreTheSignedSumByDefault) {
   EXPECT_EQ(prospect_mode_from_string(to_string(ProspectMode::SignedSum)), ProspectMode::SignedSum);
   EXPECT_THROW(prospect_mode_from_string("clamp"), InvalidInput);
 }
+
+// Table 5.2: Anger = Distress + Reproach etc. Under CompoundRule::Standards the compound emotions
+// need a praiseworthiness of the right sign; their intensity stays the §5.6.2 formula.
+TEST(Appraisal, CompoundEmotionsUnderTheStandardsRule) {
+  AppraisalInput in;
+  in.goals = {goal(0.6, 0.2, 1.0)};  // Impact −0.4
+  in.p_event = 0.36;                 // (1 − 0.36)^0.5 = 0.8
+  in.actor = Actor::Other;
+  AppraisalOptions o;
+  EXPECT_EQ(o.compound, CompoundRule::Impact);
+  EXPECT_NEAR(I(appraise(in, Personality{}, o), Emotion::Anger), 0.4 * 0.8, 1e-12);
+  o.compound = CompoundRule::Standards;
+  auto r = appraise(in, Personality{}, o);
+  EXPECT_EQ(I(r, Emotion::Anger), 0.0);  // no standard known: distress only
+  EXPECT_NEAR(I(r, Emotion::Distress), 0.4 * 0.64 * 0.64, 1e-12);
+  in.has_praiseworthiness = true;
+  in.praiseworthiness = 0.5;  // praiseworthy: appreciation, still no anger
+  r = appraise(in, Personality{}, o);
+  EXPECT_EQ(I(r, Emotion::Anger), 0.0);
+  EXPECT_NEAR(I(r, Emotion::Appreciation), 0.5, 1e-12);
+  in.praiseworthiness = -0.5;  // blameworthy: reproach and anger
+  r = appraise(in, Personality{}, o);
+  EXPECT_NEAR(I(r, Emotion::Anger), 0.32, 1e-12);
+  EXPECT_NEAR(I(r, Emotion::Reproach), 0.5, 1e-12);
+  in.goals = {goal(0.2, 0.6, 1.0)};  // desirable; own action, praiseworthy: gratification
+  in.actor = Actor::Self;
+  in.praiseworthiness = 0.25;
+  r = appraise(in, Personality{}, o);
+  EXPECT_NEAR(I(r, Emotion::Gratification), 0.32, 1e-12);
+  in.praiseworthiness = -0.25;
+  EXPECT_EQ(I(appraise(in, Personality{}, o), Emotion::Gratification), 0.0);
+  EXPECT_EQ(compound_rule_from_string(to_string(CompoundRule::Standards)), CompoundRule::Standards);
+  EXPECT_THROW(compound_rule_from_string("occ"), InvalidInput);
+}

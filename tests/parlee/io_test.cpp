@@ -44,6 +44,7 @@ TEST(AgentFile, RoundTrip) {
   c.body_events["eat"] = BodyEvent::Eat;
   c.appraisal.prospect = ProspectMode::PerGoal;
   c.appraisal.surprise_threshold = 0.25;
+  c.appraisal.compound = CompoundRule::Standards;
   c.on_disallowed = DisallowedEvent::Stop;
   c.replenishment = {{"feed-self", Need::Thirst, 0.75}};
   const std::string text = write_agent(c);
@@ -55,6 +56,7 @@ TEST(AgentFile, RoundTrip) {
   EXPECT_EQ(d.liking.at("user"), -0.25);
   EXPECT_EQ(d.appraisal.prospect, ProspectMode::PerGoal);
   EXPECT_EQ(d.appraisal.surprise_threshold, 0.25);
+  EXPECT_EQ(d.appraisal.compound, CompoundRule::Standards);
   EXPECT_EQ(d.on_disallowed, DisallowedEvent::Stop);
   ASSERT_EQ(d.replenishment.size(), 1u);
   EXPECT_EQ(d.replenishment[0].need, Need::Thirst);
@@ -92,6 +94,7 @@ TEST(AgentFile, BadInputNamesThePointer) {
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":1.5}})"), "/appraisal/surprise_threshold");
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"pivot":0.5}})"), "/appraisal/pivot");
   EXPECT_EQ(pointer_of(head + R"("on_disallowed":"ignore"})"), "/on_disallowed");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"compound":"occ"}})"), "/appraisal/compound");
   EXPECT_EQ(pointer_of(head + R"("on_disallowed":true})"), "/on_disallowed");
   EXPECT_EQ(pointer_of(head + R"("replenishment":{}})"), "/replenishment");
   EXPECT_EQ(pointer_of(head + R"("replenishment":[{"need":"hunger"}]})"), "/replenishment/0");

@@ -388,6 +388,7 @@ void Agent::fill(StepRecord& rec) {
   rec.goal_active = active_;
   rec.emotions = emotions_;
   rec.basic = basic_emotions(emotions_, config_.emotions);
+  rec.shown = revealed_emotions(rec.basic, config_.personality);
   rec.liking = liking_;
   rec.state = domain_->state_text(state_);
 }

@@ -47,6 +47,14 @@ Actor actor_from_string(std::string_view s) {
   throw InvalidInput("unknown actor '" + std::string(s) + "'");
 }
 
+std::string_view to_string(CompoundRule r) { return r == CompoundRule::Impact ? "impact" : "standards"; }
+
+CompoundRule compound_rule_from_string(std::string_view s) {
+  if (s == "impact") return CompoundRule::Impact;
+  if (s == "standards") return CompoundRule::Standards;
+  throw InvalidInput("unknown compound rule '" + std::string(s) + "' (impact, standards)");
+}
+
 std::string_view to_string(ProspectMode m) {
   return m == ProspectMode::SignedSum ? "signed_sum" : "per_goal";
 }
@@ -80,6 +88,11 @@ AppraisalResult appraise(const AppraisalInput& in, const Personality& pers, cons
   const double u_sad = std::pow(unexpected, opt.distress_exponent);
   std::vector<double> terms;
   terms.reserve(in.goals.size());
+  // Table 5.2 (CompoundRule::Standards): Gratitude/Gratification need a praiseworthy action,
+  // Anger/Remorse a blameworthy one; §5.6.2 (Impact): any desirable/undesirable action.
+  const bool by_impact = opt.compound == CompoundRule::Impact;
+  const bool praised = by_impact || (in.has_praiseworthiness && in.praiseworthiness > 0.0);
+  const bool blamed = by_impact || (in.has_praiseworthiness && in.praiseworthiness < 0.0);
   for (const auto& g : in.goals) {
     check(unit(g.p_before) && unit(g.p_after), "appraise: goal probabilities must be in [0,1]");
     check(g.importance >= 0.0 && std::isfinite(g.importance), "appraise: importance must be ≥ 0");
@@ -90,12 +103,12 @@ AppraisalResult appraise(const AppraisalInput& in, const Personality& pers, cons
     const double w = g.importance;
     if (impact > 0.0) {
       add(Emotion::Joy, impact * w * u_joy);  // §5.6.2 Happiness
-      if (in.actor == Actor::Other) add(Emotion::Gratitude, impact * w * u_joy);
-      if (in.actor == Actor::Self) add(Emotion::Gratification, impact * w * u_joy);
+      if (in.actor == Actor::Other && praised) add(Emotion::Gratitude, impact * w * u_joy);
+      if (in.actor == Actor::Self && praised) add(Emotion::Gratification, impact * w * u_joy);
     } else if (impact < 0.0) {
       add(Emotion::Distress, -impact * w * u_sad);  // §5.6.2 Sadness
-      if (in.actor == Actor::Other) add(Emotion::Anger, -impact * w * u_joy);  // §5.6.2 Anger
-      if (in.actor == Actor::Self) add(Emotion::Remorse, -impact * w * u_joy);
+      if (in.actor == Actor::Other && blamed) add(Emotion::Anger, -impact * w * u_joy);  // §5.6.2 Anger
+      if (in.actor == Actor::Self && blamed) add(Emotion::Remorse, -impact * w * u_joy);
     }
     // §5.6.2 prospect term of this goal, Import·(P(goal) − 0.5), for unconfirmed goals only
     terms.push_back(g.status == GoalStatus::Unconfirmed ? w * (after - opt.prospect_pivot) : 0.0);

@@ -76,6 +76,17 @@ double feel_impulse(const Personality& p, double impulse) {
   return impulse <= 0.0 ? 0.0 : std::pow(impulse, 1.5 - p[Trait::FeelingLevel]);
 }
 
+std::array<double, 6> revealed_emotions(const std::array<double, 6>& felt, const Personality& p) {
+  p.validate();
+  const double power = 1.5 - p[Trait::RevealingLevel];  // thesis §5.6.5, read as a power
+  std::array<double, 6> out{};
+  for (std::size_t k = 0; k < 6; ++k) {
+    if (!(felt[k] >= 0.0 && felt[k] <= 1.0)) throw InvalidInput("revealed_emotions: intensities must be in [0,1]");
+    out[k] = felt[k] <= 0.0 ? 0.0 : std::pow(felt[k], power);
+  }
+  return out;
+}
+
 // thesis §5.6.5: newDesire-other impulse = Desire-other impulse · feelingFocus
 double desire_other_factor(const Personality& p) { return p[Trait::FeelingFocus]; }
 

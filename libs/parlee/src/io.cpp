@@ -183,6 +183,12 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
           } catch (const InvalidInput& e) {
             r.fail(p, e.what());
           }
+        } else if (k == "compound") {
+          try {
+            c.appraisal.compound = compound_rule_from_string(r.string(x, p));
+          } catch (const InvalidInput& e) {
+            r.fail(p, e.what());
+          }
         } else if (k == "surprise_threshold") {
           c.appraisal.surprise_threshold = r.number(x, p, 1e-9, 1.0);
         } else {
@@ -253,6 +259,7 @@ std::string write_agent(const AgentConfig& c) {
     rep.push_back({{"goal", g.goal}, {"need", std::string(to_string(g.need))}, {"threshold", g.threshold}});
   j["replenishment"] = rep;
   j["appraisal"] = {{"prospect", std::string(to_string(c.appraisal.prospect))},
+                    {"compound", std::string(to_string(c.appraisal.compound))},
                     {"surprise_threshold", c.appraisal.surprise_threshold}};
   j["learning"] = {{"outcomes", c.learn_outcomes}, {"prior_count", c.learning_prior}, {"liking_rate", c.liking_rate}};
   Json l = Json::object();
@@ -346,6 +353,9 @@ std::string timeline_line(const StepRecord& r) {
   Json esv = Json::object();
   for (std::size_t k = 0; k < 6; ++k) esv[std::string(kBasicEmotionNames[k])] = r.basic[k];
   j["esv"] = esv;
+  Json shown = Json::object();
+  for (std::size_t k = 0; k < 6; ++k) shown[std::string(kBasicEmotionNames[k])] = r.shown[k];
+  j["shown"] = shown;
   Json l = Json::object();
   for (const auto& [k, v] : r.liking) l[k] = v;
   j["liking"] = l;

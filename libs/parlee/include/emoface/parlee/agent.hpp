@@ -88,7 +88,8 @@ struct StepRecord {
   std::vector<bool> goal_active;          ///< false: a dormant replenishment goal (§5.5.4)
   EmotionVector impulse{};                ///< summed impulses of the step
   EmotionVector emotions{};               ///< emotion state after decay + update
-  std::array<double, 6> basic{};          ///< basic_emotions(): sadness … surprise
+  std::array<double, 6> basic{};          ///< basic_emotions(): sadness … surprise (felt)
+  std::array<double, 6> shown{};          ///< revealed_emotions(basic): what the display shows
   std::map<std::string, double> liking;
   std::string state;                      ///< facts after the step
   std::string skipped;                    ///< why the event was skipped (DisallowedEvent::Skip)

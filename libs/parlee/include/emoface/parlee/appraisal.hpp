@@ -53,7 +53,18 @@ enum class ProspectMode : std::uint8_t {
 std::string_view to_string(ProspectMode m);
 ProspectMode prospect_mode_from_string(std::string_view s);  ///< throws InvalidInput
 
+/// When the compound emotions Anger, Gratitude, Gratification and Remorse arise.
+enum class CompoundRule : std::uint8_t {
+  Impact,     ///< §5.6.2: any (un)desirable action of another agent / of oneself
+  Standards,  ///< Table 5.2 (OCC): Anger = Distress + Reproach, Gratitude = Joy + Appreciation,
+              ///< Gratification = Joy + Pride, Remorse = Distress + Self-reproach: only when the
+              ///< action's praiseworthiness is known and of the right sign; intensity as §5.6.2
+};
+std::string_view to_string(CompoundRule r);
+CompoundRule compound_rule_from_string(std::string_view s);  ///< throws InvalidInput
+
 struct AppraisalOptions {
+  CompoundRule compound = CompoundRule::Impact;     ///< Table 5.2 vs §5.6.2 for Anger & co.
   ProspectMode prospect = ProspectMode::SignedSum;  ///< §5.6.2 combination of Hope/Fear over goals
   double prospect_pivot = 0.5;      ///< Hope if P(goal) > pivot, Fear if below (§5.6.2), (0,1)
   double surprise_threshold = 0.5;  ///< Surprise = threshold − P(event) if P(event) < threshold, (0,1]

@@ -140,4 +140,10 @@ inline constexpr std::array<std::string_view, 6> kBasicEmotionNames{"sadness", "
 /// docs/parlee.md, "Mapping to the six basic emotions". Result in [0,1]^6, order above.
 std::array<double, 6> basic_emotions(const EmotionVector& e, const EmotionParams& params);
 
+/// §5.6.5 "The value of revealingLevel is used in the emotion displaying component": how much of
+/// the felt basic emotions shows, read as a power like the other §5.6.5 modifiers:
+/// shown_i = felt_i^(1.5 − revealingLevel). Neutral (0.5) shows what is felt, open (1) shows more
+/// (felt^0.5), secretive (0) less (felt^1.5); 0 and 1 stay fixed, the order of the six is kept.
+std::array<double, 6> revealed_emotions(const std::array<double, 6>& felt, const Personality& p);
+
 }  // namespace emoface::parlee
