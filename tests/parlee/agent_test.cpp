@@ -395,3 +395,39 @@ TEST(Agent, ReplenishmentGoalAppearsWithHungerAndGoesWhenFed) {
   EXPECT_EQ(need_from_string(to_string(Need::Pain)), Need::Pain);
   EXPECT_THROW(need_from_string("boredom"), emoface::InvalidInput);
 }
+
+// §5.6.2 Desire-other emotions in a shipped scenario: two supporters of opposite teams watch the
+// §7.4 match (data/parlee/rivals.problem). The for-team supporter dislikes the other (liking −0.8):
+// resentment when the against team scores (12'), gloating when it concedes (30'); the against-team
+// supporter likes the first (+0.8): sorry-for at 12' and 80', happy-for at the lead (40.5').
+TEST(Agent, TwoSupportersFeelForEachOther) {
+  const Domain d(read_domain_files({kData + "football.domain", kData + "rivals.problem"}));
+  auto run_fan = [&](const std::string& name) {
+    Agent a(d, read_agent_file(kData + "agents/" + name + ".json"));
+    std::map<double, StepRecord> at;
+    for (const auto& e : read_events_file(kData + "match.ndjson")) {
+      StepRecord r = a.step(e);
+      EXPECT_TRUE(r.skipped.empty()) << name << " " << e.time << ": " << r.skipped;
+      at[e.time] = std::move(r);
+    }
+    return at;
+  };
+  const auto fan_for = run_fan("fan_for"), fan_against = run_fan("fan_against");
+  auto E = [](const StepRecord& r, Emotion e) { return r.emotions[index(e)]; };
+  auto I = [](const StepRecord& r, Emotion e) { return r.impulse[index(e)]; };
+  // the for-team supporter
+  EXPECT_GT(I(fan_for.at(12), Emotion::Resentment), 0.2);  // the rival's joy at the against goal
+  EXPECT_LT(I(fan_for.at(12), Emotion::Gloating), 1e-3);
+  EXPECT_GT(I(fan_for.at(30), Emotion::Gloating), 0.2);    // the rival's distress at the equaliser
+  // (tiny amounts come from the liking toward the against team itself, which §5.6.1 updates)
+  EXPECT_LT(E(fan_for.at(30), Emotion::HappyFor) + E(fan_for.at(30), Emotion::SorryFor), 1e-3);
+  // the against-team supporter
+  EXPECT_GT(I(fan_against.at(12), Emotion::SorryFor), 0.1);
+  EXPECT_GT(I(fan_against.at(40.5), Emotion::HappyFor), 0.2);
+  EXPECT_GT(I(fan_against.at(80), Emotion::SorryFor), 0.2);
+  EXPECT_LT(E(fan_against.at(80), Emotion::Resentment) + E(fan_against.at(80), Emotion::Gloating), 1e-3);
+  // and each feels its own team's goals the other way round
+  EXPECT_GT(fan_for.at(40.5).basic[kHappy], 0.5);
+  EXPECT_GT(fan_against.at(40.5).basic[kSad], 0.5);
+  EXPECT_GT(fan_against.at(12).basic[kHappy], 0.5);
+}

@@ -64,7 +64,7 @@ TEST(AgentFile, RoundTrip) {
 }
 
 TEST(AgentFile, ShippedFilesParse) {
-  for (const char* f : {"neutral", "pessimistic", "realistic", "sensitive", "bread_neutral", "bread_optimistic",
+  for (const char* f : {"neutral", "pessimistic", "realistic", "sensitive", "fan_for", "fan_against", "bread_neutral", "bread_optimistic",
                         "bread_sensitive"}) {
     const AgentConfig c = read_agent_file(kData + "agents/" + f + ".json");
     EXPECT_EQ(c.name, f);

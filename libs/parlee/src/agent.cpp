@@ -272,6 +272,25 @@ std::string Agent::outcome_problem(std::size_t a, const std::string& spec) const
   return "action " + domain_->action_text(a) + " has no outcome '" + spec + "' (outcomes:" + labels + ")";
 }
 
+// The script reports only what matters: other agents on turn that the event does not name (a
+// second supporter, whose watching changes nothing) pass unobserved, and so does the agent itself
+// if it has nothing to do, provided the event then fits. Otherwise nothing changes (the event is
+// then skipped or rejected by the caller).
+void Agent::pass_unreported(const Event& event, StepRecord& rec) {
+  State s = state_;
+  std::vector<int> passed;
+  auto fits = [&](const State& at) { return domain_->find_action(event.action, domain_->applicable_actions(at)) >= 0; };
+  while (passed.size() < domain_->agent_count() && !fits(s)) {
+    const int who = domain_->turn(s);
+    if (who == self_ && !domain_->applicable_actions(s).empty()) return;  // the agent acts itself
+    passed.push_back(who);
+    s = domain_->pass_turn(s);
+  }
+  if (!fits(s)) return;
+  state_ = s;
+  for (int who : passed) rec.actions.push_back({domain_->spec().agents[static_cast<std::size_t>(who)], "pass", "", 1.0, ""});
+}
+
 void Agent::self_act(StepRecord& rec, EmotionVector& impulse) { act(std::nullopt, "", rec, impulse); }
 
 StepRecord Agent::step(const Event& event) {
@@ -292,6 +311,7 @@ StepRecord Agent::step(const Event& event) {
     return is_pass ? -1 : domain_->find_action(event.action, domain_->applicable_actions(state_));
   };
   if (domain_->turn(state_) == self_ && domain_->agent_count() > 1 && find() < 0) self_act(rec, impulse);
+  if (!is_pass && find() < 0) pass_unreported(event, rec);
   const int actor = domain_->turn(state_);
   if (is_pass) {
     state_ = domain_->pass_turn(state_);

@@ -129,6 +129,7 @@ class Agent {
   void act(const std::optional<std::size_t>& forced, const std::string& outcome, StepRecord& rec,
            EmotionVector& impulse);
   void self_act(StepRecord& rec, EmotionVector& impulse);
+  void pass_unreported(const Event& event, StepRecord& rec);
   std::string outcome_problem(std::size_t action, const std::string& outcome) const;  ///< "" if ok
   std::vector<double> own_goal_probabilities(const State& s);
   GoalStatus confirm(std::size_t k, const State& s) const;
