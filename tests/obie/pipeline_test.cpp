@@ -289,6 +289,7 @@ TEST(Pipeline, RejectsBadOptions) {
   bad([](ObieOptions& o) { o.threads = -1; });
   bad([](ObieOptions& o) { o.display.onset = 0; });
   bad([](ObieOptions& o) { o.display.reaction_gain = 0.5; });
+  bad([](ObieOptions& o) { o.display.smile_outranks_speech = -0.1; });
   bad([](ObieOptions& o) { o.time.seconds_per_minute = -1; });
   bad([](ObieOptions& o) { o.utterances.refractory = 0; });
   bad([](ObieOptions& o) { o.voice.rate = 10; });
@@ -326,6 +327,14 @@ TEST(Displays, HandBuiltTimeline) {
   EXPECT_DOUBLE_EQ(d[3].intensities[3], 1.0);
   EXPECT_DOUBLE_EQ(d[3].timing.end, 12.15 + 0.8);
   EXPECT_DOUBLE_EQ(d[3].timing.onset, 0.4);
+  // §4.1: only a display with happiness ≥ 0.9 outranks speech (priority 1); here none
+  for (const auto& item : d) EXPECT_EQ(item.priority, 0);
+  DisplayOptions happy = o;
+  happy.smile_outranks_speech = 0.6;  // the reaction shows happiness 0.6
+  const auto h = emotion_displays(rec, t, happy);
+  EXPECT_EQ(h[1].priority, 1);
+  EXPECT_EQ(h[2].priority, 1);
+  EXPECT_EQ(h[3].priority, 0);
   o.reactions = false;
   const auto plain = emotion_displays(rec, t, o);
   ASSERT_EQ(plain.size(), 2u);  // fear, then fear + happiness
@@ -374,6 +383,11 @@ TEST(Pipeline, KeyMomentsOfTheMatchShowTheThesisExpressions) {
   for (std::size_t e = 1; e < 6; ++e) EXPECT_LT(late.shown[e], late.shown[kSad]) << e;
   EXPECT_EQ(expression_text(late.shown).rfind("sadness", 0), 0u) << expression_text(late.shown);
   EXPECT_EQ(expression_text(kf(30).shown).rfind("happiness", 0), 0u) << expression_text(kf(30).shown);
+  // §4.1: the broad smile of the lead outranks speech ("Yes, yes, yes!")
+  bool outranks = false;
+  for (const auto& item : r.script.emotions)
+    if (item.timing.start <= goal.time && goal.time <= item.timing.end) outranks |= item.priority == 1;
+  EXPECT_TRUE(outranks);
 }
 
 }  // namespace

@@ -46,6 +46,7 @@ void DisplayOptions::validate() const {
   if (!(in(reaction_hold, 0, 60) && reaction_hold > 0)) throw InvalidInput("display: reaction_hold must be in (0, 60] s");
   if (!in(background_scale, 0, 1)) throw InvalidInput("display: background_scale must be in [0, 1]");
   if (!in(reaction_gain, 1, 4)) throw InvalidInput("display: reaction_gain must be in [1, 4]");
+  if (!in(smile_outranks_speech, 0, 2)) throw InvalidInput("display: smile_outranks_speech must be in [0, 2]");
 }
 
 void ObieOptions::validate() const {
@@ -165,6 +166,7 @@ std::vector<channels::EmotionItem> emotion_displays(const std::vector<parlee::St
     }
     channels::EmotionItem item;
     item.intensities = esv;
+    if (esv[1] >= options.smile_outranks_speech) item.priority = 1;  // §4.1, above speech (2)
     item.timing.start = start;
     item.timing.end = next + options.offset;
     item.timing.offset = options.offset;

@@ -54,6 +54,10 @@ struct DisplayOptions {
   double reaction_hold = 3.0;    ///< s, (0, 60]
   double background_scale = 0.0; ///< [0, 1]
   double reaction_gain = 1.5;    ///< risen emotions are shown ×gain (clamped to 1) during the reaction, [1, 4]
+  /// §4.1 "the smile may also have higher priority than the visual speech when the subject is too
+  /// happy": a display showing happiness at or above this has priority 1 (above speech, 2), [0, 2];
+  /// above 1 = never.
+  double smile_outranks_speech = 0.9;
   void validate() const;
 };
 
