@@ -58,7 +58,9 @@ def measure(rows):
     return {
         "fear 2-39": mean("fear", 2, 39), "fear 41-79": mean("fear", 41, 79),
         "fear 81-90": mean("fear", 81, 90),
-        "hap. attack 34-40": mx("happiness", 34, 40.5), "hap. 30'": last[30]["esv"]["happiness"],
+        "P(win) 40'": last[40]["goals"]["win"]["p"],
+        "hap. 40'-39'": last[40]["esv"]["happiness"] - last[39]["esv"]["happiness"],
+        "hap. 30'": last[30]["esv"]["happiness"],
         "hap. 40.5'": last[40.5]["esv"]["happiness"], "hap. 90'": last[90]["esv"]["happiness"],
         "sur. 40'": max(last[40]["esv"]["surprise"], last[40.5]["esv"]["surprise"]),
         "#sur.>0.05": surprises, "sad. 80'": last[80]["esv"]["sadness"],

@@ -103,6 +103,19 @@ TEST_F(ParleeApp, RunSkipsOrRejectsEventsTheModelDoesNotAllow) {
             2);
 }
 
+// The §7.4 timeline is byte-identical across processes for the same agent seeds (the four Obies
+// and the two supporters; the per-second decay of the runtime branch does not change this).
+TEST_F(ParleeApp, MatchTimelineIsByteIdenticalAcrossRuns) {
+  const std::string args = "run --domain " + kData + "football.domain --problem " + kData + "rivals.problem" +
+                           " --agent " + kData + "agents/neutral.json --agent " + kData + "agents/sensitive.json" +
+                           " --agent " + kData + "agents/fan_against.json --events " + kData + "match.ndjson --out ";
+  ASSERT_EQ(run(args + path("a.ndjson")).code, 0);
+  ASSERT_EQ(run(args + path("b.ndjson")).code, 0);
+  const std::string a = slurp(path("a.ndjson"));
+  EXPECT_EQ(a, slurp(path("b.ndjson")));
+  EXPECT_GT(a.size(), 100000u);
+}
+
 TEST_F(ParleeApp, InteractListsActionsAndTheAgentResponds) {
   const std::string in = write("in.txt", "0\n7\nx\n-1\n");
   const auto r = run("interact --domain " + kData + "bread.domain --agent " + kData + "agents/bread_neutral.json", in);
