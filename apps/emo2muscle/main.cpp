@@ -19,7 +19,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Convert emotion intensities (ESV: sadness, happiness, anger, fear, disgust, surprise in "
                "[0,1]) to the 19 muscle contraction levels of thesis chapter 6."};
   std::string input = "-", output = "-", from, to, rules_path, mode = "auto", tie = "fixed",
-              transition = "crisp", missing = "no_contraction", on_error = "stop", shard_text = "0/1", fll_path;
+              transition = "crisp", missing = "no_contraction", on_error = "stop",
+              shard_text = "0/1", fll_path;
   bool sides = false, clamp = false, summary = false;
   std::uint64_t seed = 0;
   int precision = 6;
@@ -58,7 +59,9 @@ int main(int argc, char** argv) {
     options.seed = seed;
     const fx::RuleBase rules = rules_path.empty() ? fx::default_rule_base() : fx::read_rule_base(rules_path);
     if (!fll_path.empty()) {
-      emoface::core::write_file_atomic(fll_path, fx::to_fll(rules));
+      fx::FllOptions fll;
+      fll.missing_rule = options.missing_rule;
+      emoface::core::write_file_atomic(fll_path, fx::to_fll(rules, fll));
       return 0;
     }
     const fx::Engine engine(rules, options);

@@ -98,7 +98,9 @@ TEST_F(Fig47, PerMovementPriority) {
   // through render(): a funneler in channel 3 (priority 3) against the smile (channel 4); the smile
   // movement with its own priority 1 wins instead
   Timeline tl;
-  Movement smile{{{"zygomatic_major_l", 1.0}, {"frontalis_lateralis_l", 0.4}}, Timing{0, 8, 0.5, 0.5}, "smile"};
+  Movement smile{{{"zygomatic_major_l", 1.0}, {"frontalis_lateralis_l", 0.4}},
+                 Timing{0, 8, 0.5, 0.5},
+                 "smile"};
   Movement purse{{{"orbicularis_oris_funneler", 0.8}}, Timing{3, 4, 0.1, 0.1}, "purse"};
   tl.movements[static_cast<std::size_t>(Channel::EmotionDisplay)] = {smile};
   tl.movements[static_cast<std::size_t>(Channel::ConversationalSignal)] = {purse};

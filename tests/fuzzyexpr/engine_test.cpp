@@ -385,8 +385,8 @@ TEST(Measure, JumpAtTheModeSwitch) {
 }
 
 // Table 6.1 sadness → m3 (triangularis), printed "− − − m b" with the caption "−: no contraction".
-// Default (NoContraction): the '−' cells are rules to the lowest output set, whose centroid is 0, so
-// m3 is 0 up to where High starts and then rises continuously; NoRule: m3 jumps 0 → 0.5 there.
+// Default (NoContraction): the '−' cells are rules to the lowest output set, whose centroid is 0,
+// so m3 is 0 up to where High starts and then rises continuously; NoRule: m3 jumps 0 → 0.5 there.
 TEST(Measure, SadnessTriangularisStepUnderBothReadings) {
   EXPECT_EQ(ExpressionOptions{}.missing_rule, MissingRule::NoContraction);
   ExpressionOptions no_rule;
@@ -404,8 +404,10 @@ TEST(Measure, SadnessTriangularisStepUnderBothReadings) {
   };
   double at_c = 0, at_r = 0;
   const double step_c = largest_step(contraction, at_c), step_r = largest_step(rule, at_r);
-  std::printf("measured: sadness -> m3 largest step (1e-5 grid): no_contraction %.4f, no_rule %.4f at %.5f\n",
-              step_c, step_r, at_r);
+  std::printf(
+      "measured: sadness -> m3 largest step (1e-5 grid): no_contraction %.4f, no_rule %.4f at "
+      "%.5f\n",
+      step_c, step_r, at_r);
   for (double x : {0.0, 0.25, 0.5, 0.6, 0.7, 0.75, 0.875, 1.0})
     std::printf("measured: sadness %.3f -> m3 no_contraction %.4f, no_rule %.4f\n", x,
                 contraction.single(Emotion::Sadness, x)[m3], rule.single(Emotion::Sadness, x)[m3]);
@@ -413,7 +415,8 @@ TEST(Measure, SadnessTriangularisStepUnderBothReadings) {
   EXPECT_LT(step_c, 0.01);         // continuous under "no contraction"
   EXPECT_EQ(contraction.single(Emotion::Sadness, 0.25)[m3], 0.0);  // Low: no contraction either way
   EXPECT_EQ(rule.single(Emotion::Sadness, 0.25)[m3], 0.0);
-  EXPECT_NEAR(contraction.single(Emotion::Sadness, 1.0)[m3], rule.single(Emotion::Sadness, 1.0)[m3], 1e-12);
+  EXPECT_NEAR(contraction.single(Emotion::Sadness, 1.0)[m3], rule.single(Emotion::Sadness, 1.0)[m3],
+              1e-12);
 }
 
 // Non-monotone steps ("bumps") and discontinuities of each single-mode row as the intensity rises.

@@ -157,7 +157,8 @@ TEST(Pipeline, UtterancesAreSpokenInTheLipChannel) {
   for (const auto& u : r.utterances) {
     // the rule really fired: the emotion is at or above its threshold at that step
     for (const auto& rule : set.rules)
-      if (rule.emotion == u.emotion) EXPECT_GE(r.timeline[u.step].shown[esv_index(u.emotion)], rule.threshold);
+      if (rule.emotion == u.emotion)
+        EXPECT_GE(r.timeline[u.step].shown[esv_index(u.emotion)], rule.threshold);
     // lip segments (not silence) start within the utterance's first second …
     bool lip = false;
     for (const auto& seg : r.head.timeline.lip)
@@ -363,7 +364,8 @@ TEST(Pipeline, KeyMomentsOfTheMatchShowTheThesisExpressions) {
   o.speech = false;
   o.render_frames = false;
   o.gltf_fps = 0;
-  const ObieResult r = run_obie(match, parlee::read_agent_file(kAgent), face(), o, {}, nullptr, file);
+  const ObieResult r =
+      run_obie(match, parlee::read_agent_file(kAgent), face(), o, {}, nullptr, file);
   ASSERT_EQ(r.key_frames.size(), 4u);
   auto kf = [&](double minute) {
     for (const auto& k : r.key_frames)
@@ -378,15 +380,18 @@ TEST(Pipeline, KeyMomentsOfTheMatchShowTheThesisExpressions) {
   }
   EXPECT_GT(goal.shown[kHappy], 0.9);
   EXPECT_GT(goal.shown[kSurprise], 0.5);
-  EXPECT_EQ(expression_text(goal.shown).rfind("happiness 1.00 + surprise", 0), 0u) << expression_text(goal.shown);
+  EXPECT_EQ(expression_text(goal.shown).rfind("happiness 1.00 + surprise", 0), 0u)
+      << expression_text(goal.shown);
   const auto late = kf(80);
   for (std::size_t e = 1; e < 6; ++e) EXPECT_LT(late.shown[e], late.shown[kSad]) << e;
   EXPECT_EQ(expression_text(late.shown).rfind("sadness", 0), 0u) << expression_text(late.shown);
-  EXPECT_EQ(expression_text(kf(30).shown).rfind("happiness", 0), 0u) << expression_text(kf(30).shown);
+  EXPECT_EQ(expression_text(kf(30).shown).rfind("happiness", 0), 0u)
+      << expression_text(kf(30).shown);
   // §4.1: the broad smile of the lead outranks speech ("Yes, yes, yes!")
   bool outranks = false;
   for (const auto& item : r.script.emotions)
-    if (item.timing.start <= goal.time && goal.time <= item.timing.end) outranks |= item.priority == 1;
+    if (item.timing.start <= goal.time && goal.time <= item.timing.end)
+      outranks |= item.priority == 1;
   EXPECT_TRUE(outranks);
 }
 

@@ -1,14 +1,14 @@
 // The Obie scenario (thesis §7.4) and the bread illustration (§5.9) end to end.
+#include "emoface/parlee/agent.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "emoface/core/errors.hpp"
-#include "emoface/parlee/agent.hpp"
 #include "emoface/parlee/io.hpp"
 #include "naive_planner.hpp"
-
-#include <nlohmann/json.hpp>
 
 using namespace emoface::parlee;
 
@@ -163,7 +163,8 @@ TEST(Agent, DisallowedEventsAreReportedAndSkipped) {
       Event bad = events[k - 1];
       bad.action = "(shot oteam)";
       const StepRecord r = noisy.step(bad);
-      EXPECT_NE(r.skipped.find("'(shot oteam)' is not applicable; applicable:"), std::string::npos) << r.skipped;
+      EXPECT_NE(r.skipped.find("'(shot oteam)' is not applicable; applicable:"), std::string::npos)
+          << r.skipped;
       EXPECT_NE(timeline_line(r).find("\"skipped\""), std::string::npos);
       Event outcome = events[k];  // applicable, but no such outcome
       outcome.time = events[k - 1].time;
@@ -254,7 +255,8 @@ TEST(Agent, ObieHopeAndFearAtZeroZeroByHand) {
   ASSERT_GE(win, 0);
   ASSERT_GE(not_lose, 0);
   const double p_win = planner.goal_probability(static_cast<std::size_t>(win), d.initial_state());
-  const double p_nl = planner.goal_probability(static_cast<std::size_t>(not_lose), d.initial_state());
+  const double p_nl =
+      planner.goal_probability(static_cast<std::size_t>(not_lose), d.initial_state());
   EXPECT_EQ(p_win, 0.0);
   EXPECT_EQ(p_nl, 1.0);
   AppraisalInput in;
@@ -295,9 +297,12 @@ TEST(Agent, AgainstTeamIsPredictedByItsGoal) {
   EXPECT_NEAR(uniform[shot], 1.0 / static_cast<double>(acts.size()), 1e-12);
   // a 1-level against team looks one action ahead: only the shot can make it lead → P = 1
   EXPECT_NEAR(model[shot], 1.0, 1e-12);
-  // so the goal at 12' is expected: P(event) = 0.25 (the shot's goal outcome), no surprise
+  // Obie's own model is (H − 1 = 6)-level: P(event) of the goal = P(shot)·0.25 (the shot's goal
+  // outcome; no other action reaches that state), above the uniform 0.25/n
+  const auto deep = obie.planner().action_distribution(s, 6);
   const StepRecord r = obie.step(events[k]);
-  EXPECT_GT(r.actions.front().p_event, 0.06);
+  EXPECT_NEAR(r.actions.front().p_event, deep[shot] * 0.25, 1e-12);
+  EXPECT_GT(r.actions.front().p_event, 0.25 / static_cast<double>(acts.size()));
 }
 
 TEST_F(Obie, HappinessRisesWithTheAttackAndNotAtTheDrawWhistle) {
@@ -418,14 +423,15 @@ TEST(Agent, TwoSupportersFeelForEachOther) {
   // the for-team supporter
   EXPECT_GT(I(fan_for.at(12), Emotion::Resentment), 0.2);  // the rival's joy at the against goal
   EXPECT_LT(I(fan_for.at(12), Emotion::Gloating), 1e-3);
-  EXPECT_GT(I(fan_for.at(30), Emotion::Gloating), 0.2);    // the rival's distress at the equaliser
+  EXPECT_GT(I(fan_for.at(30), Emotion::Gloating), 0.2);  // the rival's distress at the equaliser
   // (tiny amounts come from the liking toward the against team itself, which §5.6.1 updates)
   EXPECT_LT(E(fan_for.at(30), Emotion::HappyFor) + E(fan_for.at(30), Emotion::SorryFor), 1e-3);
   // the against-team supporter
   EXPECT_GT(I(fan_against.at(12), Emotion::SorryFor), 0.1);
   EXPECT_GT(I(fan_against.at(40.5), Emotion::HappyFor), 0.2);
   EXPECT_GT(I(fan_against.at(80), Emotion::SorryFor), 0.2);
-  EXPECT_LT(E(fan_against.at(80), Emotion::Resentment) + E(fan_against.at(80), Emotion::Gloating), 1e-3);
+  EXPECT_LT(E(fan_against.at(80), Emotion::Resentment) + E(fan_against.at(80), Emotion::Gloating),
+            1e-3);
   // and each feels its own team's goals the other way round
   EXPECT_GT(fan_for.at(40.5).basic[kHappy], 0.5);
   EXPECT_GT(fan_against.at(40.5).basic[kSad], 0.5);

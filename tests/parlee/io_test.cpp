@@ -64,8 +64,8 @@ TEST(AgentFile, RoundTrip) {
 }
 
 TEST(AgentFile, ShippedFilesParse) {
-  for (const char* f : {"neutral", "pessimistic", "realistic", "sensitive", "fan_for", "fan_against", "bread_neutral", "bread_optimistic",
-                        "bread_sensitive"}) {
+  for (const char* f : {"neutral", "pessimistic", "realistic", "sensitive", "fan_for",
+                        "fan_against", "bread_neutral", "bread_optimistic", "bread_sensitive"}) {
     const AgentConfig c = read_agent_file(kData + "agents/" + f + ".json");
     EXPECT_EQ(c.name, f);
     EXPECT_NO_THROW(c.validate());
@@ -90,16 +90,20 @@ TEST(AgentFile, BadInputNamesThePointer) {
   EXPECT_EQ(pointer_of(head + R"("body_events":{"eat":"nap"}})"), "/body_events/eat");
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"prospect":"clamp"}})"), "/appraisal/prospect");
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"prospect":3}})"), "/appraisal/prospect");
-  EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":0}})"), "/appraisal/surprise_threshold");
-  EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":1.5}})"), "/appraisal/surprise_threshold");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":0}})"),
+            "/appraisal/surprise_threshold");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":1.5}})"),
+            "/appraisal/surprise_threshold");
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"pivot":0.5}})"), "/appraisal/pivot");
   EXPECT_EQ(pointer_of(head + R"("on_disallowed":"ignore"})"), "/on_disallowed");
   EXPECT_EQ(pointer_of(head + R"("appraisal":{"compound":"occ"}})"), "/appraisal/compound");
   EXPECT_EQ(pointer_of(head + R"("on_disallowed":true})"), "/on_disallowed");
   EXPECT_EQ(pointer_of(head + R"("replenishment":{}})"), "/replenishment");
   EXPECT_EQ(pointer_of(head + R"("replenishment":[{"need":"hunger"}]})"), "/replenishment/0");
-  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","need":"boredom"}]})"), "/replenishment/0/need");
-  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","threshold":0}]})"), "/replenishment/0/threshold");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","need":"boredom"}]})"),
+            "/replenishment/0/need");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","threshold":0}]})"),
+            "/replenishment/0/threshold");
   EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","x":1}]})"), "/replenishment/0/x");
   EXPECT_NE(pointer_of(R"({"format":"emoface.parlee_agent","version":"2.0"})"), "");
   EXPECT_NE(pointer_of(R"({"format":"emoface.rig","version":"1.0"})"), "");

@@ -50,7 +50,8 @@ struct Naive {
     for (auto a : acts) {
       double v = 0.0;
       for (std::size_t o = 0; o < d.actions()[a].outcomes.size(); ++o)
-        v += d.actions()[a].outcomes[o].probability * p_goal(static_cast<std::size_t>(g), d.apply(s, a, o), L - 1, L - 1);
+        v += d.actions()[a].outcomes[o].probability *
+             p_goal(static_cast<std::size_t>(g), d.apply(s, a, o), L - 1, L - 1);
       r.push_back(v);
       sum += v;
     }
@@ -59,7 +60,6 @@ struct Naive {
     return w;
   }
 };
-
 
 /// `Naive` behind the GoalPlanner interface (thesis §5.5: "any planner that can produce the same
 /// output would fit into ParleE").

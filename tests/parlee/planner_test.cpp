@@ -1,13 +1,14 @@
 // Planner probabilities against values computed independently: a hand-coded model of the rocket
 // domain explored by exhaustive enumeration of every action and outcome sequence, hand-computed
 // values for the two-agent variant, and a memo-free recursion of the §5.7.4 formulas for d = 0,1,2.
+#include "emoface/parlee/planner.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <functional>
 
 #include "emoface/parlee/domain.hpp"
-#include "emoface/parlee/planner.hpp"
 #include "naive_planner.hpp"
 
 using namespace emoface::parlee;

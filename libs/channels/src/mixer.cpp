@@ -50,8 +50,8 @@ void MixOptions::validate() const {
 namespace {
 
 // §4.6 for one parameter track v (F on entry, aF on exit) given its inhibited frames.
-void apply_inhibition(double* v, const std::vector<char>& inhibited, std::size_t frames,
-                      double fps, const MixOptions& options, std::vector<double>& last,
+void apply_inhibition(double* v, const std::vector<char>& inhibited, std::size_t frames, double fps,
+                      const MixOptions& options, std::vector<double>& last,
                       std::vector<double>& next) {
   const double inf = std::numeric_limits<double>::infinity();
   double t_last = -inf;
@@ -72,7 +72,7 @@ void apply_inhibition(double* v, const std::vector<char>& inhibited, std::size_t
     const double t = static_cast<double>(f) / fps;
     double cap = inf;
     if (last[f] > -inf) cap = std::min(cap, phi_plus(t - last[f], options.dmin_plus));  // Ψ←
-    if (next[f] < inf && next[f] - t < options.dmin_minus)                             // Ψ→
+    if (next[f] < inf && next[f] - t < options.dmin_minus)                              // Ψ→
       cap = std::min(cap, phi_minus(options.dmin_minus - (next[f] - t), options.dmin_minus));
     v[f] = std::min(v[f], cap);
   }

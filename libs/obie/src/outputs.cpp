@@ -97,7 +97,10 @@ std::string format_summary(const ObieResult& result, const MatchScript& match, b
   doc["utterances"] = utt;
   nlohmann::ordered_json km = nlohmann::ordered_json::array();
   for (const auto& k : result.key_frames)
-    km.push_back({{"minute", k.moment.minute}, {"label", k.moment.label}, {"time", round6(k.time)}, {"frame", k.frame},
+    km.push_back({{"minute", k.moment.minute},
+                  {"label", k.moment.label},
+                  {"time", round6(k.time)},
+                  {"frame", k.frame},
                   {"shows", expression_text(k.shown)}});
   doc["key_moments"] = km;
   doc["fps"] = result.head.tracks.fps;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <thread>
 
@@ -46,7 +46,8 @@ void DisplayOptions::validate() const {
   if (!(in(reaction_hold, 0, 60) && reaction_hold > 0)) throw InvalidInput("display: reaction_hold must be in (0, 60] s");
   if (!in(background_scale, 0, 1)) throw InvalidInput("display: background_scale must be in [0, 1]");
   if (!in(reaction_gain, 1, 4)) throw InvalidInput("display: reaction_gain must be in [1, 4]");
-  if (!in(smile_outranks_speech, 0, 2)) throw InvalidInput("display: smile_outranks_speech must be in [0, 2]");
+  if (!in(smile_outranks_speech, 0, 2))
+    throw InvalidInput("display: smile_outranks_speech must be in [0, 2]");
 }
 
 void ObieOptions::validate() const {
@@ -121,7 +122,8 @@ std::vector<channels::EmotionItem> emotion_displays(const std::vector<parlee::St
     std::array<double, 6> shown = esv;
     if (any)
       for (std::size_t e = 0; e < 6; ++e)
-        shown[e] = t < fresh_until[e] ? std::min(1.0, esv[e] * options.reaction_gain) : esv[e] * options.background_scale;
+        shown[e] = t < fresh_until[e] ? std::min(1.0, esv[e] * options.reaction_gain)
+                                      : esv[e] * options.background_scale;
     return shown;
   };
   std::array<double, 6> prev{};
@@ -194,7 +196,8 @@ std::string expression_text(const std::array<double, 6>& shown) {
                   esv[static_cast<std::size_t>(e)]);
     return std::string(buf);
   };
-  if (sel.mode == fuzzyexpr::ExpressionMode::Blend && sel.pair_has_rules && esv[static_cast<std::size_t>(sel.second)] > 0.0)
+  if (sel.mode == fuzzyexpr::ExpressionMode::Blend && sel.pair_has_rules &&
+      esv[static_cast<std::size_t>(sel.second)] > 0.0)
     return part(sel.first) + " + " + part(sel.second);
   return part(sel.first);
 }

@@ -17,7 +17,9 @@ std::string effects_text(const Domain& d, const GroundOutcome& o) {
 
 }  // namespace
 
-std::string_view to_string(DisallowedEvent d) { return d == DisallowedEvent::Skip ? "skip" : "stop"; }
+std::string_view to_string(DisallowedEvent d) {
+  return d == DisallowedEvent::Skip ? "skip" : "stop";
+}
 
 DisallowedEvent disallowed_event_from_string(std::string_view s) {
   if (s == "skip") return DisallowedEvent::Skip;
@@ -80,7 +82,8 @@ Agent::Agent(const Domain& domain, AgentConfig config, const PlannerFactory& mak
   p_goal_ = own_goal_probabilities(state_);
   status_.assign(own_goals_.size(), GoalStatus::Unconfirmed);
   active_.assign(own_goals_.size(), true);
-  for (const auto& [k, r] : replenish_) active_[k] = level(config_.motivation, r.need) >= r.threshold;
+  for (const auto& [k, r] : replenish_)
+    active_[k] = level(config_.motivation, r.need) >= r.threshold;
   prev_hope_.assign(own_goals_.size(), 0.0);
   prev_fear_.assign(own_goals_.size(), 0.0);
 }
@@ -223,7 +226,8 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
     for (std::size_t g = 0; g < domain_->goals().size(); ++g) {
       if (domain_->goals()[g].agent != static_cast<int>(b)) continue;
       other.importance.push_back(domain_->goals()[g].importance);
-      other.impact.push_back(planner_->goal_probability(g, after, -1) - planner_->goal_probability(g, s, -1));
+      other.impact.push_back(planner_->goal_probability(g, after, -1) -
+                             planner_->goal_probability(g, s, -1));
     }
     if (!other.impact.empty()) in.others.push_back(std::move(other));
   }
@@ -269,7 +273,8 @@ std::string Agent::outcome_problem(std::size_t a, const std::string& spec) const
     if (ga.outcomes[k].label == spec || std::to_string(k + 1) == spec) return {};
   std::string labels;
   for (const auto& oc : ga.outcomes) labels += " " + oc.label;
-  return "action " + domain_->action_text(a) + " has no outcome '" + spec + "' (outcomes:" + labels + ")";
+  return "action " + domain_->action_text(a) + " has no outcome '" + spec +
+         "' (outcomes:" + labels + ")";
 }
 
 // The script reports only what matters: other agents on turn that the event does not name (a
@@ -279,7 +284,9 @@ std::string Agent::outcome_problem(std::size_t a, const std::string& spec) const
 void Agent::pass_unreported(const Event& event, StepRecord& rec) {
   State s = state_;
   std::vector<int> passed;
-  auto fits = [&](const State& at) { return domain_->find_action(event.action, domain_->applicable_actions(at)) >= 0; };
+  auto fits = [&](const State& at) {
+    return domain_->find_action(event.action, domain_->applicable_actions(at)) >= 0;
+  };
   while (passed.size() < domain_->agent_count() && !fits(s)) {
     const int who = domain_->turn(s);
     if (who == self_ && !domain_->applicable_actions(s).empty()) return;  // the agent acts itself
@@ -288,7 +295,9 @@ void Agent::pass_unreported(const Event& event, StepRecord& rec) {
   }
   if (!fits(s)) return;
   state_ = s;
-  for (int who : passed) rec.actions.push_back({domain_->spec().agents[static_cast<std::size_t>(who)], "pass", "", 1.0, ""});
+  for (int who : passed)
+    rec.actions.push_back(
+        {domain_->spec().agents[static_cast<std::size_t>(who)], "pass", "", 1.0, ""});
 }
 
 void Agent::self_act(StepRecord& rec, EmotionVector& impulse) { act(std::nullopt, "", rec, impulse); }
@@ -323,8 +332,10 @@ StepRecord Agent::step(const Event& event) {
       std::string list;
       for (const auto& t : applicable()) list += " " + t;
       why = "event at time " + std::to_string(event.time) + ": '" + event.action + "' is " +
-            (a == -2 ? "ambiguous" : "not applicable") + "; applicable:" + (list.empty() ? " none" : list);
-    } else if (auto bad = outcome_problem(static_cast<std::size_t>(a), event.outcome); !bad.empty()) {
+            (a == -2 ? "ambiguous" : "not applicable") +
+            "; applicable:" + (list.empty() ? " none" : list);
+    } else if (auto bad = outcome_problem(static_cast<std::size_t>(a), event.outcome);
+               !bad.empty()) {
       why = "event at time " + std::to_string(event.time) + ": " + bad;
     }
     if (!why.empty() && config_.on_disallowed == DisallowedEvent::Stop) throw InvalidInput(why);

@@ -47,7 +47,9 @@ Actor actor_from_string(std::string_view s) {
   throw InvalidInput("unknown actor '" + std::string(s) + "'");
 }
 
-std::string_view to_string(CompoundRule r) { return r == CompoundRule::Impact ? "impact" : "standards"; }
+std::string_view to_string(CompoundRule r) {
+  return r == CompoundRule::Impact ? "impact" : "standards";
+}
 
 CompoundRule compound_rule_from_string(std::string_view s) {
   if (s == "impact") return CompoundRule::Impact;
@@ -107,7 +109,8 @@ AppraisalResult appraise(const AppraisalInput& in, const Personality& pers, cons
       if (in.actor == Actor::Self && praised) add(Emotion::Gratification, impact * w * u_joy);
     } else if (impact < 0.0) {
       add(Emotion::Distress, -impact * w * u_sad);  // §5.6.2 Sadness
-      if (in.actor == Actor::Other && blamed) add(Emotion::Anger, -impact * w * u_joy);  // §5.6.2 Anger
+      if (in.actor == Actor::Other && blamed)
+        add(Emotion::Anger, -impact * w * u_joy);  // §5.6.2 Anger
       if (in.actor == Actor::Self && blamed) add(Emotion::Remorse, -impact * w * u_joy);
     }
     // §5.6.2 prospect term of this goal, Import·(P(goal) − 0.5), for unconfirmed goals only

@@ -81,7 +81,8 @@ std::array<double, 6> revealed_emotions(const std::array<double, 6>& felt, const
   const double power = 1.5 - p[Trait::RevealingLevel];  // thesis §5.6.5, read as a power
   std::array<double, 6> out{};
   for (std::size_t k = 0; k < 6; ++k) {
-    if (!(felt[k] >= 0.0 && felt[k] <= 1.0)) throw InvalidInput("revealed_emotions: intensities must be in [0,1]");
+    if (!(felt[k] >= 0.0 && felt[k] <= 1.0))
+      throw InvalidInput("revealed_emotions: intensities must be in [0,1]");
     out[k] = felt[k] <= 0.0 ? 0.0 : std::pow(felt[k], power);
   }
   return out;
@@ -213,10 +214,14 @@ std::string_view to_string(BodyEvent e) {
 
 std::string_view to_string(Need n) {
   switch (n) {
-    case Need::Hunger: return "hunger";
-    case Need::Fatigue: return "fatigue";
-    case Need::Thirst: return "thirst";
-    case Need::Pain: return "pain";
+    case Need::Hunger:
+      return "hunger";
+    case Need::Fatigue:
+      return "fatigue";
+    case Need::Thirst:
+      return "thirst";
+    case Need::Pain:
+      return "pain";
   }
   return "hunger";
 }
@@ -224,15 +229,20 @@ std::string_view to_string(Need n) {
 Need need_from_string(std::string_view s) {
   for (Need n : {Need::Hunger, Need::Fatigue, Need::Thirst, Need::Pain})
     if (to_string(n) == s) return n;
-  throw InvalidInput("unknown motivational variable '" + std::string(s) + "' (hunger, fatigue, thirst, pain)");
+  throw InvalidInput("unknown motivational variable '" + std::string(s) +
+                     "' (hunger, fatigue, thirst, pain)");
 }
 
 double level(const MotivationalState& m, Need n) {
   switch (n) {
-    case Need::Hunger: return m.hunger;
-    case Need::Fatigue: return m.fatigue;
-    case Need::Thirst: return m.thirst;
-    case Need::Pain: return m.pain;
+    case Need::Hunger:
+      return m.hunger;
+    case Need::Fatigue:
+      return m.fatigue;
+    case Need::Thirst:
+      return m.thirst;
+    case Need::Pain:
+      return m.pain;
   }
   return 0.0;
 }

@@ -155,15 +155,18 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
         ReplenishmentGoal g;
         for (const auto& [k, x] : e.items()) {
           const std::string p = pe + "/" + tok(k);
-          if (k == "goal") g.goal = r.string(x, p);
-          else if (k == "threshold") g.threshold = r.number(x, p, 1e-9, 1.0);
+          if (k == "goal")
+            g.goal = r.string(x, p);
+          else if (k == "threshold")
+            g.threshold = r.number(x, p, 1e-9, 1.0);
           else if (k == "need") {
             try {
               g.need = need_from_string(r.string(x, p));
             } catch (const InvalidInput& err) {
               r.fail(p, err.what());
             }
-          } else r.fail(p, "unknown field '" + k + "'");
+          } else
+            r.fail(p, "unknown field '" + k + "'");
         }
         if (g.goal.empty()) r.fail(pe, "needs a goal name");
         c.replenishment.push_back(g);
@@ -256,7 +259,8 @@ std::string write_agent(const AgentConfig& c) {
   j["on_disallowed"] = std::string(to_string(c.on_disallowed));
   Json rep = Json::array();
   for (const auto& g : c.replenishment)
-    rep.push_back({{"goal", g.goal}, {"need", std::string(to_string(g.need))}, {"threshold", g.threshold}});
+    rep.push_back(
+        {{"goal", g.goal}, {"need", std::string(to_string(g.need))}, {"threshold", g.threshold}});
   j["replenishment"] = rep;
   j["appraisal"] = {{"prospect", std::string(to_string(c.appraisal.prospect))},
                     {"compound", std::string(to_string(c.appraisal.compound))},

@@ -32,9 +32,9 @@ DisallowedEvent disallowed_event_from_string(std::string_view s);  ///< throws I
 /// not appraised); when the need rises past the threshold the goal appears (unconfirmed, with
 /// fresh hope/fear); when the need falls (the agent ate, drank, rested) it disappears again.
 struct ReplenishmentGoal {
-  std::string goal;          ///< name of one of the agent's goals in the domain
+  std::string goal;  ///< name of one of the agent's goals in the domain
   Need need = Need::Hunger;
-  double threshold = 0.5;    ///< the goal exists while level(need) ≥ threshold, (0,1]
+  double threshold = 0.5;  ///< the goal exists while level(need) ≥ threshold, (0,1]
 };
 
 struct AgentConfig {
@@ -54,7 +54,7 @@ struct AgentConfig {
   /// §5.5.4: operator name → what it does to the body: eat/drink/rest when the agent performs it,
   /// hit when anyone performs it (the agent is hit). Every own action also counts as `action`.
   std::map<std::string, BodyEvent> body_events;
-  std::vector<ReplenishmentGoal> replenishment;     ///< §5.5.4 goals created by motivational states
+  std::vector<ReplenishmentGoal> replenishment;  ///< §5.5.4 goals created by motivational states
   std::uint64_t seed = 1;            ///< own action choices and unspecified outcomes
   DisallowedEvent on_disallowed = DisallowedEvent::Skip;  ///< events the model does not allow
   void validate() const;
@@ -150,7 +150,7 @@ class Agent {
   std::vector<std::size_t> own_goals_;
   std::vector<double> p_goal_;
   std::vector<GoalStatus> status_;
-  std::vector<bool> active_;                        ///< per own goal
+  std::vector<bool> active_;                                          ///< per own goal
   std::vector<std::pair<std::size_t, ReplenishmentGoal>> replenish_;  ///< own goal index k, rule
   std::vector<double> prev_hope_, prev_fear_;
   std::map<std::string, double> liking_;

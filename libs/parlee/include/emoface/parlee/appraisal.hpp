@@ -87,9 +87,9 @@ struct AppraisalResult {
 ///   Joy      = Σ Impact·Import·(1−P'(event))^0.5 (Impact > 0); Distress with |Impact| and ^2
 ///   Hope     = max(0, S), Fear = max(0, −S), S = Σ_unconfirmed Import·(P'(goal) − 0.5)
 ///              (ProspectMode::SignedSum, as printed; PerGoal clamps each goal's term first)
-///   Gratitude/Anger (actor other), Gratification/Remorse (actor self): like Joy with |Impact|, ^0.5
-///   Satisfaction/Relief on success = previous Hope/Fear; Disappointment/FearsConfirmed on failure
-///   Pride/Shame (self), Appreciation/Reproach (other) = ±Praiseworthiness
+///   Gratitude/Anger (actor other), Gratification/Remorse (actor self): like Joy with |Impact|,
+///   ^0.5 Satisfaction/Relief on success = previous Hope/Fear; Disappointment/FearsConfirmed on
+///   failure Pride/Shame (self), Appreciation/Reproach (other) = ±Praiseworthiness
 ///   HappyFor/SorryFor (liking > 0), Resentment/Gloating (liking < 0) = |LL|·other's joy/distress,
 ///   times feelingFocus
 ///   Surprise = 0.5 − P'(event) if P'(event) < 0.5

@@ -73,7 +73,8 @@ class GoalPlanner {
 };
 
 /// Makes a planner for an agent's (copied) domain; the domain outlives the planner.
-using PlannerFactory = std::function<std::unique_ptr<GoalPlanner>(const Domain&, const PlanOptions&)>;
+using PlannerFactory =
+    std::function<std::unique_ptr<GoalPlanner>(const Domain&, const PlanOptions&)>;
 
 class Planner final : public GoalPlanner {
  public:
