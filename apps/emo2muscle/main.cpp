@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Convert emotion intensities (ESV: sadness, happiness, anger, fear, disgust, surprise in "
                "[0,1]) to the 19 muscle contraction levels of thesis chapter 6."};
   std::string input = "-", output = "-", from, to, rules_path, mode = "auto", tie = "fixed", weights,
-              transition = "crisp", missing = "no_rule", on_error = "stop", shard_text = "0/1", fll_path;
+              transition = "crisp", missing = "no_contraction", on_error = "stop", shard_text = "0/1",
+              fll_path;
   bool sides = false, clamp = false, summary = false;
   std::uint64_t seed = 0;
   int precision = 6;
@@ -38,7 +39,8 @@ int main(int argc, char** argv) {
   app.add_option("--tie-break", tie, "fixed|random choice among equal intensities (default fixed)");
   app.add_option("--seed", seed, "seed of --tie-break random (row r uses stream r)");
   app.add_option("--transition", transition, "crisp|smooth single/blend switch (default crisp)");
-  app.add_option("--missing-rule", missing, "no_rule|no_contraction reading of '-' cells");
+  app.add_option("--missing-rule", missing,
+                 "reading of '-' cells: no_contraction (default, Table 6.1 caption) or no_rule");
   app.add_option("--on-error", on_error, "stop|skip bad records (default stop: nothing written)");
   app.add_flag("--clamp", clamp, "clamp out-of-range intensities into [0,1] instead of failing");
   app.add_option("--shard", shard_text, "i/N: convert only records with index % N == i");
@@ -63,7 +65,9 @@ int main(int argc, char** argv) {
     options.seed = seed;
     const fx::RuleBase rules = rules_path.empty() ? fx::default_rule_base() : fx::read_rule_base(rules_path);
     if (!fll_path.empty()) {
-      emoface::core::write_file_atomic(fll_path, fx::to_fll(rules));
+      fx::FllOptions fll;
+      fll.missing_rule = options.missing_rule;
+      emoface::core::write_file_atomic(fll_path, fx::to_fll(rules, fll));
       return 0;
     }
     const fx::Engine engine(rules, options);

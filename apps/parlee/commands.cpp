@@ -101,11 +101,13 @@ int run_command(const RunArgs& a) {
   const Domain domain(read_domain_files(a.files));
   const std::vector<Event> events = read_events_file(a.events);
   cli::Output out(a.out);  // writes devices and FIFOs directly, regular files atomically
-  out.write(core::ndjson_header("parlee.timeline", {1, 0}));
+  out.write(core::ndjson_header("parlee.timeline", {1, 1}));  // 1.1: skipped, active, shown
   std::vector<std::string> names;
   std::vector<std::vector<StepRecord>> runs;
   for (const auto& file : a.agents) {
     AgentConfig config = read_agent_file(file);
+    if (a.horizon >= 0) config.planning.horizon = a.horizon;
+    if (a.depth >= -1) config.planning.model_depth = a.depth;
     Agent agent(domain, config);
     std::vector<StepRecord> run{agent.initial_record()};
     for (std::size_t i = 0; i < events.size(); ++i) {
@@ -114,6 +116,9 @@ int run_command(const RunArgs& a) {
       } catch (const InvalidInput& e) {
         throw FormatError(SourceLocation{a.events, "", i + 1, 0}, e.what());
       }
+      if (!run.back().skipped.empty())  // the agent's model does not allow it: reported, skipped
+        std::cerr << "parlee: warning: " << a.events << ":" << i + 1 << ": agent " << config.name
+                  << ": skipped: " << run.back().skipped << "\n";
     }
     for (const auto& r : run) {
       std::string line = timeline_line(r);

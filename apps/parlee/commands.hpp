@@ -22,6 +22,8 @@ struct RunArgs {
   std::string events;
   std::string out = "-";
   std::string plot_dir;
+  int horizon = -1;  ///< overrides every agent's planning horizon; -1 = keep
+  int depth = -2;    ///< overrides every agent's model depth; -2 = keep, -1 = H-1
 };
 int run_command(const RunArgs& args);
 

@@ -36,6 +36,10 @@ int main(int argc, char** argv) {
   r->add_option("--events", run.events, "events, NDJSON {time, action, outcome}")->required();
   r->add_option("--out", run.out, "timeline NDJSON ('-' = stdout)")->required();
   r->add_option("--plot", run.plot_dir, "write PNG charts of fear, happiness, surprise, sadness here");
+  r->add_option("--horizon", run.horizon, "override every agent's planning horizon H (turns)")
+      ->check(CLI::Range(0, 64));
+  r->add_option("--depth", run.depth, "override every agent's model depth d (-1 = H-1)")
+      ->check(CLI::Range(-1, 64));
 
   InteractArgs inter;
   auto* i = app.add_subcommand("interact", "§5.9: you act in the domain, the agent responds and feels");

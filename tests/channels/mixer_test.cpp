@@ -72,6 +72,55 @@ TEST_F(Fig47, PriorityDecidesWhoIsInhibited) {
   EXPECT_EQ(t.series("orbicularis_oris_funneler")[3500], 0.0);
 }
 
+// §4.1: "The smile may also have higher priority than the visual speech when the subject is too
+// happy": per-movement (per-frame) priority. Per-frame priorities equal to the channels' give the
+// plain result; the smile at priority 1 during 3–4 s inhibits the funneler instead.
+TEST_F(Fig47, PerMovementPriority) {
+  MixOptions o;
+  o.active_threshold = 0.01;
+  std::vector<ChannelSamples> same = channels;
+  same[0].frame_priority.assign(kFrames, 2);
+  same[1].frame_priority.assign(kFrames, 4);
+  std::vector<ChannelSamples> m0, m1;
+  const Tracks plain = mix(channels, params, kFps, kFrames, default_conflict_table(), o, &m0);
+  const Tracks also = mix(same, params, kFps, kFrames, default_conflict_table(), o, &m1);
+  EXPECT_EQ(plain.values, also.values);
+  EXPECT_EQ(m0[1].values, m1[1].values);
+  std::vector<ChannelSamples> happy = channels;
+  happy[1].frame_priority.assign(kFrames, 4);
+  for (std::size_t f = 3000; f <= 4000; ++f) happy[1].frame_priority[f] = 1;
+  std::vector<ChannelSamples> m2;
+  const Tracks t = mix(happy, params, kFps, kFrames, default_conflict_table(), o, &m2);
+  EXPECT_EQ(m2[1].values, channels[1].values);  // the smile is never inhibited
+  EXPECT_DOUBLE_EQ(t.series("zygomatic_major_l")[3500], 1.0);
+  for (std::size_t f = 3000; f <= 4000; ++f) ASSERT_EQ(m2[0].values[f], 0.0) << f;  // funneler
+  EXPECT_EQ(t.series("orbicularis_oris_funneler")[3500], 0.0);
+  // through render(): a funneler in channel 3 (priority 3) against the smile (channel 4); the smile
+  // movement with its own priority 1 wins instead
+  Timeline tl;
+  Movement smile{{{"zygomatic_major_l", 1.0}, {"frontalis_lateralis_l", 0.4}},
+                 Timing{0, 8, 0.5, 0.5},
+                 "smile"};
+  Movement purse{{{"orbicularis_oris_funneler", 0.8}}, Timing{3, 4, 0.1, 0.1}, "purse"};
+  tl.movements[static_cast<std::size_t>(Channel::EmotionDisplay)] = {smile};
+  tl.movements[static_cast<std::size_t>(Channel::ConversationalSignal)] = {purse};
+  RenderOptions ro;
+  ro.fps = kFps;
+  ro.parameters = params;
+  ro.mix = o;
+  const auto base = render(tl, default_viseme_set(), default_conflict_table(), ro);
+  EXPECT_EQ(base.series("zygomatic_major_l")[3500], 0.0);
+  EXPECT_NEAR(base.series("orbicularis_oris_funneler")[3500], 0.8, 1e-12);
+  tl.movements[static_cast<std::size_t>(Channel::EmotionDisplay)][0].priority = 1;
+  const auto raised = render(tl, default_viseme_set(), default_conflict_table(), ro);
+  EXPECT_DOUBLE_EQ(raised.series("zygomatic_major_l")[3500], 1.0);
+  EXPECT_EQ(raised.series("orbicularis_oris_funneler")[3500], 0.0);
+  tl.movements[static_cast<std::size_t>(Channel::EmotionDisplay)][0].priority = 101;
+  EXPECT_THROW(render(tl, default_viseme_set(), default_conflict_table(), ro), InvalidInput);
+  happy[0].frame_priority.assign(3, 2);  // wrong size
+  EXPECT_THROW(mix(happy, params, kFps, kFrames, default_conflict_table(), o), InvalidInput);
+}
+
 TEST(Mixer, MaximumOverChannelsAndSignedMagnitude) {
   const std::size_t frames = 11;
   std::vector<ChannelSamples> ch{

@@ -421,6 +421,41 @@ TEST(Measure, JumpAtTheModeSwitch) {
   EXPECT_LE(worst, 1.0);
 }
 
+// Table 6.1 sadness → m3 (triangularis), printed "− − − m b" with the caption "−: no contraction".
+// Default (NoContraction): the '−' cells are rules to the lowest output set, whose centroid is 0,
+// so m3 is 0 up to where High starts and then rises continuously; NoRule: m3 jumps 0 → 0.5 there.
+TEST(Measure, SadnessTriangularisStepUnderBothReadings) {
+  EXPECT_EQ(ExpressionOptions{}.missing_rule, MissingRule::NoContraction);
+  ExpressionOptions no_rule;
+  no_rule.missing_rule = MissingRule::NoRule;
+  const Engine contraction, rule(default_rule_base(), no_rule);
+  const std::size_t m3 = static_cast<std::size_t>(Muscle::Triangularis);
+  auto largest_step = [&](const Engine& e, double& at) {
+    double worst = 0.0, prev = e.single(Emotion::Sadness, 0.0)[m3];
+    for (int i = 1; i <= 100000; ++i) {
+      const double v = e.single(Emotion::Sadness, i / 100000.0)[m3];
+      if (std::abs(v - prev) > worst) worst = std::abs(v - prev), at = i / 100000.0;
+      prev = v;
+    }
+    return worst;
+  };
+  double at_c = 0, at_r = 0;
+  const double step_c = largest_step(contraction, at_c), step_r = largest_step(rule, at_r);
+  std::printf(
+      "measured: sadness -> m3 largest step (1e-5 grid): no_contraction %.4f, no_rule %.4f at "
+      "%.5f\n",
+      step_c, step_r, at_r);
+  for (double x : {0.0, 0.25, 0.5, 0.6, 0.7, 0.75, 0.875, 1.0})
+    std::printf("measured: sadness %.3f -> m3 no_contraction %.4f, no_rule %.4f\n", x,
+                contraction.single(Emotion::Sadness, x)[m3], rule.single(Emotion::Sadness, x)[m3]);
+  EXPECT_NEAR(step_r, 0.5, 0.01);  // the printed "− → m" step
+  EXPECT_LT(step_c, 0.01);         // continuous under "no contraction"
+  EXPECT_EQ(contraction.single(Emotion::Sadness, 0.25)[m3], 0.0);  // Low: no contraction either way
+  EXPECT_EQ(rule.single(Emotion::Sadness, 0.25)[m3], 0.0);
+  EXPECT_NEAR(contraction.single(Emotion::Sadness, 1.0)[m3], rule.single(Emotion::Sadness, 1.0)[m3],
+              1e-12);
+}
+
 // Non-monotone steps ("bumps") and discontinuities of each single-mode row as the intensity rises.
 TEST(Measure, SingleModeRowBumpsAndJumps) {
   Engine engine;

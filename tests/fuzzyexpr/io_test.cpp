@@ -120,7 +120,11 @@ TEST(Fll, ExportsEveryBlockAndVariable) {
   EXPECT_NE(fll.find("RuleBlock: single_sadness"), std::string::npos);
   EXPECT_NE(fll.find("RuleBlock: blend_surprise_fear"), std::string::npos);
   EXPECT_NE(fll.find("rule: if sadness is High then triangularis is Medium"), std::string::npos);
-  EXPECT_EQ(fll.find("sadness is VeryLow then triangularis"), std::string::npos);  // "−" cell
+  // "−" cells: "no contraction" by default (a rule to VerySmall), left out with NoRule
+  EXPECT_NE(fll.find("rule: if sadness is VeryLow then triangularis is VerySmall"), std::string::npos);
+  FllOptions no_rule;
+  no_rule.missing_rule = MissingRule::NoRule;
+  EXPECT_EQ(to_fll(default_rule_base(), no_rule).find("sadness is VeryLow then triangularis"), std::string::npos);
   FllOptions bad;
   bad.centroid_resolution = 1;
   EXPECT_THROW(to_fll(default_rule_base(), bad), InvalidInput);

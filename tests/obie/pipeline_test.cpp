@@ -206,7 +206,8 @@ TEST(Pipeline, UtterancesAreSpokenInTheLipChannel) {
   for (const auto& u : r.utterances) {
     // the rule really fired: the emotion is at or above its threshold at that step
     for (const auto& rule : set.rules)
-      if (rule.emotion == u.emotion) EXPECT_GE(r.timeline[u.step].basic[esv_index(u.emotion)], rule.threshold);
+      if (rule.emotion == u.emotion)
+        EXPECT_GE(r.timeline[u.step].shown[esv_index(u.emotion)], rule.threshold);
     // lip segments (not silence) start within the utterance's first second …
     bool lip = false;
     for (const auto& seg : r.head.timeline.lip)
@@ -235,13 +236,13 @@ TEST(Pipeline, KeyMomentsMapToTheirFrames) {
   const ObieResult& r = speech_run().result;
   ASSERT_EQ(r.key_frames.size(), 2u);
   const auto o = small_options();
-  // 12' → 1 + 12 = 13 s, + 1.2 s delay → frame round(14.2·10) = 142
-  EXPECT_EQ(r.key_frames[1].frame, 142u);
-  EXPECT_EQ(key_moment_frame(r.time_map, 12, o.key_moment_delay, o.fps, r.frames), 142u);
-  EXPECT_EQ(r.key_frames[0].frame, 22u);  // 0' → 1 s + 1.2 s
+  // 12' → 1 + 12 = 13 s, + 0.6 s delay → frame round(13.6·10) = 136
+  EXPECT_EQ(r.key_frames[1].frame, 136u);
+  EXPECT_EQ(key_moment_frame(r.time_map, 12, o.key_moment_delay, o.fps, r.frames), 136u);
+  EXPECT_EQ(r.key_frames[0].frame, 16u);  // 0' → 1 s + 0.6 s
   EXPECT_EQ(key_moment_frame(r.time_map, 1000, 0, 10, r.frames), r.frames - 1);
   // the rendered key frame is the frame the sink got
-  EXPECT_EQ(r.key_frames[1].image.rgb, speech_run().sink.frames[142].rgb);
+  EXPECT_EQ(r.key_frames[1].image.rgb, speech_run().sink.frames[136].rgb);
   // at 12' the goal against shows: sadness/anger up, no happiness
   EXPECT_GT(std::max(r.key_frames[1].shown[0], r.key_frames[1].shown[2]), 0.3);
   EXPECT_EQ(r.key_frames[1].shown[1], 0.0);
@@ -338,6 +339,7 @@ TEST(Pipeline, RejectsBadOptions) {
   bad([](ObieOptions& o) { o.threads = -1; });
   bad([](ObieOptions& o) { o.display.onset = 0; });
   bad([](ObieOptions& o) { o.display.reaction_gain = 0.5; });
+  bad([](ObieOptions& o) { o.display.smile_outranks_speech = -0.1; });
   bad([](ObieOptions& o) { o.time.seconds_per_minute = -1; });
   bad([](ObieOptions& o) { o.utterances.refractory = 0; });
   bad([](ObieOptions& o) { o.voice.rate = 10; });
@@ -345,31 +347,44 @@ TEST(Pipeline, RejectsBadOptions) {
 
 TEST(Displays, HandBuiltTimeline) {
   std::vector<parlee::StepRecord> rec(5);
-  rec[1].basic[3] = 1.0;  // fear
-  rec[2].basic[3] = 1.0;
-  rec[3].basic[3] = 1.0;
-  rec[3].basic[1] = 0.4;  // happiness rises by 0.4 ≥ 0.15: a reaction
-  rec[4].basic[3] = 1.0;
-  rec[4].basic[1] = 0.39;
+  rec[1].shown[3] = 1.0;  // fear
+  rec[2].shown[3] = 1.0;
+  rec[3].shown[3] = 1.0;
+  rec[3].shown[1] = 0.4;  // happiness rises by 0.4 ≥ 0.15: a reaction
+  rec[4].shown[3] = 1.0;
+  rec[4].shown[1] = 0.39;
   const std::vector<double> t = {1, 2, 3, 4, 10};
   DisplayOptions o;
   const auto d = emotion_displays(rec, t, o);
-  // t + 0.15 s delay: 1.15 neutral (no display); 2.15 fear rises (reaction: fear alone, until 5.15),
-  // 3.15 the same (merged); 4.15 happiness rises by 0.4: reaction until 7.15 shows happiness 0.4·1.5
-  // with fear ×0; 7.15 the full ESV returns; 10.15 differs by 0.01 < 0.02: merged, held 2 s.
-  ASSERT_EQ(d.size(), 3u);
+  // t + 0.15 s delay: 1.15 neutral (no display); 2.15 fear rises (fear fresh until 5.15), 3.15 the
+  // same (merged); 4.15 happiness rises by 0.4 (fresh until 7.15) while fear is still fresh: both
+  // show (fear 1, happiness 0.4·1.5); 5.15 fear's window closes: happiness 0.6 alone (fear ×0);
+  // 7.15 the full ESV returns; 10.15 differs by 0.01 < 0.02: merged, held 2 s.
+  ASSERT_EQ(d.size(), 4u);
   EXPECT_DOUBLE_EQ(d[0].timing.start, 2.15);
   EXPECT_DOUBLE_EQ(d[0].timing.end, 4.15 + 0.8);
   EXPECT_DOUBLE_EQ(d[0].intensities[3], 1.0);
   EXPECT_DOUBLE_EQ(d[1].timing.start, 4.15);
   EXPECT_NEAR(d[1].intensities[1], 0.6, 1e-12);
-  EXPECT_DOUBLE_EQ(d[1].intensities[3], 0.0);
-  EXPECT_DOUBLE_EQ(d[1].timing.end, 7.15 + 0.8);
-  EXPECT_DOUBLE_EQ(d[2].timing.start, 7.15);
-  EXPECT_DOUBLE_EQ(d[2].intensities[1], 0.4);
-  EXPECT_DOUBLE_EQ(d[2].intensities[3], 1.0);
-  EXPECT_DOUBLE_EQ(d[2].timing.end, 12.15 + 0.8);
-  EXPECT_DOUBLE_EQ(d[2].timing.onset, 0.4);
+  EXPECT_DOUBLE_EQ(d[1].intensities[3], 1.0);
+  EXPECT_DOUBLE_EQ(d[1].timing.end, 5.15 + 0.8);
+  EXPECT_DOUBLE_EQ(d[2].timing.start, 5.15);
+  EXPECT_NEAR(d[2].intensities[1], 0.6, 1e-12);
+  EXPECT_DOUBLE_EQ(d[2].intensities[3], 0.0);
+  EXPECT_DOUBLE_EQ(d[2].timing.end, 7.15 + 0.8);
+  EXPECT_DOUBLE_EQ(d[3].timing.start, 7.15);
+  EXPECT_DOUBLE_EQ(d[3].intensities[1], 0.4);
+  EXPECT_DOUBLE_EQ(d[3].intensities[3], 1.0);
+  EXPECT_DOUBLE_EQ(d[3].timing.end, 12.15 + 0.8);
+  EXPECT_DOUBLE_EQ(d[3].timing.onset, 0.4);
+  // §4.1: only a display with happiness ≥ 0.9 outranks speech (priority 1); here none
+  for (const auto& item : d) EXPECT_EQ(item.priority, 0);
+  DisplayOptions happy = o;
+  happy.smile_outranks_speech = 0.6;  // the reaction shows happiness 0.6
+  const auto h = emotion_displays(rec, t, happy);
+  EXPECT_EQ(h[1].priority, 1);
+  EXPECT_EQ(h[2].priority, 1);
+  EXPECT_EQ(h[3].priority, 0);
   o.reactions = false;
   const auto plain = emotion_displays(rec, t, o);
   ASSERT_EQ(plain.size(), 2u);  // fear, then fear + happiness
@@ -381,6 +396,52 @@ TEST(Displays, HandBuiltTimeline) {
   EXPECT_THROW(emotion_displays(rec, {1, 2, 3}, o), InvalidInput);
   EXPECT_THROW(emotion_displays(rec, {1, 2, 1, 4, 5}, o), InvalidInput);
   for (const auto& item : d) item.timing.validate();
+}
+
+}  // namespace
+}  // namespace emoface::obie
+
+namespace emoface::obie {
+namespace {
+
+// The §7.4 match's key moments (data/obie/match_7_4.json): 40.5' shows the blend of happiness and
+// surprise (Fig. 7.9), 80' sadness (Fig. 7.8); the displays keep the blend (per-emotion reactions).
+TEST(Pipeline, KeyMomentsOfTheMatchShowTheThesisExpressions) {
+  const std::string file = std::string(EMOFACE_SOURCE_DIR) + "/data/obie/match_7_4.json";
+  const MatchScript match = read_match_file(file);
+  ObieOptions o = small_options();
+  o.speech = false;
+  o.render_frames = false;
+  o.gltf_fps = 0;
+  const ObieResult r =
+      run_obie(match, parlee::read_agent_file(kAgent), face(), o, {}, nullptr, file);
+  ASSERT_EQ(r.key_frames.size(), 4u);
+  auto kf = [&](double minute) {
+    for (const auto& k : r.key_frames)
+      if (k.moment.minute == minute) return k;
+    ADD_FAILURE() << "no key moment at " << minute;
+    return KeyMomentFrame{};
+  };
+  constexpr std::size_t kSad = 0, kHappy = 1, kSurprise = 5;
+  const auto goal = kf(40.5);
+  for (std::size_t e : {0u, 2u, 3u, 4u}) {
+    EXPECT_LT(goal.shown[e], goal.shown[kSurprise]) << e;
+  }
+  EXPECT_GT(goal.shown[kHappy], 0.9);
+  EXPECT_GT(goal.shown[kSurprise], 0.5);
+  EXPECT_EQ(expression_text(goal.shown).rfind("happiness 1.00 + surprise", 0), 0u)
+      << expression_text(goal.shown);
+  const auto late = kf(80);
+  for (std::size_t e = 1; e < 6; ++e) EXPECT_LT(late.shown[e], late.shown[kSad]) << e;
+  EXPECT_EQ(expression_text(late.shown).rfind("sadness", 0), 0u) << expression_text(late.shown);
+  EXPECT_EQ(expression_text(kf(30).shown).rfind("happiness", 0), 0u)
+      << expression_text(kf(30).shown);
+  // §4.1: the broad smile of the lead outranks speech ("Yes, yes, yes!")
+  bool outranks = false;
+  for (const auto& item : r.script.emotions)
+    if (item.timing.start <= goal.time && goal.time <= item.timing.end)
+      outranks |= item.priority == 1;
+  EXPECT_TRUE(outranks);
 }
 
 }  // namespace

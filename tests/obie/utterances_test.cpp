@@ -17,8 +17,8 @@ std::vector<parlee::StepRecord> records(const std::vector<double>& happy, const 
   std::vector<parlee::StepRecord> out(happy.size());
   for (std::size_t k = 0; k < happy.size(); ++k) {
     out[k].time = static_cast<double>(k);
-    out[k].basic[1] = happy[k];
-    out[k].basic[3] = k < fear.size() ? fear[k] : 0.0;
+    out[k].basic[1] = out[k].shown[1] = happy[k];
+    out[k].basic[3] = out[k].shown[3] = k < fear.size() ? fear[k] : 0.0;
   }
   return out;
 }

@@ -1,11 +1,14 @@
 // The Obie scenario (thesis §7.4) and the bread illustration (§5.9) end to end.
+#include "emoface/parlee/agent.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "emoface/core/errors.hpp"
-#include "emoface/parlee/agent.hpp"
 #include "emoface/parlee/io.hpp"
+#include "naive_planner.hpp"
 
 using namespace emoface::parlee;
 
@@ -121,6 +124,7 @@ TEST(Agent, RejectsInapplicableEventsAndUnknownAgents) {
   const Domain d(read_domain_files({kData + "football.domain"}));
   AgentConfig c;
   c.self = "agent";
+  c.on_disallowed = DisallowedEvent::Stop;
   Agent a(d, c);
   Event e;
   e.time = 1;
@@ -139,6 +143,44 @@ TEST(Agent, RejectsInapplicableEventsAndUnknownAgents) {
   EXPECT_THROW(a.step(e), emoface::InvalidInput);
   c.self = "referee";
   EXPECT_THROW(Agent(d, c), emoface::InvalidInput);
+  EXPECT_EQ(disallowed_event_from_string(to_string(DisallowedEvent::Skip)), DisallowedEvent::Skip);
+  EXPECT_EQ(disallowed_event_from_string(to_string(DisallowedEvent::Stop)), DisallowedEvent::Stop);
+  EXPECT_THROW(disallowed_event_from_string("ignore"), emoface::InvalidInput);
+}
+
+// §5.5 (the default): an event the agent's model does not allow is reported and skipped; the
+// rest of the match goes on exactly as without it.
+TEST(Agent, DisallowedEventsAreReportedAndSkipped) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  const AgentConfig c = read_agent_file(kData + "agents/neutral.json");
+  ASSERT_EQ(c.on_disallowed, DisallowedEvent::Skip);
+  auto events = read_events_file(kData + "match.ndjson");
+  Agent clean(d, c), noisy(d, c);
+  std::vector<std::string> a, b;
+  for (const auto& e : events) a.push_back(timeline_line(clean.step(e)));
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    if (k == 20) {  // 21': the for team holds the ball in its half; an against shot is impossible
+      Event bad = events[k - 1];
+      bad.action = "(shot oteam)";
+      const StepRecord r = noisy.step(bad);
+      EXPECT_NE(r.skipped.find("'(shot oteam)' is not applicable; applicable:"), std::string::npos)
+          << r.skipped;
+      EXPECT_NE(timeline_line(r).find("\"skipped\""), std::string::npos);
+      Event outcome = events[k];  // applicable, but no such outcome
+      outcome.time = events[k - 1].time;
+      outcome.outcome = "exploded";
+      EXPECT_NE(noisy.step(outcome).skipped.find("has no outcome 'exploded'"), std::string::npos);
+    }
+    b.push_back(timeline_line(noisy.step(events[k])));
+  }
+  // the skipped steps decay the emotions (time passes) but change no fact: from 21' on the state
+  // and the goal probabilities are those of the clean run
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const auto ja = nlohmann::json::parse(a[k]), jb = nlohmann::json::parse(b[k]);
+    EXPECT_EQ(ja["state"], jb["state"]) << k;
+    EXPECT_EQ(ja["goals"], jb["goals"]) << k;
+  }
+  EXPECT_EQ(a.back().find("skipped"), std::string::npos);
 }
 
 TEST(Agent, LearnsOutcomeProbabilities) {
@@ -193,4 +235,205 @@ TEST(Agent, FeedbackBecomesPraiseworthiness) {
   e.feedback = 0.8;  // on the previous LOAD
   const StepRecord r = a.step(e);
   EXPECT_NEAR(r.impulse[index(Emotion::Pride)], 0.8, 1e-12);
+}
+
+// Obie's 0-0 state at the kick-off, by hand. With H = 3 the turns are: against team (only the for
+// team's kick-off is applicable: every other team action needs (not (kickoff))), Obie, against
+// team (the for team holds the ball in its own half: a pass, a tackle or a block, none scores).
+// So P(win within 3) = 0 and P(not-lose within 3) = 1 (the 0-0 already holds). §5.6.2:
+//   signed sum  S = 1·(0 − 0.5) + 0.5·(1 − 0.5) = −0.25  → Fear 0.25, Hope 0
+//   per goal    Fear = 1·0.5 = 0.5, Hope = 0.5·0.5 = 0.25
+TEST(Agent, ObieHopeAndFearAtZeroZeroByHand) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  Planner planner(d, PlanOptions{3});
+  auto goal_index = [&](const std::string& name) {
+    for (std::size_t g = 0; g < d.goals().size(); ++g)
+      if (d.goals()[g].name == name) return static_cast<int>(g);
+    return -1;
+  };
+  const int win = goal_index("win"), not_lose = goal_index("not-lose");
+  ASSERT_GE(win, 0);
+  ASSERT_GE(not_lose, 0);
+  const double p_win = planner.goal_probability(static_cast<std::size_t>(win), d.initial_state());
+  const double p_nl =
+      planner.goal_probability(static_cast<std::size_t>(not_lose), d.initial_state());
+  EXPECT_EQ(p_win, 0.0);
+  EXPECT_EQ(p_nl, 1.0);
+  AppraisalInput in;
+  for (auto [p, imp] : {std::pair{p_win, 1.0}, std::pair{p_nl, 0.5}}) {
+    GoalAppraisal g;
+    g.p_before = g.p_after = p;
+    g.importance = imp;
+    in.goals.push_back(g);
+  }
+  auto r = appraise(in, Personality{});
+  EXPECT_NEAR(r.impulse[index(Emotion::Fear)], 0.25, 1e-12);
+  EXPECT_EQ(r.impulse[index(Emotion::Hope)], 0.0);
+  AppraisalOptions per_goal;
+  per_goal.prospect = ProspectMode::PerGoal;
+  r = appraise(in, Personality{}, per_goal);
+  EXPECT_NEAR(r.impulse[index(Emotion::Fear)], 0.5, 1e-12);
+  EXPECT_NEAR(r.impulse[index(Emotion::Hope)], 0.25, 1e-12);
+}
+
+// §7.3: the against team is an agent with a goal (the against team winning); Obie predicts its
+// choices with the d-level model (§5.7.4) instead of uniformly.
+TEST(Agent, AgainstTeamIsPredictedByItsGoal) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  Agent obie(d, read_agent_file(kData + "agents/neutral.json"));
+  const auto events = read_events_file(kData + "match.ndjson");
+  std::size_t k = 0;
+  for (; events[k].time < 12.0; ++k) obie.step(events[k]);
+  // 11': the against team holds the ball in the for team's penalty area, on turn
+  const State s = obie.state();
+  ASSERT_EQ(d.spec().agents[static_cast<std::size_t>(d.turn(s))], "oteam");
+  const auto acts = d.applicable_actions(s);
+  const auto uniform = obie.planner().action_distribution(s, 0);
+  const auto model = obie.planner().action_distribution(s, 1);
+  std::size_t shot = acts.size();
+  for (std::size_t i = 0; i < acts.size(); ++i)
+    if (d.action_text(acts[i]).rfind("(shot oteam", 0) == 0) shot = i;
+  ASSERT_LT(shot, acts.size());
+  EXPECT_NEAR(uniform[shot], 1.0 / static_cast<double>(acts.size()), 1e-12);
+  // a 1-level against team looks one action ahead: only the shot can make it lead → P = 1
+  EXPECT_NEAR(model[shot], 1.0, 1e-12);
+  // Obie's own model is (H − 1 = 6)-level: P(event) of the goal = P(shot)·0.25 (the shot's goal
+  // outcome; no other action reaches that state), above the uniform 0.25/n
+  const auto deep = obie.planner().action_distribution(s, 6);
+  const StepRecord r = obie.step(events[k]);
+  EXPECT_NEAR(r.actions.front().p_event, deep[shot] * 0.25, 1e-12);
+  EXPECT_GT(r.actions.front().p_event, 0.25 / static_cast<double>(acts.size()));
+}
+
+TEST_F(Obie, HappinessRisesWithTheAttackAndNotAtTheDrawWhistle) {
+  const auto& r = runs_["neutral"];
+  // the long free-kick reaching the penalty area raises P(win) (0.01 → 0.16 at H = 7): joy before
+  // the goal (Fig. 7.5)
+  EXPECT_GT(at(r, 40, kHappy), at(r, 39, kHappy) + 0.05);
+  // the draw at 90': `win` fails (fears confirmed), `not-lose` succeeds but with the signed sum
+  // there was no hope to satisfy (Fear = 1·0.5 − 0.5·0.5 > 0): no happiness
+  const StepRecord& last = r.back();
+  EXPECT_EQ(last.impulse[index(Emotion::Satisfaction)], 0.0);
+  EXPECT_EQ(last.impulse[index(Emotion::Relief)], 0.0);
+  EXPECT_GT(last.impulse[index(Emotion::FearsConfirmed)], 0.2);
+  EXPECT_EQ(last.basic[kHappy], 0.0);
+}
+
+TEST_F(Obie, RealisticDiffersFromNeutral) {
+  // §5.6.5 P' = P^(perceivingFocus + 0.5) = P^1.4: events look less likely, so more unexpected
+  const auto& n = runs_["neutral"];
+  const auto& re = runs_["realistic"];
+  EXPECT_GT(at(re, 12, kSad), at(n, 12, kSad) + 0.02);
+  EXPECT_GT(at(re, 80, kSad), at(n, 80, kSad) + 0.02);
+  EXPECT_GT(at(re, 12, kSurprise), at(n, 12, kSurprise) + 0.1);
+  EXPECT_GT(at(re, 30, kHappy), at(n, 30, kHappy));
+}
+
+// §5.5: "any planner that can produce the same output would fit into ParleE". A second planner
+// (memo-free transcription of §5.7.4) plugged through the GoalPlanner interface gives the same
+// timeline of the §7.4 match as the memoised DP, line for line (H = 5, d = H − 1).
+TEST(Agent, PluggedPlannerGivesTheSameTimeline) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  AgentConfig c = read_agent_file(kData + "agents/neutral.json");
+  c.planning.horizon = 5;
+  const PlannerFactory naive = [](const Domain& dom, const PlanOptions& o) {
+    return std::unique_ptr<GoalPlanner>(std::make_unique<test::NaivePlanner>(dom, o));
+  };
+  Agent dp(d, c), other(d, c, naive);
+  EXPECT_NE(dynamic_cast<test::NaivePlanner*>(&other.planner()), nullptr);
+  EXPECT_EQ(timeline_line(dp.initial_record()), timeline_line(other.initial_record()));
+  std::size_t n = 0;
+  for (const auto& e : read_events_file(kData + "match.ndjson")) {
+    const std::string a = timeline_line(dp.step(e)), b = timeline_line(other.step(e));
+    ASSERT_EQ(a, b) << "event " << n;
+    ++n;
+  }
+  EXPECT_EQ(n, 91u);
+  const PlannerFactory none = [](const Domain&, const PlanOptions&) { return nullptr; };
+  EXPECT_THROW(Agent(d, c, none), emoface::InvalidInput);
+}
+
+// §5.5.4: "high values [of the motivational states] will generate a goal for the agent, viz. the
+// agent wants to reduce these values" (replenishment goals). The bread agent's goal feed-self is
+// its replenishment goal for hunger: dormant while hunger < 0.495, it appears when one more action
+// (+0.01) takes hunger from 0.49 to 0.50, and disappears when the agent has eaten.
+TEST(Agent, ReplenishmentGoalAppearsWithHungerAndGoesWhenFed) {
+  const Domain d(read_domain_files({kData + "bread.domain"}));
+  AgentConfig c = read_agent_file(kData + "agents/bread_neutral.json");
+  c.motivation.hunger = 0.49;
+  c.replenishment = {{"feed-self", Need::Hunger, 0.495}};
+  c.body_events["eat"] = BodyEvent::Eat;
+  Agent a(d, c);
+  const StepRecord r0 = a.initial_record();
+  ASSERT_EQ(r0.goal_active.size(), 1u);
+  EXPECT_FALSE(r0.goal_active[0]);
+  EXPECT_NE(timeline_line(r0).find(R"("active":false)"), std::string::npos);
+  Event pass;  // the user passes; the agent acts
+  pass.time = 1;
+  const StepRecord r1 = a.step(pass);  // the agent's first action: hunger 0.49 → 0.50
+  EXPECT_NEAR(a.motivation().hunger, 0.50, 1e-12);
+  EXPECT_TRUE(r1.goal_active[0]);
+  EXPECT_GT(r1.impulse[index(Emotion::Hope)] + r1.impulse[index(Emotion::Fear)], 0.0);
+  bool fed = false;
+  for (int t = 2; t <= 12 && !fed; ++t) {
+    pass.time = t;
+    const StepRecord r = a.step(pass);
+    if (a.motivation().hunger == 0.0) {  // the agent ate (BodyEvent::Eat resets hunger)
+      fed = true;
+      EXPECT_FALSE(r.goal_active[0]);
+      EXPECT_EQ(r.goal_status[0], GoalStatus::Success);
+      EXPECT_GT(r.impulse[index(Emotion::Satisfaction)] + r.impulse[index(Emotion::Relief)], 0.0);
+    } else {
+      EXPECT_TRUE(r.goal_active[0]) << t;
+    }
+  }
+  EXPECT_TRUE(fed);
+  // without the rule the same agent would have had the goal (and fear about it) from the start
+  AgentConfig plain = c;
+  plain.replenishment.clear();
+  Agent b(d, plain);
+  EXPECT_TRUE(b.initial_record().goal_active[0]);
+  c.replenishment = {{"fly", Need::Hunger, 0.5}};
+  EXPECT_THROW(Agent(d, c), emoface::InvalidInput);
+  c.replenishment = {{"feed-self", Need::Hunger, 0.0}};
+  EXPECT_THROW(Agent(d, c), emoface::InvalidInput);
+  EXPECT_EQ(need_from_string(to_string(Need::Pain)), Need::Pain);
+  EXPECT_THROW(need_from_string("boredom"), emoface::InvalidInput);
+}
+
+// §5.6.2 Desire-other emotions in a shipped scenario: two supporters of opposite teams watch the
+// §7.4 match (data/parlee/rivals.problem). The for-team supporter dislikes the other (liking −0.8):
+// resentment when the against team scores (12'), gloating when it concedes (30'); the against-team
+// supporter likes the first (+0.8): sorry-for at 12' and 80', happy-for at the lead (40.5').
+TEST(Agent, TwoSupportersFeelForEachOther) {
+  const Domain d(read_domain_files({kData + "football.domain", kData + "rivals.problem"}));
+  auto run_fan = [&](const std::string& name) {
+    Agent a(d, read_agent_file(kData + "agents/" + name + ".json"));
+    std::map<double, StepRecord> at;
+    for (const auto& e : read_events_file(kData + "match.ndjson")) {
+      StepRecord r = a.step(e);
+      EXPECT_TRUE(r.skipped.empty()) << name << " " << e.time << ": " << r.skipped;
+      at[e.time] = std::move(r);
+    }
+    return at;
+  };
+  const auto fan_for = run_fan("fan_for"), fan_against = run_fan("fan_against");
+  auto E = [](const StepRecord& r, Emotion e) { return r.emotions[index(e)]; };
+  auto I = [](const StepRecord& r, Emotion e) { return r.impulse[index(e)]; };
+  // the for-team supporter
+  EXPECT_GT(I(fan_for.at(12), Emotion::Resentment), 0.2);  // the rival's joy at the against goal
+  EXPECT_LT(I(fan_for.at(12), Emotion::Gloating), 1e-3);
+  EXPECT_GT(I(fan_for.at(30), Emotion::Gloating), 0.2);  // the rival's distress at the equaliser
+  // (tiny amounts come from the liking toward the against team itself, which §5.6.1 updates)
+  EXPECT_LT(E(fan_for.at(30), Emotion::HappyFor) + E(fan_for.at(30), Emotion::SorryFor), 1e-3);
+  // the against-team supporter
+  EXPECT_GT(I(fan_against.at(12), Emotion::SorryFor), 0.1);
+  EXPECT_GT(I(fan_against.at(40.5), Emotion::HappyFor), 0.2);
+  EXPECT_GT(I(fan_against.at(80), Emotion::SorryFor), 0.2);
+  EXPECT_LT(E(fan_against.at(80), Emotion::Resentment) + E(fan_against.at(80), Emotion::Gloating),
+            1e-3);
+  // and each feels its own team's goals the other way round
+  EXPECT_GT(fan_for.at(40.5).basic[kHappy], 0.5);
+  EXPECT_GT(fan_against.at(40.5).basic[kSad], 0.5);
+  EXPECT_GT(fan_against.at(12).basic[kHappy], 0.5);
 }

@@ -63,7 +63,8 @@ TEST_F(ParleeApp, RunWritesTimelineAndCharts) {
   std::string line;
   std::size_t n = 0;
   ASSERT_TRUE(std::getline(lines, line));
-  EXPECT_EQ(nlohmann::json::parse(line), nlohmann::json::parse(emoface::core::ndjson_header("parlee.timeline", {1, 0})));
+  EXPECT_EQ(nlohmann::json::parse(line),
+            nlohmann::json::parse(emoface::core::ndjson_header("parlee.timeline", {1, 1})));
   while (std::getline(lines, line)) {
     const auto j = nlohmann::json::parse(line);
     EXPECT_EQ(j["agent"], "neutral");
@@ -79,17 +80,45 @@ TEST_F(ParleeApp, RunWritesTimelineAndCharts) {
   }
 }
 
-TEST_F(ParleeApp, RunRejectsBadEventsWithoutWriting) {
-  const auto r = run("run --domain " + kData + "football.domain --agent " + kData + "agents/neutral.json --events " +
-                     kData + "bread_events.ndjson --out " + path("t.ndjson"));
+TEST_F(ParleeApp, RunSkipsOrRejectsEventsTheModelDoesNotAllow) {
+  // default (on_disallowed "skip"): reported on stderr with file:line, skipped, the run goes on
+  auto r = run("run --domain " + kData + "football.domain --agent " + kData +
+               "agents/neutral.json --events " + kData + "bread_events.ndjson --out " +
+               path("t.ndjson"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: " + kData + "bread_events.ndjson:5: agent neutral: skipped: "),
+            std::string::npos)
+      << r.err;
+  ASSERT_TRUE(fs::exists(path("t.ndjson")));
+  EXPECT_NE(slurp(path("t.ndjson")).find("\"skipped\":"), std::string::npos);
+  // "stop": a located error and nothing written
+  const std::string strict =
+      write("strict.json", R"({"format":"emoface.parlee_agent","version":"1.1",)"
+                           R"("self":"agent","on_disallowed":"stop"})");
+  r = run("run --domain " + kData + "football.domain --agent " + strict + " --events " + kData +
+          "bread_events.ndjson --out " + path("u.ndjson"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("bread_events.ndjson:5"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(path("t.ndjson")));
+  EXPECT_FALSE(fs::exists(path("u.ndjson")));
   const std::string agent = write("a.json", R"({"format":"emoface.parlee_agent","version":"1.0","personality":{"x":1}})");
   EXPECT_EQ(run("run --domain " + kData + "football.domain --agent " + agent + " --events " + kData +
                 "match.ndjson --out " + path("t.ndjson"))
                 .code,
             2);
+}
+
+// The §7.4 timeline is byte-identical across processes for the same agent seeds (the four Obies
+// and the two supporters; the per-second decay of the runtime branch does not change this).
+TEST_F(ParleeApp, MatchTimelineIsByteIdenticalAcrossRuns) {
+  const std::string args = "run --domain " + kData + "football.domain --problem " + kData +
+                           "rivals.problem" + " --agent " + kData + "agents/neutral.json --agent " +
+                           kData + "agents/sensitive.json" + " --agent " + kData +
+                           "agents/fan_against.json --events " + kData + "match.ndjson --out ";
+  ASSERT_EQ(run(args + path("a.ndjson")).code, 0);
+  ASSERT_EQ(run(args + path("b.ndjson")).code, 0);
+  const std::string a = slurp(path("a.ndjson"));
+  EXPECT_EQ(a, slurp(path("b.ndjson")));
+  EXPECT_GT(a.size(), 100000u);
 }
 
 TEST_F(ParleeApp, InteractListsActionsAndTheAgentResponds) {

@@ -201,3 +201,72 @@ TEST(Appraisal, EnumStrings) {
   EXPECT_THROW(goal_status_from_string("maybe"), InvalidInput);
   EXPECT_THROW(actor_from_string("god"), InvalidInput);
 }
+
+// §5.6.2 as printed: one signed sum over the goals; its positive part is Hope, its negative part
+// Fear. Two goals pulling opposite ways: 1·(0.9 − 0.5) + 2·(0.3 − 0.5) = 0.4 − 0.4 = 0 → neither.
+TEST(Appraisal, HopeAndFearAreTheSignedSumByDefault) {
+  AppraisalInput in;
+  in.goals = {goal(0.9, 0.9, 1.0), goal(0.3, 0.3, 2.0)};
+  EXPECT_EQ(AppraisalOptions{}.prospect, ProspectMode::SignedSum);
+  auto r = appraise(in, Personality{});
+  EXPECT_NEAR(I(r, Emotion::Hope), 0.0, 1e-12);
+  EXPECT_NEAR(I(r, Emotion::Fear), 0.0, 1e-12);
+  // 1·(0.9 − 0.5) + 1·(0.3 − 0.5) = 0.2 → Hope 0.2, all of it the first goal's share
+  in.goals[1].importance = 1.0;
+  r = appraise(in, Personality{});
+  EXPECT_NEAR(I(r, Emotion::Hope), 0.2, 1e-12);
+  EXPECT_EQ(I(r, Emotion::Fear), 0.0);
+  ASSERT_EQ(r.hope.size(), 2u);
+  EXPECT_NEAR(r.hope[0], 0.2, 1e-12);
+  EXPECT_EQ(r.hope[1], 0.0);
+  EXPECT_EQ(r.fear[0] + r.fear[1], 0.0);
+  // the per-goal clamp (the option): Hope 0.4 and Fear 0.2 at once
+  AppraisalOptions o;
+  o.prospect = ProspectMode::PerGoal;
+  r = appraise(in, Personality{}, o);
+  EXPECT_NEAR(I(r, Emotion::Hope), 0.4, 1e-12);
+  EXPECT_NEAR(I(r, Emotion::Fear), 0.2, 1e-12);
+  EXPECT_NEAR(r.fear[1], 0.2, 1e-12);
+  // a confirmed goal takes no part: only the unconfirmed 0.3 goal remains → Fear 0.2
+  in.goals[0].status = GoalStatus::Success;
+  r = appraise(in, Personality{});
+  EXPECT_EQ(I(r, Emotion::Hope), 0.0);
+  EXPECT_NEAR(I(r, Emotion::Fear), 0.2, 1e-12);
+  EXPECT_EQ(prospect_mode_from_string(to_string(ProspectMode::PerGoal)), ProspectMode::PerGoal);
+  EXPECT_EQ(prospect_mode_from_string(to_string(ProspectMode::SignedSum)), ProspectMode::SignedSum);
+  EXPECT_THROW(prospect_mode_from_string("clamp"), InvalidInput);
+}
+
+// Table 5.2: Anger = Distress + Reproach etc. Under CompoundRule::Standards the compound emotions
+// need a praiseworthiness of the right sign; their intensity stays the §5.6.2 formula.
+TEST(Appraisal, CompoundEmotionsUnderTheStandardsRule) {
+  AppraisalInput in;
+  in.goals = {goal(0.6, 0.2, 1.0)};  // Impact −0.4
+  in.p_event = 0.36;                 // (1 − 0.36)^0.5 = 0.8
+  in.actor = Actor::Other;
+  AppraisalOptions o;
+  EXPECT_EQ(o.compound, CompoundRule::Impact);
+  EXPECT_NEAR(I(appraise(in, Personality{}, o), Emotion::Anger), 0.4 * 0.8, 1e-12);
+  o.compound = CompoundRule::Standards;
+  auto r = appraise(in, Personality{}, o);
+  EXPECT_EQ(I(r, Emotion::Anger), 0.0);  // no standard known: distress only
+  EXPECT_NEAR(I(r, Emotion::Distress), 0.4 * 0.64 * 0.64, 1e-12);
+  in.has_praiseworthiness = true;
+  in.praiseworthiness = 0.5;  // praiseworthy: appreciation, still no anger
+  r = appraise(in, Personality{}, o);
+  EXPECT_EQ(I(r, Emotion::Anger), 0.0);
+  EXPECT_NEAR(I(r, Emotion::Appreciation), 0.5, 1e-12);
+  in.praiseworthiness = -0.5;  // blameworthy: reproach and anger
+  r = appraise(in, Personality{}, o);
+  EXPECT_NEAR(I(r, Emotion::Anger), 0.32, 1e-12);
+  EXPECT_NEAR(I(r, Emotion::Reproach), 0.5, 1e-12);
+  in.goals = {goal(0.2, 0.6, 1.0)};  // desirable; own action, praiseworthy: gratification
+  in.actor = Actor::Self;
+  in.praiseworthiness = 0.25;
+  r = appraise(in, Personality{}, o);
+  EXPECT_NEAR(I(r, Emotion::Gratification), 0.32, 1e-12);
+  in.praiseworthiness = -0.25;
+  EXPECT_EQ(I(appraise(in, Personality{}, o), Emotion::Gratification), 0.0);
+  EXPECT_EQ(compound_rule_from_string(to_string(CompoundRule::Standards)), CompoundRule::Standards);
+  EXPECT_THROW(compound_rule_from_string("occ"), InvalidInput);
+}

@@ -79,6 +79,15 @@ TEST(Domain, WriteParseRoundTrip) {
     EXPECT_EQ(write_domain_text(parse(t)), t) << f;
     EXPECT_EQ(Domain(parse(t)).actions().size(), Domain(s).actions().size()) << f;
   }
+  // the two-supporter problem adds an agent and its goals to the football domain
+  const std::string dir = std::string(EMOFACE_SOURCE_DIR) + "/data/parlee/";
+  const DomainSpec rivals = read_domain_files({dir + "football.domain", dir + "rivals.problem"});
+  const std::string t = write_domain_text(rivals);
+  EXPECT_EQ(write_domain_text(parse(t)), t);
+  const Domain dr(rivals);
+  EXPECT_EQ(dr.agent_count(), 3u);
+  EXPECT_EQ(dr.agent_index("rival"), 2);
+  EXPECT_EQ(dr.goals().size(), 5u);
 }
 
 TEST(Domain, PpddlSubset) {

@@ -225,3 +225,24 @@ TEST(Emotion, BasicEmotionMapping) {
   EXPECT_EQ(kBasicEmotionNames[0], "sadness");
   EXPECT_EQ(kBasicEmotionNames[5], "surprise");
 }
+
+// §5.6.5 revealingLevel in the display component: shown = felt^(1.5 − revealingLevel), by hand.
+TEST(Display, RevealingLevelByHand) {
+  const std::array<double, 6> felt{0.25, 0.0, 1.0, 0.64, 0.5, 0.01};
+  Personality p;
+  EXPECT_EQ(revealed_emotions(felt, p), felt);  // neutral 0.5: what is felt shows
+  p[Trait::RevealingLevel] = 1.0;               // open: felt^0.5
+  auto s = revealed_emotions(felt, p);
+  EXPECT_NEAR(s[0], 0.5, 1e-12);
+  EXPECT_EQ(s[1], 0.0);
+  EXPECT_EQ(s[2], 1.0);
+  EXPECT_NEAR(s[3], 0.8, 1e-12);
+  EXPECT_NEAR(s[5], 0.1, 1e-12);
+  p[Trait::RevealingLevel] = 0.0;  // secretive: felt^1.5
+  s = revealed_emotions(felt, p);
+  EXPECT_NEAR(s[0], 0.125, 1e-12);
+  EXPECT_NEAR(s[3], 0.512, 1e-12);
+  EXPECT_NEAR(s[5], 0.001, 1e-12);
+  EXPECT_THROW(revealed_emotions({0.1, 1.5, 0, 0, 0, 0}, p), emoface::InvalidInput);
+  EXPECT_THROW(revealed_emotions({std::nan(""), 0, 0, 0, 0, 0}, p), emoface::InvalidInput);
+}

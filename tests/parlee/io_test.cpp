@@ -42,6 +42,11 @@ TEST(AgentFile, RoundTrip) {
   c.liking["user"] = -0.25;
   c.praiseworthiness["eat"] = 0.5;
   c.body_events["eat"] = BodyEvent::Eat;
+  c.appraisal.prospect = ProspectMode::PerGoal;
+  c.appraisal.surprise_threshold = 0.25;
+  c.appraisal.compound = CompoundRule::Standards;
+  c.on_disallowed = DisallowedEvent::Stop;
+  c.replenishment = {{"feed-self", Need::Thirst, 0.75}};
   const std::string text = write_agent(c);
   const AgentConfig d = parse_agent(text, "x.json");
   EXPECT_EQ(write_agent(d), text);
@@ -49,11 +54,18 @@ TEST(AgentFile, RoundTrip) {
   EXPECT_EQ(d.emotions.effect, c.emotions.effect);
   EXPECT_EQ(d.planning.semantics, GoalSemantics::AtHorizon);
   EXPECT_EQ(d.liking.at("user"), -0.25);
+  EXPECT_EQ(d.appraisal.prospect, ProspectMode::PerGoal);
+  EXPECT_EQ(d.appraisal.surprise_threshold, 0.25);
+  EXPECT_EQ(d.appraisal.compound, CompoundRule::Standards);
+  EXPECT_EQ(d.on_disallowed, DisallowedEvent::Stop);
+  ASSERT_EQ(d.replenishment.size(), 1u);
+  EXPECT_EQ(d.replenishment[0].need, Need::Thirst);
+  EXPECT_EQ(d.replenishment[0].threshold, 0.75);
 }
 
 TEST(AgentFile, ShippedFilesParse) {
-  for (const char* f : {"neutral", "pessimistic", "realistic", "sensitive", "bread_neutral", "bread_optimistic",
-                        "bread_sensitive"}) {
+  for (const char* f : {"neutral", "pessimistic", "realistic", "sensitive", "fan_for",
+                        "fan_against", "bread_neutral", "bread_optimistic", "bread_sensitive"}) {
     const AgentConfig c = read_agent_file(kData + "agents/" + f + ".json");
     EXPECT_EQ(c.name, f);
     EXPECT_NO_THROW(c.validate());
@@ -76,6 +88,23 @@ TEST(AgentFile, BadInputNamesThePointer) {
   EXPECT_EQ(pointer_of(head + R"("seed":-1})"), "/seed");
   EXPECT_EQ(pointer_of(head + R"("bogus":1})"), "/bogus");
   EXPECT_EQ(pointer_of(head + R"("body_events":{"eat":"nap"}})"), "/body_events/eat");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"prospect":"clamp"}})"), "/appraisal/prospect");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"prospect":3}})"), "/appraisal/prospect");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":0}})"),
+            "/appraisal/surprise_threshold");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"surprise_threshold":1.5}})"),
+            "/appraisal/surprise_threshold");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"pivot":0.5}})"), "/appraisal/pivot");
+  EXPECT_EQ(pointer_of(head + R"("on_disallowed":"ignore"})"), "/on_disallowed");
+  EXPECT_EQ(pointer_of(head + R"("appraisal":{"compound":"occ"}})"), "/appraisal/compound");
+  EXPECT_EQ(pointer_of(head + R"("on_disallowed":true})"), "/on_disallowed");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":{}})"), "/replenishment");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"need":"hunger"}]})"), "/replenishment/0");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","need":"boredom"}]})"),
+            "/replenishment/0/need");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","threshold":0}]})"),
+            "/replenishment/0/threshold");
+  EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","x":1}]})"), "/replenishment/0/x");
   EXPECT_NE(pointer_of(R"({"format":"emoface.parlee_agent","version":"2.0"})"), "");
   EXPECT_NE(pointer_of(R"({"format":"emoface.rig","version":"1.0"})"), "");
   EXPECT_NE(pointer_of(head + R"("name":"x")"), "");  // truncated

@@ -1,15 +1,18 @@
 // Planner probabilities against values computed independently: a hand-coded model of the rocket
 // domain explored by exhaustive enumeration of every action and outcome sequence, hand-computed
 // values for the two-agent variant, and a memo-free recursion of the §5.7.4 formulas for d = 0,1,2.
+#include "emoface/parlee/planner.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <functional>
 
 #include "emoface/parlee/domain.hpp"
-#include "emoface/parlee/planner.hpp"
+#include "naive_planner.hpp"
 
 using namespace emoface::parlee;
+using emoface::parlee::test::Naive;
 
 namespace {
 
@@ -100,53 +103,6 @@ State rocket2_state(const Domain& d, std::initializer_list<const char*> facts) {
   }
   return s;
 }
-
-// Memo-free transcription of the §5.7.4 formulas (for cross-checking the memoised planner).
-struct Naive {
-  const Domain& d;
-  bool within;
-  int primary(int agent, const State& s) const {
-    for (std::size_t g = 0; g < d.goals().size(); ++g)
-      if (d.goals()[g].agent == agent && !(within && d.goal_holds(g, s))) return static_cast<int>(g);
-    return -1;
-  }
-  double p_goal(std::size_t g, const State& s, int h, int D) const {
-    const bool holds = d.goal_holds(g, s);
-    if (h == 0 || (within && holds)) return holds ? 1.0 : 0.0;
-    const auto acts = d.applicable_actions(s);
-    if (acts.empty()) return p_goal(g, d.pass_turn(s), h - 1, D);
-    std::vector<double> q;
-    for (auto a : acts) {
-      double v = 0.0;
-      for (std::size_t o = 0; o < d.actions()[a].outcomes.size(); ++o)
-        v += d.actions()[a].outcomes[o].probability * p_goal(g, d.apply(s, a, o), h - 1, D);
-      q.push_back(v);
-    }
-    if (d.turn(s) == d.goals()[g].agent) return *std::max_element(q.begin(), q.end());
-    const auto w = choice(s, std::min(D, h - 1));
-    double v = 0.0;
-    for (std::size_t k = 0; k < q.size(); ++k) v += w[k] * q[k];
-    return v;
-  }
-  std::vector<double> choice(const State& s, int L) const {
-    const auto acts = d.applicable_actions(s);
-    std::vector<double> w(acts.size(), 1.0 / static_cast<double>(acts.size()));
-    const int g = L > 0 ? primary(d.turn(s), s) : -1;
-    if (g < 0) return w;
-    std::vector<double> r;
-    double sum = 0.0;
-    for (auto a : acts) {
-      double v = 0.0;
-      for (std::size_t o = 0; o < d.actions()[a].outcomes.size(); ++o)
-        v += d.actions()[a].outcomes[o].probability * p_goal(static_cast<std::size_t>(g), d.apply(s, a, o), L - 1, L - 1);
-      r.push_back(v);
-      sum += v;
-    }
-    if (sum > 0)
-      for (std::size_t k = 0; k < r.size(); ++k) w[k] = r[k] / sum;
-    return w;
-  }
-};
 
 }  // namespace
 

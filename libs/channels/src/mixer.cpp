@@ -47,6 +47,39 @@ void MixOptions::validate() const {
     throw InvalidInput("mix: active_threshold must be in (0, 1)");
 }
 
+namespace {
+
+// §4.6 for one parameter track v (F on entry, aF on exit) given its inhibited frames.
+void apply_inhibition(double* v, const std::vector<char>& inhibited, std::size_t frames, double fps,
+                      const MixOptions& options, std::vector<double>& last,
+                      std::vector<double>& next) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double t_last = -inf;
+  for (std::size_t f = 0; f < frames; ++f) {
+    if (inhibited[f]) t_last = static_cast<double>(f) / fps;
+    last[f] = t_last;
+  }
+  double t_next = inf;
+  for (std::size_t f = frames; f-- > 0;) {
+    if (inhibited[f]) t_next = static_cast<double>(f) / fps;
+    next[f] = t_next;
+  }
+  for (std::size_t f = 0; f < frames; ++f) {
+    if (inhibited[f]) {
+      v[f] = 0.0;
+      continue;
+    }
+    const double t = static_cast<double>(f) / fps;
+    double cap = inf;
+    if (last[f] > -inf) cap = std::min(cap, phi_plus(t - last[f], options.dmin_plus));  // Ψ←
+    if (next[f] < inf && next[f] - t < options.dmin_minus)                              // Ψ→
+      cap = std::min(cap, phi_minus(options.dmin_minus - (next[f] - t), options.dmin_minus));
+    v[f] = std::min(v[f], cap);
+  }
+}
+
+}  // namespace
+
 Tracks mix(const std::vector<ChannelSamples>& channels, const std::vector<std::string>& parameters,
            double fps, std::size_t frames, const ConflictTable& conflicts, const MixOptions& options,
            std::vector<ChannelSamples>* modified) {
@@ -71,6 +104,65 @@ Tracks mix(const std::vector<ChannelSamples>& channels, const std::vector<std::s
       if (!index.count(p))
         throw InvalidInput("mix: channel '" + std::string(to_string(c.channel)) + "' uses unknown parameter '" + p + "'");
   }
+  bool per_frame = false;
+  for (const ChannelSamples& c : channels) {
+    if (c.frame_priority.empty()) continue;
+    if (c.frame_priority.size() != frames)
+      throw InvalidInput("mix: channel '" + std::string(to_string(c.channel)) +
+                         "' needs one priority per frame");
+    per_frame = true;
+  }
+  std::vector<ChannelSamples> mod(channels.size());
+  std::vector<char> inhibited(frames);
+  std::vector<double> last(frames), next(frames);
+  if (per_frame) {  // §4.1 per-movement priority: who dominates is decided frame by frame
+    auto prio_at = [&](std::size_t c, std::size_t f) {
+      if (!channels[c].frame_priority.empty()) return channels[c].frame_priority[f];
+      return options.priority[static_cast<std::size_t>(channels[c].channel)];
+    };
+    // act[c][q·frames + f]: parameter q activated in channel c (previous pass), per frame
+    std::vector<std::vector<char>> act(channels.size(), std::vector<char>(np * frames, 0));
+    for (std::size_t c = 0; c < channels.size(); ++c) mod[c] = channels[c];
+    for (std::size_t pass = 0; pass < 2 * channels.size() + 1; ++pass) {
+      bool changed = false;
+      for (std::size_t c = 0; c < channels.size(); ++c) {
+        std::fill(act[c].begin(), act[c].end(), 0);
+        for (std::size_t cp = 0; cp < mod[c].parameters.size(); ++cp) {
+          const std::size_t p = index.at(mod[c].parameters[cp]);
+          for (std::size_t f = 0; f < frames; ++f)
+            if (std::abs(mod[c].values[cp * frames + f]) > options.active_threshold)
+              act[c][p * frames + f] = 1;
+        }
+      }
+      for (std::size_t c = 0; c < channels.size(); ++c) {
+        std::vector<double> values = channels[c].values;
+        for (std::size_t cp = 0; cp < channels[c].parameters.size(); ++cp) {
+          const std::size_t p = index.at(channels[c].parameters[cp]);
+          if (conflict[p].empty()) continue;
+          bool any = false;
+          for (std::size_t f = 0; f < frames; ++f) {
+            char in = 0;
+            const int mine = prio_at(c, f);
+            for (std::size_t d = 0; d < channels.size() && !in; ++d) {
+              if (d == c || prio_at(d, f) >= mine) continue;  // only strictly higher priority
+              for (std::size_t q : conflict[p]) in |= act[d][q * frames + f];
+            }
+            inhibited[f] = in;
+            any |= in != 0;
+          }
+          if (any)
+            apply_inhibition(values.data() + cp * frames, inhibited, frames, fps, options, last,
+                             next);
+        }
+        if (values != mod[c].values) {
+          mod[c].values = std::move(values);
+          changed = true;
+        }
+      }
+      if (!changed) break;
+    }
+    for (auto& m : mod) m.frame_priority.clear();
+  }
   // channel indices sorted by priority (stable: equal priorities keep input order)
   std::vector<std::size_t> order(channels.size());
   std::iota(order.begin(), order.end(), 0);
@@ -78,12 +170,8 @@ Tracks mix(const std::vector<ChannelSamples>& channels, const std::vector<std::s
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return prio(a) < prio(b); });
 
   std::vector<char> active(np * frames, 0);  // activated in a strictly higher-priority channel
-  std::vector<ChannelSamples> mod(channels.size());
-  std::vector<char> inhibited(frames);
-  std::vector<double> last(frames), next(frames);
-  const double inf = std::numeric_limits<double>::infinity();
 
-  for (std::size_t g = 0; g < order.size();) {
+  for (std::size_t g = 0; !per_frame && g < order.size();) {  // fixed channel priorities
     std::size_t g_end = g;
     while (g_end < order.size() && prio(order[g_end]) == prio(order[g])) ++g_end;
     for (std::size_t oi = g; oi < g_end; ++oi) {
@@ -104,31 +192,7 @@ Tracks mix(const std::vector<ChannelSamples>& channels, const std::vector<std::s
           any |= in != 0;
         }
         if (!any) continue;
-        // T← (last inhibited time before t) and T→ (next inhibited time after t), §4.6
-        double t_last = -inf;
-        for (std::size_t f = 0; f < frames; ++f) {
-          if (inhibited[f]) t_last = static_cast<double>(f) / fps;
-          last[f] = t_last;
-        }
-        double t_next = inf;
-        for (std::size_t f = frames; f-- > 0;) {
-          if (inhibited[f]) t_next = static_cast<double>(f) / fps;
-          next[f] = t_next;
-        }
-        for (std::size_t f = 0; f < frames; ++f) {
-          if (inhibited[f]) {
-            v[f] = 0.0;
-            continue;
-          }
-          const double t = static_cast<double>(f) / fps;
-          double cap = inf;
-          // Ψ←(t) = φ+(t − T←, Dmin+)  (§4.6)
-          if (last[f] > -inf) cap = std::min(cap, phi_plus(t - last[f], options.dmin_plus));
-          // Ψ→(t) = φ−(Dmin− − (T→ − t), Dmin−)  (§4.6); no constraint when T→ − t >= Dmin−
-          if (next[f] < inf && next[f] - t < options.dmin_minus)
-            cap = std::min(cap, phi_minus(options.dmin_minus - (next[f] - t), options.dmin_minus));
-          v[f] = std::min(v[f], cap);
-        }
+        apply_inhibition(v, inhibited, frames, fps, options, last, next);  // T←, T→, Ψ←, Ψ→ (§4.6)
       }
     }
     // the group's modified activity now inhibits lower-priority channels
@@ -205,6 +269,19 @@ Tracks render(const Timeline& timeline, const VisemeSet& visemes, const Conflict
       s.values.resize(s.parameters.size() * frames);
       for (std::size_t p = 0; p < s.parameters.size(); ++p)
         ch.sample(p, 0.0, options.fps, frames, s.values.data() + p * frames);
+      // §4.1 per-movement priority: while a movement with its own priority lasts, the channel has
+      // it (the highest of overlapping ones)
+      for (const Movement& m : timeline.movements[c]) {
+        if (m.priority < 0 || m.priority > 100)
+          throw InvalidInput("render: movement priority must be in [0, 100]");
+        if (m.priority == 0) continue;
+        if (s.frame_priority.empty()) s.frame_priority.assign(frames, options.mix.priority[c]);
+        const double first = std::ceil(m.timing.start * options.fps - 1e-9);
+        const auto f0 = static_cast<std::size_t>(std::max(0.0, first));
+        for (std::size_t f = f0;
+             f < frames && static_cast<double>(f) / options.fps <= m.timing.end + 1e-12; ++f)
+          s.frame_priority[f] = std::min(s.frame_priority[f], m.priority);
+      }
     }
     samples.push_back(std::move(s));
   }

@@ -355,6 +355,7 @@ Timeline build_timeline(const Script& script, const std::vector<std::vector<Phon
     Movement m;
     m.targets = mapper(e.intensities);
     m.timing = e.timing;
+    m.priority = e.priority;
     const auto l = e.where;
     m.label = std::string(e.emblem ? "EMBLEM" : "EMOTIONDISPLAY") + " at line " + std::to_string(l.line);
     lists[static_cast<std::size_t>(Channel::EmotionDisplay)].push_back({std::move(m), e.where});

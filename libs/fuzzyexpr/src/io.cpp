@@ -1,5 +1,6 @@
 #include "emoface/fuzzyexpr/io.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -302,19 +303,24 @@ std::string term(const FuzzySet& s) {
 }
 
 // "if <emotion> is <set> then m1 is X and m2 is X" for each input set of each row restricted to `mask`.
-void rules_for(std::string& out, const RuleBase& r, Emotion e, std::uint32_t mask) {
+void rules_for(std::string& out, const RuleBase& r, Emotion e, std::uint32_t mask,
+               MissingRule missing) {
   for (const auto& row : r.single[index(e)]) {
     std::vector<Muscle> ms;
     for (Muscle m : row.muscles)
       if (mask & (1u << index(m))) ms.push_back(m);
     if (ms.empty()) continue;
+    const bool any = std::any_of(row.levels.begin(), row.levels.end(), [](int l) { return l != kNoRule; });
     for (std::size_t i = 0; i < row.levels.size(); ++i) {
-      if (row.levels[i] == kNoRule) continue;
+      int level = row.levels[i];
+      // "−: no contraction" (Table 6.1 caption): the lowest output set, as Engine reads it
+      if (level == kNoRule && missing == MissingRule::NoContraction && any) level = 0;
+      if (level == kNoRule) continue;
       out += "  rule: if " + std::string(to_string(e)) + " is " + r.input_sets[i].name + " then ";
       for (std::size_t k = 0; k < ms.size(); ++k) {
         if (k) out += " and ";
         out += std::string(to_string(ms[k])) + " is " +
-               r.output_sets[static_cast<std::size_t>(row.levels[i])].name;
+               r.output_sets[static_cast<std::size_t>(level)].name;
       }
       out += "\n";
     }
@@ -360,15 +366,15 @@ std::string to_fll(const RuleBase& rules, const FllOptions& options) {
   const std::uint32_t all = (1u << kMuscleCount) - 1;
   for (std::size_t e = 0; e < kEmotionCount; ++e) {
     out += block_header("single_" + std::string(to_string(emotion_at(e))));
-    rules_for(out, rules, emotion_at(e), all);
+    rules_for(out, rules, emotion_at(e), all, options.missing_rule);
   }
   for (const auto& b : rules.blend) {
     out += block_header("blend_" + std::string(to_string(b.first)) + "_" + std::string(to_string(b.second)));
     std::uint32_t m1 = 0, m2 = 0;
     for (Muscle m : b.first_muscles) m1 |= 1u << index(m);
     for (Muscle m : b.second_muscles) m2 |= 1u << index(m);
-    rules_for(out, rules, b.first, m1);
-    rules_for(out, rules, b.second, m2);
+    rules_for(out, rules, b.first, m1, options.missing_rule);
+    rules_for(out, rules, b.second, m2, options.missing_rule);
   }
   return out;
 }

@@ -52,13 +52,7 @@ parlee::RgbImage key_moment_sheet(const ObieResult& result) {
     for (int y = 0; y < h; ++y)
       std::copy_n(&kf.image.rgb[static_cast<std::size_t>(y) * w * 3], static_cast<std::size_t>(w) * 3,
                   &sheet.rgb[(static_cast<std::size_t>(y0 + y) * sheet.width + x0) * 3]);
-    std::size_t strongest = 0;
-    for (std::size_t e = 1; e < 6; ++e)
-      if (kf.shown[e] > kf.shown[strongest]) strongest = e;
-    const char* names[] = {"sadness", "happiness", "anger", "fear", "disgust", "surprise"};
-    char line2[64];
-    if (kf.shown[strongest] < 0.03) std::snprintf(line2, sizeof line2, "shows: neutral");
-    else std::snprintf(line2, sizeof line2, "shows: %s %.2f", names[strongest], kf.shown[strongest]);
+    const std::string line2 = "shows: " + expression_text(kf.shown);
     std::string line1 = minute_text(kf.moment.minute) + " " + kf.moment.label;
     const int max_chars = std::max(1, (w - 8) / 8);
     if (static_cast<int>(line1.size()) > max_chars) line1.resize(static_cast<std::size_t>(max_chars));
@@ -103,7 +97,11 @@ std::string format_summary(const ObieResult& result, const MatchScript& match, b
   doc["utterances"] = utt;
   nlohmann::ordered_json km = nlohmann::ordered_json::array();
   for (const auto& k : result.key_frames)
-    km.push_back({{"minute", k.moment.minute}, {"label", k.moment.label}, {"time", round6(k.time)}, {"frame", k.frame}});
+    km.push_back({{"minute", k.moment.minute},
+                  {"label", k.moment.label},
+                  {"time", round6(k.time)},
+                  {"frame", k.frame},
+                  {"shows", expression_text(k.shown)}});
   doc["key_moments"] = km;
   doc["fps"] = result.head.tracks.fps;
   doc["frames"] = result.frames;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <thread>
 
@@ -46,6 +47,8 @@ void DisplayOptions::validate() const {
   if (!(in(reaction_hold, 0, 60) && reaction_hold > 0)) throw InvalidInput("display: reaction_hold must be in (0, 60] s");
   if (!in(background_scale, 0, 1)) throw InvalidInput("display: background_scale must be in [0, 1]");
   if (!in(reaction_gain, 1, 4)) throw InvalidInput("display: reaction_gain must be in [1, 4]");
+  if (!in(smile_outranks_speech, 0, 2))
+    throw InvalidInput("display: smile_outranks_speech must be in [0, 2]");
 }
 
 void ObieOptions::validate() const {
@@ -67,7 +70,11 @@ std::vector<parlee::StepRecord> run_match(const MatchScript& match, const parlee
   match.validate();
   config.validate();
   const parlee::Domain domain(parlee::read_domain_files(match.domain_paths()));
-  parlee::Agent agent(domain, config);
+  // A match script is authored data: an event Obie's model does not allow is a located error here
+  // (`parlee run` skips and reports such events instead, DisallowedEvent::Skip).
+  parlee::AgentConfig strict = config;
+  strict.on_disallowed = parlee::DisallowedEvent::Stop;
+  parlee::Agent agent(domain, strict);
   std::vector<parlee::StepRecord> records{agent.initial_record()};
   const auto events = to_parlee_events(match);
   for (std::size_t i = 0; i < events.size(); ++i) {
@@ -104,32 +111,42 @@ std::vector<channels::EmotionItem> emotion_displays(const std::vector<parlee::St
     std::array<double, 6> esv;
   };
   std::vector<Point> points;
-  std::array<bool, 6> mask{};
-  double reaction_until = -1.0;
+  // Reactions, per emotion: an emotion that rose at a step stays "fresh" for reaction_hold seconds;
+  // while any emotion is fresh the fresh ones show ×gain and the rest ×background_scale. Emotions
+  // that rose within reaction_hold of each other therefore show together (the blend of surprise at
+  // the long free-kick and happiness at the goal half a minute later, Fig. 7.9).
+  std::array<double, 6> fresh_until{};
+  fresh_until.fill(-1e300);
+  auto display = [&](double t, const std::array<double, 6>& esv) {
+    bool any = false;
+    for (double u : fresh_until) any = any || t < u;
+    std::array<double, 6> shown = esv;
+    if (any)
+      for (std::size_t e = 0; e < 6; ++e)
+        shown[e] = t < fresh_until[e] ? std::min(1.0, esv[e] * options.reaction_gain)
+                                      : esv[e] * options.background_scale;
+    return shown;
+  };
   std::array<double, 6> prev{};
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const std::size_t k = steps[i];
     const double t = step_seconds[k] + options.reaction_delay;
     std::array<double, 6> esv{};
-    bool rose = false;
-    std::array<bool, 6> risen{};
     for (std::size_t e = 0; e < 6; ++e) {
-      esv[e] = std::clamp(records[k].basic[e], 0.0, 1.0);
-      risen[e] = i > 0 && esv[e] - prev[e] >= options.reaction_rise;
-      rose = rose || risen[e];
+      esv[e] = std::clamp(records[k].shown[e], 0.0, 1.0);  // §5.6.5 revealingLevel applied
+      if (options.reactions && i > 0 && esv[e] - prev[e] >= options.reaction_rise)
+        fresh_until[e] = t + options.reaction_hold;
     }
     prev = esv;
-    if (options.reactions && rose) {
-      mask = risen;
-      reaction_until = t + options.reaction_hold;
-    }
-    std::array<double, 6> shown = esv;
-    if (t < reaction_until)
-      for (std::size_t e = 0; e < 6; ++e)
-        shown[e] = mask[e] ? std::min(1.0, shown[e] * options.reaction_gain) : shown[e] * options.background_scale;
-    points.push_back({t, shown});
+    points.push_back({t, display(t, esv)});
+    // windows that close before the next step are change points of their own
     const double next = i + 1 < steps.size() ? step_seconds[steps[i + 1]] + options.reaction_delay : 1e300;
-    if (t < reaction_until && reaction_until < next - 1e-3) points.push_back({reaction_until, esv});
+    std::vector<double> ends;
+    for (double u : fresh_until)
+      if (u > t && u < next - 1e-3) ends.push_back(u);
+    std::sort(ends.begin(), ends.end());
+    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+    for (double u : ends) points.push_back({u, display(u, esv)});
   }
   std::vector<channels::EmotionItem> out;
   bool open = false;  // the last item is still being held
@@ -152,6 +169,7 @@ std::vector<channels::EmotionItem> emotion_displays(const std::vector<parlee::St
     }
     channels::EmotionItem item;
     item.intensities = esv;
+    if (esv[1] >= options.smile_outranks_speech) item.priority = 1;  // §4.1, above speech (2)
     item.timing.start = start;
     item.timing.end = next + options.offset;
     item.timing.offset = options.offset;
@@ -161,6 +179,28 @@ std::vector<channels::EmotionItem> emotion_displays(const std::vector<parlee::St
     open = true;
   }
   return out;
+}
+
+std::string expression_text(const std::array<double, 6>& shown) {
+  static const fuzzyexpr::Engine engine(fuzzyexpr::default_rule_base());
+  fuzzyexpr::Esv esv{};
+  double largest = 0.0;
+  for (std::size_t k = 0; k < 6; ++k) {
+    esv[k] = std::clamp(shown[k], 0.0, 1.0);
+    largest = std::max(largest, esv[k]);
+  }
+  if (largest < 0.03) return "neutral";
+  const fuzzyexpr::Selection sel = engine.select(esv);
+  auto part = [&](fuzzyexpr::Emotion e) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%s %.2f", std::string(fuzzyexpr::to_string(e)).c_str(),
+                  esv[static_cast<std::size_t>(e)]);
+    return std::string(buf);
+  };
+  if (sel.mode == fuzzyexpr::ExpressionMode::Blend && sel.pair_has_rules &&
+      esv[static_cast<std::size_t>(sel.second)] > 0.0)
+    return part(sel.first) + " + " + part(sel.second);
+  return part(sel.first);
 }
 
 channels::EmotionMapper fuzzy_emotion_mapper() {

@@ -108,8 +108,8 @@ std::vector<PlannedUtterance> choose_utterances(const std::vector<parlee::StepRe
   std::vector<PlannedUtterance> out;
   double last_start = -1e300, last_duration = 0.0;
   for (std::size_t k = 1; k < records.size(); ++k) {
-    const auto& now = records[k].basic;
-    const auto& before = records[k - 1].basic;
+    const auto& now = records[k].shown;  // what the agent reveals (§5.6.5), like the face
+    const auto& before = records[k - 1].shown;
     const UtteranceRule* best = nullptr;
     double best_margin = -1.0;
     for (const auto& rule : set.rules) {

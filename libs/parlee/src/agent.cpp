@@ -17,6 +17,16 @@ std::string effects_text(const Domain& d, const GroundOutcome& o) {
 
 }  // namespace
 
+std::string_view to_string(DisallowedEvent d) {
+  return d == DisallowedEvent::Skip ? "skip" : "stop";
+}
+
+DisallowedEvent disallowed_event_from_string(std::string_view s) {
+  if (s == "skip") return DisallowedEvent::Skip;
+  if (s == "stop") return DisallowedEvent::Stop;
+  throw InvalidInput("unknown on_disallowed '" + std::string(s) + "' (skip, stop)");
+}
+
 void AgentConfig::validate() const {
   personality.validate();
   emotions.validate();
@@ -30,12 +40,20 @@ void AgentConfig::validate() const {
     if (!(v >= -1.0 && v <= 1.0)) throw InvalidInput("liking of '" + k + "' must be in [-1,1]");
   for (const auto& [k, v] : praiseworthiness)
     if (!(v >= -1.0 && v <= 1.0)) throw InvalidInput("praiseworthiness of '" + k + "' must be in [-1,1]");
+  for (const auto& r : replenishment)
+    if (!(r.threshold > 0.0 && r.threshold <= 1.0))
+      throw InvalidInput("replenishment threshold of '" + r.goal + "' must be in (0,1]");
 }
 
-Agent::Agent(const Domain& domain, AgentConfig config)
+Agent::Agent(const Domain& domain, AgentConfig config, const PlannerFactory& make_planner)
     : domain_(std::make_unique<Domain>(domain)), config_(std::move(config)), rng_(config_.seed, 0) {
   config_.validate();
-  planner_ = std::make_unique<Planner>(*domain_, config_.planning);
+  if (make_planner) {
+    planner_ = make_planner(*domain_, config_.planning);
+    if (!planner_) throw InvalidInput("Agent: the planner factory returned no planner");
+  } else {
+    planner_ = std::make_unique<Planner>(*domain_, config_.planning);
+  }
   if (!config_.self.empty()) {
     self_ = domain_->agent_index(config_.self);
     if (self_ < 0) throw InvalidInput("agent '" + config_.self + "' is not an agent of the domain");
@@ -52,9 +70,20 @@ Agent::Agent(const Domain& domain, AgentConfig config)
     m.add(v);
     feedback_[op] = m;
   }
+  for (const auto& r : config_.replenishment) {
+    std::size_t k = 0;
+    while (k < own_goals_.size() && domain_->goals()[own_goals_[k]].name != r.goal) ++k;
+    if (k == own_goals_.size())
+      throw InvalidInput("replenishment goal '" + r.goal + "' is not a goal of agent '" +
+                         domain_->spec().agents[static_cast<std::size_t>(self_)] + "'");
+    replenish_.emplace_back(k, r);
+  }
   state_ = domain_->initial_state();
   p_goal_ = own_goal_probabilities(state_);
   status_.assign(own_goals_.size(), GoalStatus::Unconfirmed);
+  active_.assign(own_goals_.size(), true);
+  for (const auto& [k, r] : replenish_)
+    active_[k] = level(config_.motivation, r.need) >= r.threshold;
   prev_hope_.assign(own_goals_.size(), 0.0);
   prev_fear_.assign(own_goals_.size(), 0.0);
 }
@@ -72,7 +101,7 @@ GoalStatus Agent::confirm(std::size_t k, const State& s) const {
 
 std::vector<double> Agent::own_goal_probabilities(const State& s) {
   std::vector<double> p;
-  for (auto g : own_goals_) p.push_back(planner_->goal_probability(g, s));
+  for (auto g : own_goals_) p.push_back(planner_->goal_probability(g, s, -1));
   return p;
 }
 
@@ -121,9 +150,9 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
   } else {
     // thesis §5.7.4: action i chosen with probability P_goal(a|s,i)/Σ_j P_goal(a|s,j), 1/n if Σ = 0
     std::vector<double> w(acts.size(), 1.0);
-    const int g = planner_->primary_goal(who, s);
+    const int g = who == self_ ? own_primary_goal(s) : planner_->primary_goal(who, s);
     if (g >= 0) {
-      auto q = planner_->action_values(static_cast<std::size_t>(g), s);
+      auto q = planner_->action_values(static_cast<std::size_t>(g), s, -1);
       double sum = 0.0;
       for (double v : q) sum += v;
       if (sum > 0.0) w = q;
@@ -147,18 +176,12 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
       x -= ga.outcomes[k].probability;
     }
   } else {
-    bool found = false;
-    for (std::size_t k = 0; k < ga.outcomes.size() && !found; ++k) {
+    if (auto bad = outcome_problem(a, outcome_spec); !bad.empty()) throw InvalidInput(bad);
+    for (std::size_t k = 0; k < ga.outcomes.size(); ++k) {
       if (ga.outcomes[k].label == outcome_spec || std::to_string(k + 1) == outcome_spec) {
         o = k;
-        found = true;
+        break;
       }
-    }
-    if (!found) {
-      std::string labels;
-      for (const auto& oc : ga.outcomes) labels += " " + oc.label;
-      throw InvalidInput("action " + domain_->action_text(a) + " has no outcome '" + outcome_spec +
-                         "' (outcomes:" + labels + ")");
     }
   }
   const State after = domain_->apply(s, a, o);
@@ -170,6 +193,7 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
   in.actor = who == self_ ? Actor::Self : Actor::Other;
   std::vector<double> importance, impact;
   for (std::size_t k = 0; k < own_goals_.size(); ++k) {
+    if (!active_[k]) continue;  // a dormant replenishment goal (§5.5.4)
     const auto& g = domain_->goals()[own_goals_[k]];
     GoalAppraisal ga_k;
     ga_k.importance = g.importance;
@@ -202,7 +226,8 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
     for (std::size_t g = 0; g < domain_->goals().size(); ++g) {
       if (domain_->goals()[g].agent != static_cast<int>(b)) continue;
       other.importance.push_back(domain_->goals()[g].importance);
-      other.impact.push_back(planner_->goal_probability(g, after) - planner_->goal_probability(g, s));
+      other.impact.push_back(planner_->goal_probability(g, after, -1) -
+                             planner_->goal_probability(g, s, -1));
     }
     if (!other.impact.empty()) in.others.push_back(std::move(other));
   }
@@ -241,6 +266,40 @@ void Agent::act(const std::optional<std::size_t>& forced, const std::string& out
   p_goal_ = config_.learn_outcomes ? own_goal_probabilities(after) : p_after;
 }
 
+std::string Agent::outcome_problem(std::size_t a, const std::string& spec) const {
+  if (spec.empty()) return {};
+  const GroundAction& ga = domain_->actions()[a];
+  for (std::size_t k = 0; k < ga.outcomes.size(); ++k)
+    if (ga.outcomes[k].label == spec || std::to_string(k + 1) == spec) return {};
+  std::string labels;
+  for (const auto& oc : ga.outcomes) labels += " " + oc.label;
+  return "action " + domain_->action_text(a) + " has no outcome '" + spec +
+         "' (outcomes:" + labels + ")";
+}
+
+// The script reports only what matters: other agents on turn that the event does not name (a
+// second supporter, whose watching changes nothing) pass unobserved, and so does the agent itself
+// if it has nothing to do, provided the event then fits. Otherwise nothing changes (the event is
+// then skipped or rejected by the caller).
+void Agent::pass_unreported(const Event& event, StepRecord& rec) {
+  State s = state_;
+  std::vector<int> passed;
+  auto fits = [&](const State& at) {
+    return domain_->find_action(event.action, domain_->applicable_actions(at)) >= 0;
+  };
+  while (passed.size() < domain_->agent_count() && !fits(s)) {
+    const int who = domain_->turn(s);
+    if (who == self_ && !domain_->applicable_actions(s).empty()) return;  // the agent acts itself
+    passed.push_back(who);
+    s = domain_->pass_turn(s);
+  }
+  if (!fits(s)) return;
+  state_ = s;
+  for (int who : passed)
+    rec.actions.push_back(
+        {domain_->spec().agents[static_cast<std::size_t>(who)], "pass", "", 1.0, ""});
+}
+
 void Agent::self_act(StepRecord& rec, EmotionVector& impulse) { act(std::nullopt, "", rec, impulse); }
 
 StepRecord Agent::step(const Event& event) {
@@ -261,25 +320,37 @@ StepRecord Agent::step(const Event& event) {
     return is_pass ? -1 : domain_->find_action(event.action, domain_->applicable_actions(state_));
   };
   if (domain_->turn(state_) == self_ && domain_->agent_count() > 1 && find() < 0) self_act(rec, impulse);
+  if (!is_pass && find() < 0) pass_unreported(event, rec);
   const int actor = domain_->turn(state_);
   if (is_pass) {
     state_ = domain_->pass_turn(state_);
     rec.actions.push_back({domain_->spec().agents[static_cast<std::size_t>(actor)], "pass", "", 1.0, ""});
   } else {
     const long a = find();
+    std::string why;
     if (a < 0) {
       std::string list;
       for (const auto& t : applicable()) list += " " + t;
-      throw InvalidInput("event at time " + std::to_string(event.time) + ": '" + event.action + "' is " +
-                         (a == -2 ? "ambiguous" : "not applicable") + "; applicable:" + (list.empty() ? " none" : list));
+      why = "event at time " + std::to_string(event.time) + ": '" + event.action + "' is " +
+            (a == -2 ? "ambiguous" : "not applicable") +
+            "; applicable:" + (list.empty() ? " none" : list);
+    } else if (auto bad = outcome_problem(static_cast<std::size_t>(a), event.outcome);
+               !bad.empty()) {
+      why = "event at time " + std::to_string(event.time) + ": " + bad;
     }
-    act(static_cast<std::size_t>(a), event.outcome, rec, impulse);
+    if (!why.empty() && config_.on_disallowed == DisallowedEvent::Stop) throw InvalidInput(why);
+    if (why.empty()) act(static_cast<std::size_t>(a), event.outcome, rec, impulse);
+    rec.skipped = why;
   }
   if (actor != self_ && domain_->turn(state_) == self_ && domain_->agent_count() > 1) self_act(rec, impulse);
 
+  update_replenishment();  // §5.5.4: motivational states changed by the actions of this step
   // Prospect emotions (§5.6.2 Hope/Fear) and deadline-driven goal confirmation on the final state.
   AppraisalInput in;
+  std::vector<std::size_t> appraised;
   for (std::size_t k = 0; k < own_goals_.size(); ++k) {
+    if (!active_[k]) continue;
+    appraised.push_back(k);
     const auto& g = domain_->goals()[own_goals_[k]];
     GoalAppraisal ga;
     ga.importance = g.importance;
@@ -294,8 +365,12 @@ StepRecord Agent::step(const Event& event) {
   }
   const AppraisalResult pr = appraise(in, config_.personality, config_.appraisal);
   for (std::size_t i = 0; i < kEmotionCount; ++i) impulse[i] += pr.impulse[i];
-  prev_hope_ = pr.hope;
-  prev_fear_ = pr.fear;
+  prev_hope_.assign(own_goals_.size(), 0.0);
+  prev_fear_.assign(own_goals_.size(), 0.0);
+  for (std::size_t j = 0; j < appraised.size(); ++j) {
+    prev_hope_[appraised[j]] = pr.hope[j];
+    prev_fear_[appraised[j]] = pr.fear[j];
+  }
 
   const EmotionVector alpha = motivated_alpha(config_.emotions, config_.motivation, config_.motivation_options);
   update_emotions(emotions_, impulse, config_.emotions, alpha,
@@ -303,6 +378,31 @@ StepRecord Agent::step(const Event& event) {
   rec.impulse = impulse;
   fill(rec);
   return rec;
+}
+
+void Agent::update_replenishment() {
+  for (const auto& [k, r] : replenish_) {
+    const bool now = level(config_.motivation, r.need) >= r.threshold;
+    if (now && !active_[k]) {  // the goal appears: unconfirmed, judged afresh from here
+      status_[k] = GoalStatus::Unconfirmed;
+      p_goal_[k] = planner_->goal_probability(own_goals_[k], state_, -1);
+      prev_hope_[k] = prev_fear_[k] = 0.0;
+    }
+    active_[k] = now;
+  }
+}
+
+// The agent's own choices follow its highest-priority active goal that does not hold yet (Within).
+int Agent::own_primary_goal(const State& s) const {
+  int best = -1;
+  const bool within = config_.planning.semantics == GoalSemantics::Within;
+  for (std::size_t k = 0; k < own_goals_.size(); ++k) {
+    if (!active_[k] || (within && domain_->goal_holds(own_goals_[k], s))) continue;
+    const auto& g = domain_->goals()[own_goals_[k]];
+    if (best < 0 || g.priority > domain_->goals()[static_cast<std::size_t>(best)].priority)
+      best = static_cast<int>(own_goals_[k]);
+  }
+  return best;
 }
 
 StepRecord Agent::initial_record() {
@@ -316,8 +416,10 @@ void Agent::fill(StepRecord& rec) {
   for (std::size_t k = 0; k < own_goals_.size(); ++k) rec.goal_names.push_back(domain_->goals()[own_goals_[k]].name);
   rec.goal_probability = p_goal_;
   rec.goal_status = status_;
+  rec.goal_active = active_;
   rec.emotions = emotions_;
   rec.basic = basic_emotions(emotions_, config_.emotions);
+  rec.shown = revealed_emotions(rec.basic, config_.personality);
   rec.liking = liking_;
   rec.state = domain_->state_text(state_);
 }

@@ -47,6 +47,26 @@ Actor actor_from_string(std::string_view s) {
   throw InvalidInput("unknown actor '" + std::string(s) + "'");
 }
 
+std::string_view to_string(CompoundRule r) {
+  return r == CompoundRule::Impact ? "impact" : "standards";
+}
+
+CompoundRule compound_rule_from_string(std::string_view s) {
+  if (s == "impact") return CompoundRule::Impact;
+  if (s == "standards") return CompoundRule::Standards;
+  throw InvalidInput("unknown compound rule '" + std::string(s) + "' (impact, standards)");
+}
+
+std::string_view to_string(ProspectMode m) {
+  return m == ProspectMode::SignedSum ? "signed_sum" : "per_goal";
+}
+
+ProspectMode prospect_mode_from_string(std::string_view s) {
+  if (s == "signed_sum") return ProspectMode::SignedSum;
+  if (s == "per_goal") return ProspectMode::PerGoal;
+  throw InvalidInput("unknown prospect mode '" + std::string(s) + "' (signed_sum, per_goal)");
+}
+
 void AppraisalOptions::validate() const {
   check(prospect_pivot > 0.0 && prospect_pivot < 1.0, "AppraisalOptions::prospect_pivot must be in (0,1)");
   check(surprise_threshold > 0.0 && surprise_threshold <= 1.0, "AppraisalOptions::surprise_threshold must be in (0,1]");
@@ -68,6 +88,13 @@ AppraisalResult appraise(const AppraisalInput& in, const Personality& pers, cons
   const double unexpected = 1.0 - p_event;
   const double u_joy = std::pow(unexpected, opt.joy_exponent);
   const double u_sad = std::pow(unexpected, opt.distress_exponent);
+  std::vector<double> terms;
+  terms.reserve(in.goals.size());
+  // Table 5.2 (CompoundRule::Standards): Gratitude/Gratification need a praiseworthy action,
+  // Anger/Remorse a blameworthy one; §5.6.2 (Impact): any desirable/undesirable action.
+  const bool by_impact = opt.compound == CompoundRule::Impact;
+  const bool praised = by_impact || (in.has_praiseworthiness && in.praiseworthiness > 0.0);
+  const bool blamed = by_impact || (in.has_praiseworthiness && in.praiseworthiness < 0.0);
   for (const auto& g : in.goals) {
     check(unit(g.p_before) && unit(g.p_after), "appraise: goal probabilities must be in [0,1]");
     check(g.importance >= 0.0 && std::isfinite(g.importance), "appraise: importance must be ≥ 0");
@@ -78,23 +105,16 @@ AppraisalResult appraise(const AppraisalInput& in, const Personality& pers, cons
     const double w = g.importance;
     if (impact > 0.0) {
       add(Emotion::Joy, impact * w * u_joy);  // §5.6.2 Happiness
-      if (in.actor == Actor::Other) add(Emotion::Gratitude, impact * w * u_joy);
-      if (in.actor == Actor::Self) add(Emotion::Gratification, impact * w * u_joy);
+      if (in.actor == Actor::Other && praised) add(Emotion::Gratitude, impact * w * u_joy);
+      if (in.actor == Actor::Self && praised) add(Emotion::Gratification, impact * w * u_joy);
     } else if (impact < 0.0) {
       add(Emotion::Distress, -impact * w * u_sad);  // §5.6.2 Sadness
-      if (in.actor == Actor::Other) add(Emotion::Anger, -impact * w * u_joy);  // §5.6.2 Anger
-      if (in.actor == Actor::Self) add(Emotion::Remorse, -impact * w * u_joy);
+      if (in.actor == Actor::Other && blamed)
+        add(Emotion::Anger, -impact * w * u_joy);  // §5.6.2 Anger
+      if (in.actor == Actor::Self && blamed) add(Emotion::Remorse, -impact * w * u_joy);
     }
-    double hope = 0.0, fear = 0.0;
-    if (g.status == GoalStatus::Unconfirmed) {
-      // §5.6.2 Hope = Σ Import·(P(goal) − 0.5), Fear = Σ Import·(0.5 − P(goal))
-      if (after > opt.prospect_pivot) hope = w * (after - opt.prospect_pivot);
-      if (after < opt.prospect_pivot) fear = w * (opt.prospect_pivot - after);
-    }
-    add(Emotion::Hope, hope);
-    add(Emotion::Fear, fear);
-    r.hope.push_back(hope);
-    r.fear.push_back(fear);
+    // §5.6.2 prospect term of this goal, Import·(P(goal) − 0.5), for unconfirmed goals only
+    terms.push_back(g.status == GoalStatus::Unconfirmed ? w * (after - opt.prospect_pivot) : 0.0);
     if (g.status_changed && g.status == GoalStatus::Success) {  // §5.6.2 Relief = previous Fear
       add(Emotion::Satisfaction, g.previous_hope);
       add(Emotion::Relief, g.previous_fear);
@@ -102,6 +122,28 @@ AppraisalResult appraise(const AppraisalInput& in, const Personality& pers, cons
       add(Emotion::Disappointment, g.previous_hope);
       add(Emotion::FearsConfirmed, g.previous_fear);
     }
+  }
+  // §5.6.2 Hope = Σ Import·(P(goal) − 0.5), Fear = Σ Import·(0.5 − P(goal)) (as printed: one
+  // signed sum over the goals, its positive part Hope and its negative part Fear) or per goal.
+  r.hope.assign(in.goals.size(), 0.0);
+  r.fear.assign(in.goals.size(), 0.0);
+  double pos = 0.0, neg = 0.0;
+  for (double t : terms) (t > 0.0 ? pos : neg) += std::fabs(t);
+  if (opt.prospect == ProspectMode::PerGoal) {
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      r.hope[k] = std::max(0.0, terms[k]);
+      r.fear[k] = std::max(0.0, -terms[k]);
+    }
+  } else {
+    const double net = pos - neg;
+    for (std::size_t k = 0; k < terms.size(); ++k) {  // shares of the net, summing to it
+      if (net > 0.0 && terms[k] > 0.0) r.hope[k] = net * terms[k] / pos;
+      if (net < 0.0 && terms[k] < 0.0) r.fear[k] = -net * -terms[k] / neg;
+    }
+  }
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    add(Emotion::Hope, r.hope[k]);
+    add(Emotion::Fear, r.fear[k]);
   }
   if (in.has_praiseworthiness) {  // §5.6.2 Pride = Praiseworthiness, Shame = −Praiseworthiness
     const double pw = in.praiseworthiness;

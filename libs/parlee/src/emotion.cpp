@@ -76,6 +76,18 @@ double feel_impulse(const Personality& p, double impulse) {
   return impulse <= 0.0 ? 0.0 : std::pow(impulse, 1.5 - p[Trait::FeelingLevel]);
 }
 
+std::array<double, 6> revealed_emotions(const std::array<double, 6>& felt, const Personality& p) {
+  p.validate();
+  const double power = 1.5 - p[Trait::RevealingLevel];  // thesis §5.6.5, read as a power
+  std::array<double, 6> out{};
+  for (std::size_t k = 0; k < 6; ++k) {
+    if (!(felt[k] >= 0.0 && felt[k] <= 1.0))
+      throw InvalidInput("revealed_emotions: intensities must be in [0,1]");
+    out[k] = felt[k] <= 0.0 ? 0.0 : std::pow(felt[k], power);
+  }
+  return out;
+}
+
 // thesis §5.6.5: newDesire-other impulse = Desire-other impulse · feelingFocus
 double desire_other_factor(const Personality& p) { return p[Trait::FeelingFocus]; }
 
@@ -198,6 +210,41 @@ EmotionVector motivated_alpha(const EmotionParams& params, const MotivationalSta
 std::string_view to_string(BodyEvent e) {
   static constexpr std::array<std::string_view, 5> kNames{"action", "eat", "drink", "rest", "hit"};
   return kNames.at(static_cast<std::size_t>(e));
+}
+
+std::string_view to_string(Need n) {
+  switch (n) {
+    case Need::Hunger:
+      return "hunger";
+    case Need::Fatigue:
+      return "fatigue";
+    case Need::Thirst:
+      return "thirst";
+    case Need::Pain:
+      return "pain";
+  }
+  return "hunger";
+}
+
+Need need_from_string(std::string_view s) {
+  for (Need n : {Need::Hunger, Need::Fatigue, Need::Thirst, Need::Pain})
+    if (to_string(n) == s) return n;
+  throw InvalidInput("unknown motivational variable '" + std::string(s) +
+                     "' (hunger, fatigue, thirst, pain)");
+}
+
+double level(const MotivationalState& m, Need n) {
+  switch (n) {
+    case Need::Hunger:
+      return m.hunger;
+    case Need::Fatigue:
+      return m.fatigue;
+    case Need::Thirst:
+      return m.thirst;
+    case Need::Pain:
+      return m.pain;
+  }
+  return 0.0;
 }
 
 BodyEvent body_event_from_string(std::string_view s) {

@@ -8,7 +8,7 @@ namespace emoface::parlee {
 namespace {
 
 using Json = nlohmann::ordered_json;
-constexpr core::FormatVersion kAgentVersion{1, 0};
+constexpr core::FormatVersion kAgentVersion{1, 1};  // 1.1: appraisal, display
 
 struct Reader {
   const std::string& file;
@@ -147,6 +147,57 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
           }
         } else r.fail(p, "unknown field '" + k + "'");
       }
+    } else if (key == "replenishment") {
+      if (!v.is_array()) r.fail(ptr, "expected an array of {goal, need, threshold}");
+      for (std::size_t n = 0; n < v.size(); ++n) {
+        const std::string pe = ptr + "/" + std::to_string(n);
+        const Json& e = r.object(v[n], pe);
+        ReplenishmentGoal g;
+        for (const auto& [k, x] : e.items()) {
+          const std::string p = pe + "/" + tok(k);
+          if (k == "goal")
+            g.goal = r.string(x, p);
+          else if (k == "threshold")
+            g.threshold = r.number(x, p, 1e-9, 1.0);
+          else if (k == "need") {
+            try {
+              g.need = need_from_string(r.string(x, p));
+            } catch (const InvalidInput& err) {
+              r.fail(p, err.what());
+            }
+          } else
+            r.fail(p, "unknown field '" + k + "'");
+        }
+        if (g.goal.empty()) r.fail(pe, "needs a goal name");
+        c.replenishment.push_back(g);
+      }
+    } else if (key == "on_disallowed") {
+      try {
+        c.on_disallowed = disallowed_event_from_string(r.string(v, ptr));
+      } catch (const InvalidInput& e) {
+        r.fail(ptr, e.what());
+      }
+    } else if (key == "appraisal") {
+      for (const auto& [k, x] : r.object(v, ptr).items()) {
+        const std::string p = ptr + "/" + tok(k);
+        if (k == "prospect") {
+          try {
+            c.appraisal.prospect = prospect_mode_from_string(r.string(x, p));
+          } catch (const InvalidInput& e) {
+            r.fail(p, e.what());
+          }
+        } else if (k == "compound") {
+          try {
+            c.appraisal.compound = compound_rule_from_string(r.string(x, p));
+          } catch (const InvalidInput& e) {
+            r.fail(p, e.what());
+          }
+        } else if (k == "surprise_threshold") {
+          c.appraisal.surprise_threshold = r.number(x, p, 1e-9, 1.0);
+        } else {
+          r.fail(p, "unknown field '" + k + "'");
+        }
+      }
     } else if (key == "learning") {
       for (const auto& [k, x] : r.object(v, ptr).items()) {
         const std::string p = ptr + "/" + tok(k);
@@ -205,6 +256,15 @@ std::string write_agent(const AgentConfig& c) {
                      {"thirst", c.motivation.thirst}, {"pain", c.motivation.pain}};
   j["planning"] = {{"horizon", c.planning.horizon}, {"model_depth", c.planning.model_depth},
                    {"semantics", to_string(c.planning.semantics)}};
+  j["on_disallowed"] = std::string(to_string(c.on_disallowed));
+  Json rep = Json::array();
+  for (const auto& g : c.replenishment)
+    rep.push_back(
+        {{"goal", g.goal}, {"need", std::string(to_string(g.need))}, {"threshold", g.threshold}});
+  j["replenishment"] = rep;
+  j["appraisal"] = {{"prospect", std::string(to_string(c.appraisal.prospect))},
+                    {"compound", std::string(to_string(c.appraisal.compound))},
+                    {"surprise_threshold", c.appraisal.surprise_threshold}};
   j["learning"] = {{"outcomes", c.learn_outcomes}, {"prior_count", c.learning_prior}, {"liking_rate", c.liking_rate}};
   Json l = Json::object();
   for (const auto& [k, v] : c.liking) l[k] = v;
@@ -287,18 +347,24 @@ std::string timeline_line(const StepRecord& r) {
                     {"effects", a.effects}});
   j["events"] = acts;
   Json goals = Json::object();
-  for (std::size_t k = 0; k < r.goal_names.size(); ++k)
+  for (std::size_t k = 0; k < r.goal_names.size(); ++k) {
     goals[r.goal_names[k]] = {{"p", r.goal_probability[k]}, {"status", to_string(r.goal_status[k])}};
+    if (k < r.goal_active.size() && !r.goal_active[k]) goals[r.goal_names[k]]["active"] = false;
+  }
   j["goals"] = goals;
   j["emotions"] = emotion_json(r.emotions);
   j["impulse"] = emotion_json(r.impulse);
   Json esv = Json::object();
   for (std::size_t k = 0; k < 6; ++k) esv[std::string(kBasicEmotionNames[k])] = r.basic[k];
   j["esv"] = esv;
+  Json shown = Json::object();
+  for (std::size_t k = 0; k < 6; ++k) shown[std::string(kBasicEmotionNames[k])] = r.shown[k];
+  j["shown"] = shown;
   Json l = Json::object();
   for (const auto& [k, v] : r.liking) l[k] = v;
   j["liking"] = l;
   j["state"] = r.state;
+  if (!r.skipped.empty()) j["skipped"] = r.skipped;
   return j.dump() + "\n";
 }
 

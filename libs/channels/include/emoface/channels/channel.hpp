@@ -38,6 +38,10 @@ struct Movement {
   std::vector<Target> targets;  ///< parameters not listed have target 0
   Timing timing;
   std::string label;            ///< free text for diagnostics (e.g. "EMOTIONDISPLAY line 3")
+  /// §4.1 per-movement priority: 0 = its channel's (MixOptions::priority); otherwise this
+  /// movement's own priority while it lasts (Ts ≤ t ≤ Te), smaller = higher — "the smile may also
+  /// have higher priority than the visual speech when the subject is too happy". Range [0, 100].
+  int priority = 0;
 };
 
 /// The movements of one channel, concatenated as in thesis §4.5.2: the activity follows movement k

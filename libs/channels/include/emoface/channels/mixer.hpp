@@ -50,6 +50,9 @@ struct ChannelSamples {
   Channel channel = Channel::EmotionDisplay;
   std::vector<std::string> parameters;
   std::vector<double> values;
+  /// Optional, one per frame: the channel's priority at that frame (per-movement priority, §4.1),
+  /// smaller = higher; empty = MixOptions::priority of the channel at every frame.
+  std::vector<int> frame_priority;
 };
 
 /// Cross-channel combination (thesis §4.6). For each parameter p of each channel c (taken in
@@ -60,6 +63,10 @@ struct ChannelSamples {
 /// channels (for the signed gaze/head angles: the value of largest magnitude). Every channel
 /// parameter must be in `parameters`; every channel has `frames` samples per parameter.
 /// If `modified` is given it receives the aF of every channel (same layout as `channels`).
+/// With per-frame priorities (ChannelSamples::frame_priority) "higher priority" is decided frame by
+/// frame; the inhibitions are then found by fixed-point iteration (each pass uses the previous
+/// pass's aF of the other channels; at most 2·channels passes), which gives the plain result when
+/// the per-frame priorities equal the channels' priorities.
 Tracks mix(const std::vector<ChannelSamples>& channels, const std::vector<std::string>& parameters,
            double fps, std::size_t frames, const ConflictTable& conflicts, const MixOptions& options,
            std::vector<ChannelSamples>* modified = nullptr);

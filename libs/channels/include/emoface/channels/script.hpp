@@ -56,6 +56,7 @@ struct EmotionItem {
   bool emblem = false;
   std::array<double, 6> intensities{};  ///< in ESV order, each in [0,1]
   Timing timing;
+  int priority = 0;  ///< Movement::priority of the display (0 = channel's)
   ScriptLocation where;
 };
 

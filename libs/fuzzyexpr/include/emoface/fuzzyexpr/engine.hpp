@@ -32,8 +32,9 @@ enum class Transition : std::uint8_t {
 };
 /// How a "−" cell inside a rule row is read.
 enum class MissingRule : std::uint8_t {
-  NoRule,         ///< the issue's reading: no rule fires (a row like "− − − m b" jumps from 0 to m)
-  NoContraction,  ///< "− : no contraction" (Table 6.1 caption): a rule to the lowest output set
+  NoRule,         ///< no rule fires (a row like "− − − m b" jumps from 0 to m)
+  NoContraction,  ///< "− : no contraction" (Table 6.1 caption, the default): a rule to the lowest
+                  ///< output set, so such a row rises continuously from 0
 };
 
 std::string_view to_string(ExpressionMode v) noexcept;
@@ -59,7 +60,8 @@ struct ExpressionOptions {
   Transition transition = Transition::Crisp;
   /// Smooth transition: width of the cross-fade bands in intensity units. Range (0, 1].
   double transition_width = 0.1;
-  MissingRule missing_rule = MissingRule::NoRule;
+  /// Table 6.1's caption reads "−: no contraction": the default (docs/fuzzyexpr.md, sadness → m3).
+  MissingRule missing_rule = MissingRule::NoContraction;
 
   /// Throws InvalidInput naming the bad field.
   void validate() const;

@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/fuzzyexpr/rule_base.hpp"
 
 namespace emoface::fuzzyexpr {
@@ -26,6 +27,10 @@ struct FllOptions {
   /// Samples fuzzylite's Centroid defuzzifier integrates over the output range. ≥ 10.
   int centroid_resolution = 1000;
   std::string engine_name = "emoface_fuzzyexpr";
+  /// How "−" cells are exported, as Engine reads them (ExpressionOptions::missing_rule): with
+  /// NoContraction (the default) a "−" inside a row that has rules becomes a rule to the lowest
+  /// output set; with NoRule it is left out.
+  MissingRule missing_rule = MissingRule::NoContraction;
   void validate() const;
 };
 

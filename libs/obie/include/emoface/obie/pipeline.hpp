@@ -54,6 +54,10 @@ struct DisplayOptions {
   double reaction_hold = 3.0;    ///< s, (0, 60]
   double background_scale = 0.0; ///< [0, 1]
   double reaction_gain = 1.5;    ///< risen emotions are shown ×gain (clamped to 1) during the reaction, [1, 4]
+  /// §4.1 "the smile may also have higher priority than the visual speech when the subject is too
+  /// happy": a display showing happiness at or above this has priority 1 (above speech, 2), [0, 2];
+  /// above 1 = never.
+  double smile_outranks_speech = 0.9;
   void validate() const;
 };
 
@@ -74,7 +78,10 @@ struct ObieOptions {
   facemesh::View view = facemesh::View::Front;
   bool render_frames = true;       ///< false: deform and render only the glTF and key-moment frames
   double gltf_fps = 4.0;           ///< morph-target frames per second of the glTF, [0, fps] (0 = none)
-  double key_moment_delay = 1.2;   ///< s after a key moment's animation time: the frame shown, [0, 30]
+  /// s after a key moment's animation time: the frame shown, [0, 30]. 0.6 = reaction delay 0.15 +
+  /// onset 0.4 + 0.05: the event's own display at its apex, before the next minute's event (1 s
+  /// later) replaces it (at 1.2 s the 40.5' goal showed the 41' display, without the surprise).
+  double key_moment_delay = 0.6;
   int threads = 0;                 ///< deformation/rendering threads, [0, 64]; 0 = hardware concurrency (≤ 8)
   void validate() const;           ///< throws InvalidInput naming the field
 };
@@ -175,6 +182,11 @@ std::vector<channels::EmotionItem> emotion_displays(const std::vector<parlee::St
 
 /// fuzzyexpr's default engine as a channels::EmotionMapper: ESV → FMCV (thesis ch. 6) → both sides.
 channels::EmotionMapper fuzzy_emotion_mapper();
+
+/// What the face shows for displayed intensities, as the fuzzy system selects it (thesis §6.5):
+/// "happiness 1.00 + surprise 0.56" in Blend mode, "sadness 0.93" in Single mode, "neutral" when
+/// every intensity is below 0.03. Used for the key-moment captions and summary.json.
+std::string expression_text(const std::array<double, 6>& shown);
 
 /// Frame index shown for a key moment: round((time_map.seconds(minute) + delay)·fps), clamped to
 /// [0, frames − 1].

@@ -45,7 +45,27 @@ struct AppraisalInput {
   std::vector<OtherAppraisal> others;
 };
 
+/// How Hope and Fear combine over goals (thesis §5.6.2).
+enum class ProspectMode : std::uint8_t {
+  SignedSum,  ///< as printed: S = Σ Import·(P − pivot); Hope = max(0, S), Fear = max(0, −S)
+  PerGoal,    ///< each goal clamped first: Hope = Σ max(0, Import·(P − pivot)), Fear likewise
+};
+std::string_view to_string(ProspectMode m);
+ProspectMode prospect_mode_from_string(std::string_view s);  ///< throws InvalidInput
+
+/// When the compound emotions Anger, Gratitude, Gratification and Remorse arise.
+enum class CompoundRule : std::uint8_t {
+  Impact,     ///< §5.6.2: any (un)desirable action of another agent / of oneself
+  Standards,  ///< Table 5.2 (OCC): Anger = Distress + Reproach, Gratitude = Joy + Appreciation,
+              ///< Gratification = Joy + Pride, Remorse = Distress + Self-reproach: only when the
+              ///< action's praiseworthiness is known and of the right sign; intensity as §5.6.2
+};
+std::string_view to_string(CompoundRule r);
+CompoundRule compound_rule_from_string(std::string_view s);  ///< throws InvalidInput
+
 struct AppraisalOptions {
+  CompoundRule compound = CompoundRule::Impact;     ///< Table 5.2 vs §5.6.2 for Anger & co.
+  ProspectMode prospect = ProspectMode::SignedSum;  ///< §5.6.2 combination of Hope/Fear over goals
   double prospect_pivot = 0.5;      ///< Hope if P(goal) > pivot, Fear if below (§5.6.2), (0,1)
   double surprise_threshold = 0.5;  ///< Surprise = threshold − P(event) if P(event) < threshold, (0,1]
   double joy_exponent = 0.5;        ///< unexpectedness exponent for happiness-type emotions, > 0
@@ -55,17 +75,21 @@ struct AppraisalOptions {
 
 struct AppraisalResult {
   EmotionVector impulse{};          ///< after personality (§5.6.5), ≥ 0
-  std::vector<double> hope;         ///< per goal, before personality: feed back as previous_hope
-  std::vector<double> fear;         ///< per goal: feed back as previous_fear
+  /// Per goal, before personality: feed back as previous_hope / previous_fear. Under SignedSum
+  /// each goal holds its share of the net Hope (Fear) in proportion to its positive (negative)
+  /// term, so that the shares add up to the impulse; under PerGoal its own clamped term.
+  std::vector<double> hope;
+  std::vector<double> fear;
 };
 
 /// The EIV of §5.6.2:
 ///   Impact   = P'after − P'before (P' = perceive_probability), then reason_impact
 ///   Joy      = Σ Impact·Import·(1−P'(event))^0.5 (Impact > 0); Distress with |Impact| and ^2
-///   Hope     = Σ Import·(P'(goal) − 0.5) (P > 0.5, unconfirmed); Fear = Σ Import·(0.5 − P'(goal))
-///   Gratitude/Anger (actor other), Gratification/Remorse (actor self): like Joy with |Impact|, ^0.5
-///   Satisfaction/Relief on success = previous Hope/Fear; Disappointment/FearsConfirmed on failure
-///   Pride/Shame (self), Appreciation/Reproach (other) = ±Praiseworthiness
+///   Hope     = max(0, S), Fear = max(0, −S), S = Σ_unconfirmed Import·(P'(goal) − 0.5)
+///              (ProspectMode::SignedSum, as printed; PerGoal clamps each goal's term first)
+///   Gratitude/Anger (actor other), Gratification/Remorse (actor self): like Joy with |Impact|,
+///   ^0.5 Satisfaction/Relief on success = previous Hope/Fear; Disappointment/FearsConfirmed on
+///   failure Pride/Shame (self), Appreciation/Reproach (other) = ±Praiseworthiness
 ///   HappyFor/SorryFor (liking > 0), Resentment/Gloating (liking < 0) = |LL|·other's joy/distress,
 ///   times feelingFocus
 ///   Surprise = 0.5 − P'(event) if P'(event) < 0.5

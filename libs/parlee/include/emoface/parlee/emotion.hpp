@@ -118,6 +118,12 @@ struct MotivationOptions {
 EmotionVector motivated_alpha(const EmotionParams& params, const MotivationalState& m,
                               const MotivationOptions& options = {});
 
+/// One of the four motivational variables (§5.5.4).
+enum class Need : std::uint8_t { Hunger, Fatigue, Thirst, Pain };
+std::string_view to_string(Need n);                ///< "hunger", "fatigue", "thirst", "pain"
+Need need_from_string(std::string_view s);         ///< throws InvalidInput
+double level(const MotivationalState& m, Need n);  ///< the variable's value, [0,1]
+
 enum class BodyEvent : std::uint8_t { Action, Eat, Drink, Rest, Hit };
 std::string_view to_string(BodyEvent e);                ///< "action", "eat", "drink", "rest", "hit"
 BodyEvent body_event_from_string(std::string_view s);  ///< throws InvalidInput
@@ -133,5 +139,11 @@ inline constexpr std::array<std::string_view, 6> kBasicEmotionNames{"sadness", "
 /// emotions: only the active part of an emotion shows, moods below α do not (§5.5.2). Weights in
 /// docs/parlee.md, "Mapping to the six basic emotions". Result in [0,1]^6, order above.
 std::array<double, 6> basic_emotions(const EmotionVector& e, const EmotionParams& params);
+
+/// §5.6.5 "The value of revealingLevel is used in the emotion displaying component": how much of
+/// the felt basic emotions shows, read as a power like the other §5.6.5 modifiers:
+/// shown_i = felt_i^(1.5 − revealingLevel). Neutral (0.5) shows what is felt, open (1) shows more
+/// (felt^0.5), secretive (0) less (felt^1.5); 0 and 1 stay fixed, the order of the six is kept.
+std::array<double, 6> revealed_emotions(const std::array<double, 6>& felt, const Personality& p);
 
 }  // namespace emoface::parlee

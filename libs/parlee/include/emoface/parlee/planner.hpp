@@ -12,6 +12,8 @@
 // An agent without goals is modelled as choosing uniformly. The goal of an agent used for its
 // action choice is its highest-priority goal (that does not hold yet, under Within semantics).
 #include <cstddef>
+#include <functional>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -50,27 +52,51 @@ struct PlanResult {
   std::size_t states_evaluated = 0;
 };
 
-class Planner {
+/// What ParleE needs from a planner (thesis §5.5: "any planner that can produce the same output
+/// would fit into ParleE"): the probability of achieving a goal, the value of each applicable
+/// action, and the models of other agents (their action distributions). `Planner` (the DP of
+/// §5.7) is one implementation; `Agent` takes a `PlannerFactory` to use another.
+class GoalPlanner {
+ public:
+  virtual ~GoalPlanner() = default;
+  virtual const PlanOptions& options() const noexcept = 0;
+  /// P^H_goal(agent of `goal` | s), in [0,1]; horizon −1 = options().horizon.
+  virtual double goal_probability(std::size_t goal, const State& s, int horizon) = 0;
+  /// Σ_s' P(s'|i,s)·P^{H−1}_goal(·|s') for each action of applicable_actions(s), in that order.
+  virtual std::vector<double> action_values(std::size_t goal, const State& s, int horizon) = 0;
+  /// P^level(b,i|s) for the agent b on turn, over applicable_actions(s) (sums to 1; empty if none).
+  virtual std::vector<double> action_distribution(const State& s, int level) = 0;
+  /// Highest-priority goal of `agent` that drives its choices in `s`; −1 if none.
+  virtual int primary_goal(int agent, const State& s) const = 0;
+  /// Forget cached values (called after the domain's outcome probabilities changed).
+  virtual void clear() = 0;
+};
+
+/// Makes a planner for an agent's (copied) domain; the domain outlives the planner.
+using PlannerFactory =
+    std::function<std::unique_ptr<GoalPlanner>(const Domain&, const PlanOptions&)>;
+
+class Planner final : public GoalPlanner {
  public:
   /// Keeps a reference to `domain`: it must outlive the planner. Call clear() after changing the
   /// domain's outcome probabilities.
   explicit Planner(const Domain& domain, PlanOptions options = {});
 
-  const PlanOptions& options() const noexcept { return options_; }
+  const PlanOptions& options() const noexcept override { return options_; }
 
   /// P^H_goal(agent of `goal` | s); horizon −1 = options().horizon.
-  double goal_probability(std::size_t goal, const State& s, int horizon = -1);
+  double goal_probability(std::size_t goal, const State& s, int horizon = -1) override;
   /// Σ_s' P(s'|i,s)·P^{H−1}_goal(·|s') for each action of applicable_actions(s), in that order.
-  std::vector<double> action_values(std::size_t goal, const State& s, int horizon = -1);
+  std::vector<double> action_values(std::size_t goal, const State& s, int horizon = -1) override;
   /// P^level(b,i|s) for the agent b on turn, over applicable_actions(s) (sums to 1; empty if none).
-  std::vector<double> action_distribution(const State& s, int level);
+  std::vector<double> action_distribution(const State& s, int level) override;
   /// Optimal plan for `goal` from `s`.
   PlanResult plan(std::size_t goal, const State& s, int horizon = -1);
   /// Highest-priority goal of `agent` (under Within semantics: not holding in `s` yet; ties:
   /// declaration order); −1 if none.
-  int primary_goal(int agent, const State& s) const;
+  int primary_goal(int agent, const State& s) const override;
 
-  void clear();
+  void clear() override;
   std::size_t memo_size() const noexcept { return value_memo_.size() + choice_memo_.size(); }
   std::size_t states_evaluated() const noexcept { return evaluated_; }
 
