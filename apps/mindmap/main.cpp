@@ -39,8 +39,25 @@ struct Args {
   emoface::mindmotion::CrowdRenderOptions render;
   std::string view = "front";
   double fps = 0.0;
-  bool video = false;
+  bool video = false, no_vary = false;
 };
+
+// §5.1 variation is on by default (issue 19); --no-vary switches it off.
+void add_motion_options(CLI::App* cmd, Args& a) {
+  cmd->add_flag("--no-vary", a.no_vary, "no motion variation (paper §5.1): the same label gives the same motion");
+  cmd->add_option("--replace", a.motion.synthesis.replace_probability,
+                  "variation: probability of replacing a path node by a neighbour")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--return-after", a.motion.return_after,
+                  "seconds after an animation before the face returns to neutral (0 = never)")
+      ->check(CLI::Range(0.0, 1e5))
+      ->capture_default_str();
+}
+
+void apply_motion_options(Args& a) {
+  if (a.no_vary) a.motion.synthesis = emoface::motiongraph::SynthesisOptions{};  // no §5.1 variation
+}
 
 std::string file_stem(const std::string& name) {  // character names become file names: keep them portable
   for (char c : name)
@@ -53,6 +70,7 @@ std::string file_stem(const std::string& name) {  // character names become file
 int simulate(Args& a) {
   a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
   a.motion.seed = a.sim.seed;
+  apply_motion_options(a);
   std::optional<mg::MotionGraph> graph;
   std::vector<std::string> labels;
   if (!a.graph.empty()) {
@@ -124,6 +142,7 @@ int crowd(Args& a) {
   namespace fm = emoface::facemesh;
   a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
   a.render.view = fm::view_from_string(a.view);  // checked by CLI11 (IsMember) when parsing
+  apply_motion_options(a);
   mo::CrowdOptions co;
   co.simulation = a.sim;
   co.motion = a.motion;
@@ -210,6 +229,12 @@ int crowd(Args& a) {
   }
   for (const auto& s : crowd.simulation.copied)
     std::cout << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time << " s\n";
+  const auto distance = mo::face_distances(crowd);  // issue 19: how different the faces are
+  std::cout << "face distance (mean per-frame parameter distance):";
+  for (std::size_t i = 0; i < distance.size(); ++i)
+    for (std::size_t j = i + 1; j < distance.size(); ++j)
+      std::printf(" %s-%s %.3f", crowd.characters[i].name.c_str(), crowd.characters[j].name.c_str(), distance[i][j]);
+  std::cout << "\n";
   const double frames = static_cast<double>(crowd.frame_count());
   std::printf("%zu characters, %zu frames at %g fps (%g s), %zu key moments, frame %dx%d\n", maps.size(),
               crowd.frame_count(), crowd.fps, crowd.simulation.duration, crowd.key_moments.size(), renderer.width(),
@@ -255,6 +280,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   sim->add_option("--hint-fraction", a.motion.hint_path_fraction, "path fraction of decay hints")
       ->capture_default_str();
+  add_motion_options(sim, a);
   sim->add_option("--chart-width", a.chart.width, "chart pixels")->capture_default_str();
   sim->add_option("--chart-height", a.chart.height, "chart pixels")->capture_default_str();
   sim->add_flag("--no-charts", a.no_charts, "do not write PNG mood charts");
@@ -262,7 +288,7 @@ int main(int argc, char** argv) {
   cr->add_option("--maps", a.maps, "directory of mind maps (*.json, 2 to 16 characters)")->required();
   cr->add_option("--events", a.events, "shared stimuli (NDJSON, see docs/mindmap.md)")->required();
   cr->add_option("--out", a.out, "output directory")->required();
-  cr->add_option("--graph", a.graph, "motion graph (mgraph build); default: built from the synthetic database (~6 s)");
+  cr->add_option("--graph", a.graph, "motion graph (mgraph build); default: mgraph generate + build defaults (~3 s)");
   cr->add_option("--rig", a.rigs, "rig for everyone (FILE) or for one character (NAME=FILE); default: the built-in face");
   cr->add_option("--seed", a.sim.seed, "random seed (near-tie choices, motion variation)")->capture_default_str();
   cr->add_option("--fps", a.fps, "frames per second of tracks, mood rows and video (0 = the graph's)")->capture_default_str();
@@ -278,6 +304,7 @@ int main(int argc, char** argv) {
   cr->add_option("--propagate", a.sim.propagation_depth, "hops a performed stimulus travels to the others (0 = off)")
       ->capture_default_str();
   cr->add_flag("--no-charts", a.no_charts, "do not write PNG mood charts");
+  add_motion_options(cr, a);
   auto* check = app.add_subcommand("check", "validate mind maps (and their labels against a graph)");
   check->add_option("--maps", a.maps, "directory of mind maps")->required();
   check->add_option("--graph", a.graph, "motion graph whose labels the actions must use");
