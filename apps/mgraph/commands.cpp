@@ -51,7 +51,11 @@ PreparedDatabase load_prepared(const Args& a) {
   o.align = !a.no_align;
   o.clean = !a.no_clean;
   o.append_reversed = !a.no_reverse;
-  return preprocess(db, layout, o);
+  o.skip_bad_samples = ck.on_error == OnError::Skip;  // a sample that does not start neutral
+  PreprocessReport pr;
+  PreparedDatabase data = preprocess(db, layout, o, &pr);
+  for (const auto& s : pr.skipped) std::cerr << "mgraph: skipped: " << s << "\n";
+  return data;
 }
 
 GraphOptions graph_options(const Args& a) {

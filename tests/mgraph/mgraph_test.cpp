@@ -1,3 +1,4 @@
+#include <algorithm>
 // mgraph end to end: face/parametric generation, shards, --on-error, batch requests, GIF/MP4
 // output.
 #include <gtest/gtest.h>
@@ -132,6 +133,22 @@ TEST_F(Mgraph, OnErrorSkipReportsBadSequences) {
   EXPECT_TRUE(fs::exists(path("g.json")));
   r = run("build --db " + bad + " --on-error ignore --out " + path("g2.json"));
   EXPECT_EQ(r.code, 1);
+  // A sequence that does not start neutral (issue 19): stop by default, skipped and reported with skip.
+  auto reversed = nlohmann::json::parse(slurp(shared("db.json")));
+  auto& frames = reversed["sequences"][1]["frames"];
+  std::reverse(frames.begin(), frames.end());
+  const std::string rev = write("rev.json", reversed.dump());
+  r = run("build --db " + rev + " --no-clean --out " + path("g3.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("does not start neutral"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("g3.json")));
+  r = run("build --db " + rev + " --no-clean --on-error skip --out " + path("g3.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("skipped: preprocess: sequence \"" + reversed["sequences"][1]["id"].get<std::string>() +
+                       "\" does not start neutral"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(path("g3.json")));
 }
 
 TEST_F(Mgraph, EvalShardsMergeToTheWholeTable) {
