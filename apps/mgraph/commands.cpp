@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/cli/cli.hpp"
@@ -13,6 +14,7 @@
 #include "emoface/core/io.hpp"
 #include "emoface/core/rng.hpp"
 #include "emoface/core/video.hpp"
+#include "emoface/motiongraph/capture.hpp"
 #include "emoface/motiongraph/evaluate.hpp"
 #include "emoface/motiongraph/io.hpp"
 #include "emoface/motiongraph/layout.hpp"
@@ -118,15 +120,7 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
   return cli::kExitOk;
 }
 
-}  // namespace
-
-int generate(const Args& a) {
-  SyntheticOptions o;
-  o.seed = a.seed;
-  o.sequences_per_label = a.per_label;
-  o.subjects = a.subjects;
-  o.noise_std = a.noise;
-  const cli::Shard shard = cli::parse_shard(a.shard);
+std::unique_ptr<LandmarkModel> landmark_model(const Args& a) {
   std::unique_ptr<LandmarkModel> model;
   if (a.model == "parametric") {
     model = std::make_unique<ParametricLandmarkModel>();
@@ -139,6 +133,19 @@ int generate(const Args& a) {
   } else {
     throw cli::UsageError("--model: unknown value \"" + a.model + "\" (expected face|parametric)");
   }
+  return model;
+}
+
+}  // namespace
+
+int generate(const Args& a) {
+  SyntheticOptions o;
+  o.seed = a.seed;
+  o.sequences_per_label = a.per_label;
+  o.subjects = a.subjects;
+  o.noise_std = a.noise;
+  const cli::Shard shard = cli::parse_shard(a.shard);
+  const std::unique_ptr<LandmarkModel> model = landmark_model(a);
   // Sequence i depends only on (seed, i): shards of a batch are parts of the same database.
   Database db;
   db.dimensions = 2;
@@ -337,6 +344,99 @@ int eval(const Args& a) {
   std::printf("paper (CK+, 70 sequences): 90%% -> 0.98 +- 1.84 frames, 2.86 +- 2.3 px; 78%% -> 0.071 +- 0.39, "
               "2.12 +- 1.81; 57.53%% -> 0 +- 0, 1.52 +- 1.51\n");
   if (a.out != "-") core::write_file_atomic(a.out, csv);
+  return cli::kExitOk;
+}
+
+// Capture files (issue 19): OpenFace CSV / MediaPipe NDJSON takes → cleaned, stabilised, trimmed,
+// labelled landmark database.
+int capture(const Args& a) {
+  if (a.openface.empty() == a.mediapipe.empty()) throw cli::UsageError("give --openface or --mediapipe files");
+  CaptureOptions co;
+  co.on_error = on_error(a);
+  co.filter.min_confidence = a.min_confidence;
+  co.filter.max_gap = a.max_gap;
+  co.stabilise = !a.no_stabilise;
+  co.trim = !a.no_trim;
+  try {
+    co.validate();
+  } catch (const InvalidInput& e) {
+    throw cli::UsageError(e.what());
+  }
+  std::vector<TrackedFrames> takes;
+  OpenFaceReadOptions oo;
+  oo.use_3d = a.use_3d;
+  oo.label_column = a.label_column;
+  MediaPipeReadOptions mo;
+  mo.image_width = a.image_width;
+  mo.image_height = a.image_height;
+  mo.use_z = a.use_3d;
+  for (const auto& f : a.openface) takes.push_back(read_openface_csv(f, oo));
+  for (const auto& f : a.mediapipe) takes.push_back(read_mediapipe_ndjson(f, mo));
+  std::optional<LabelTable> labels;
+  if (!a.labels_file.empty()) labels = read_label_table(a.labels_file);
+  ReadReport report;
+  const Database db = capture_database(takes, co, labels ? &*labels : nullptr, &report);
+  print_skipped(report);
+  cli::Output out(a.out);
+  const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
+  out.write(csv ? database_to_csv(db) : database_to_json(db));
+  out.commit();
+  std::size_t frames = 0;
+  for (const auto& s : db.sequences) frames += s.frames.size();
+  std::cerr << "mgraph: " << takes.size() << " take(s) → " << db.sequences.size() << " labelled neutral-to-peak "
+            << "sequence(s), " << frames << " frames at " << db.frame_rate << " fps\n";
+  return cli::kExitOk;
+}
+
+// Example capture files from emoface's own face: one file per take and the labels side file.
+int capture_example(const Args& a) {
+  if (a.format != "openface" && a.format != "mediapipe")
+    throw cli::UsageError("--format: unknown value \"" + a.format + "\" (expected openface|mediapipe)");
+  CaptureExampleOptions o;
+  o.database.seed = a.seed;
+  o.database.sequences_per_label = a.per_label;
+  o.database.subjects = a.subjects;
+  o.database.noise_std = a.noise;
+  o.database.min_frames = a.min_frames;
+  o.database.max_frames = a.max_frames;
+  o.rest_frames = a.rest_frames;
+  o.hold_frames = a.hold_frames;
+  try {
+    o.validate();
+  } catch (const InvalidInput& e) {
+    throw cli::UsageError(e.what());
+  }
+  const std::unique_ptr<LandmarkModel> model = landmark_model(a);
+  std::vector<TrackedFrames> takes = generate_capture_takes(*model, o);
+  if (a.max_takes > 0 && takes.size() > a.max_takes) takes.resize(a.max_takes);
+  // Everything is computed before anything is written.
+  std::vector<std::pair<std::string, std::string>> files;
+  LabelTable side;
+  for (const TrackedFrames& t : takes) {
+    // The side file labels every segment the default capture options find, from the take's column.
+    std::size_t k = 0;
+    for (const TrackedFrames& part : clean_frames(t)) {
+      TrackedFrames p = part;
+      stabilise_head(p);
+      for (const TakeSegment& seg : find_segments(p)) {
+        const Label l = label_from_string(p.labels[seg.peak]);
+        if (l != Label::Neutral) side.entries[{t.id, std::to_string(k)}] = l;
+        ++k;
+      }
+    }
+    if (a.format == "openface") {
+      files.emplace_back(a.out + "/" + t.id + ".csv", openface_csv(t));
+    } else {
+      std::vector<Eigen::MatrixXd> points;
+      for (std::size_t i = 0; i < t.size(); ++i)
+        points.push_back(t.success[i] ? mediapipe_points_from_ibug68(t.frames[i]) : Eigen::MatrixXd());
+      files.emplace_back(a.out + "/" + t.id + ".ndjson", mediapipe_ndjson(t.times, points, t.labels));
+    }
+  }
+  files.emplace_back(a.out + "/labels.csv", label_table_csv(side));
+  std::filesystem::create_directories(a.out);
+  for (const auto& [path, content] : files) core::write_file_atomic(path, content);
+  std::cerr << "mgraph: wrote " << takes.size() << " " << a.format << " take(s) and labels.csv to " << a.out << "\n";
   return cli::kExitOk;
 }
 

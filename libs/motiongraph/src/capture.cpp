@@ -213,7 +213,7 @@ std::string openface_csv(const TrackedFrames& take) {
       out += buf;
     }
     if (!take.labels.empty()) {
-      out += ", ";
+      out += ',';  // no space: a quoted label must start the field
       core::append_csv_field(out, take.labels[i]);
     }
     out += '\n';
@@ -384,7 +384,7 @@ std::string mediapipe_ndjson(const std::vector<double>& times, const std::vector
         throw InvalidInput("mediapipe_ndjson: a face is 478 finite points by 3");
       out += '[';
       for (Eigen::Index k = 0; k < p.rows(); ++k) {
-        std::snprintf(buf, sizeof buf, "%s{\"x\": %.9g, \"y\": %.9g, \"z\": %.9g}", k ? ", " : "", p(k, 0), p(k, 1),
+        std::snprintf(buf, sizeof buf, "%s{\"x\": %.8g, \"y\": %.8g, \"z\": %.8g}", k ? ", " : "", p(k, 0), p(k, 1),
                       p(k, 2));
         out += buf;
       }
