@@ -15,6 +15,7 @@ PACKAGES=(
   libtinygltf-dev                   # facemesh: animated glTF export
   libespeak-ng-dev espeak-ng-data libpugixml-dev   # channels / talkinghead: speech, markup
   ffmpeg                            # core::VideoWriter: facerender, obie, mgraph, mindmap crowd videos
+  graphviz                          # core::render_dot: mindmap dot / mgraph dot SVG and PNG pictures
   liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
 )
 

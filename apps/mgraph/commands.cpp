@@ -15,6 +15,8 @@
 #include "emoface/core/rng.hpp"
 #include "emoface/core/video.hpp"
 #include "emoface/motiongraph/capture.hpp"
+#include "emoface/core/graphviz.hpp"
+#include "emoface/motiongraph/dot.hpp"
 #include "emoface/motiongraph/evaluate.hpp"
 #include "emoface/motiongraph/io.hpp"
 #include "emoface/motiongraph/layout.hpp"
@@ -437,6 +439,31 @@ int capture_example(const Args& a) {
   std::filesystem::create_directories(a.out);
   for (const auto& [path, content] : files) core::write_file_atomic(path, content);
   std::cerr << "mgraph: wrote " << takes.size() << " " << a.format << " take(s) and labels.csv to " << a.out << "\n";
+  return cli::kExitOk;
+}
+
+// A region motion graph as a picture (issue 19, item 4).
+int dot(const Args& a) {
+  const MotionGraph g = read_graph(a.graph);
+  const RegionGraph* region = nullptr;
+  std::string names;
+  for (const auto& r : g.regions) {
+    if (r.name == a.region) region = &r;
+    names += (names.empty() ? "" : ", ") + r.name;
+  }
+  if (!region) throw cli::UsageError("--region: no region \"" + a.region + "\" (the graph has " + names + ")");
+  GraphDotOptions o;
+  o.depth = a.depth;
+  o.edge_weights = a.edge_weights;
+  const std::string text = region_graph_dot(*region, o);
+  const auto ext = std::filesystem::path(a.out).extension().string();
+  if (ext == ".svg" || ext == ".png" || ext == ".pdf") {
+    core::render_dot(text, a.out);
+  } else {
+    cli::Output out(a.out);
+    out.write(text);
+    out.commit();
+  }
   return cli::kExitOk;
 }
 

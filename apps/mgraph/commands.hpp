@@ -26,6 +26,9 @@ struct Args {
   std::string label_column, labels_file, format = "openface";
   bool use_3d = false, no_stabilise = false, no_trim = false;
   double min_confidence = 0.75, image_width = 640.0, image_height = 490.0;
+  std::string region;
+  std::size_t depth = 0;
+  bool edge_weights = false;
   std::size_t max_gap = 3, min_frames = 10, max_frames = 30, rest_frames = 12, hold_frames = 6, max_takes = 0;
 };
 
@@ -36,5 +39,6 @@ int idle(const Args& a);
 int eval(const Args& a);
 int capture(const Args& a);
 int capture_example(const Args& a);
+int dot(const Args& a);
 
 }  // namespace emoface::mgraph

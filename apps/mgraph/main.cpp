@@ -137,6 +137,14 @@ int main(int argc, char** argv) {
   ex->add_option("--hold", a.hold_frames, "frames holding the peak")->capture_default_str();
   ex->add_option("--max-takes", a.max_takes, "write only the first N takes (0 = all)")->capture_default_str();
 
+  auto* dt = app.add_subcommand("dot", "draw a region graph (Graphviz DOT; .svg/.png/.pdf rendered by dot)");
+  dt->add_option("--graph", a.graph, "motion graph JSON")->required();
+  dt->add_option("--region", a.region, "region name (eyes, eyebrows, nose, mouth, cheeks_jaw)")->required();
+  dt->add_option("--depth", a.depth, "only nodes within this many edges of the source (0 = all)")
+      ->capture_default_str();
+  dt->add_flag("--weights", a.edge_weights, "label edges with their eq. (1) weights");
+  dt->add_option("--out", a.out, "output: .dot or - (text), .svg, .png or .pdf (needs Graphviz)")->required();
+
   if (auto code = cli::parse(app, argc, argv)) return *code;
   return cli::run("mgraph", [&] {
     if (*gen) return mgraph::generate(a);
@@ -145,6 +153,7 @@ int main(int argc, char** argv) {
     if (*idle) return mgraph::idle(a);
     if (*cap) return mgraph::capture(a);
     if (*ex) return mgraph::capture_example(a);
+    if (*dt) return mgraph::dot(a);
     return mgraph::eval(a);
   });
 }

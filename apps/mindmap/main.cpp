@@ -13,7 +13,9 @@
 #include "emoface/core/io.hpp"
 #include "emoface/core/version.hpp"
 #include "emoface/core/video.hpp"
+#include "emoface/core/graphviz.hpp"
 #include "emoface/mindmap/chart.hpp"
+#include "emoface/mindmap/dot.hpp"
 #include "emoface/mindmap/io.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmotion/behaviour.hpp"
@@ -40,7 +42,20 @@ struct Args {
   std::string view = "front";
   double fps = 0.0;
   bool video = false, no_vary = false;
+  // dot
+  std::string character;
+  double time = -1.0;
 };
+
+// Writes DOT text, or renders it with Graphviz by the extension (.svg, .png, .pdf).
+void write_dot(const std::string& dot, const std::string& out) {
+  const auto ext = std::filesystem::path(out).extension().string();
+  if (ext == ".svg" || ext == ".png" || ext == ".pdf") {
+    emoface::core::render_dot(dot, out);
+  } else {
+    emoface::core::write_file_atomic(out, dot);
+  }
+}
 
 // §5.1 variation is on by default (issue 19); --no-vary switches it off.
 void add_motion_options(CLI::App* cmd, Args& a) {
@@ -251,6 +266,26 @@ int crowd(Args& a) {
   return cli::kExitOk;
 }
 
+// The mind map as a picture (issue 19, item 4), with the mood at --time after --events.
+int dot(Args& a) {
+  const std::vector<mm::MindMap> maps = mm::read_mind_map_dir(a.maps, {});
+  std::size_t c = maps.size();
+  for (std::size_t i = 0; i < maps.size(); ++i)
+    if (maps[i].character == a.character) c = i;
+  if (c == maps.size()) throw cli::UsageError("--character: no mind map of \"" + a.character + "\" in " + a.maps);
+  mm::MindMapDotOptions o;
+  if (!a.events.empty()) {
+    if (a.time < 0.0) throw cli::UsageError("--events needs --time (seconds)");
+    a.sim.duration = a.time;
+    o.mood = mm::mood_at(mm::simulate(maps, mm::read_events(a.events), a.sim), c, a.time);
+  } else if (a.time >= 0.0) {
+    o.mood = maps[c].traits.starting_mood;  // no stimuli: the starting mood
+  }
+  write_dot(mm::mind_map_dot(maps[c], o), a.out);
+  std::cout << "wrote " << a.out << "\n";
+  return cli::kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -305,6 +340,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cr->add_flag("--no-charts", a.no_charts, "do not write PNG mood charts");
   add_motion_options(cr, a);
+  auto* dt = app.add_subcommand("dot", "draw a mind map (Graphviz DOT; .svg/.png/.pdf rendered by dot)");
+  dt->add_option("--maps", a.maps, "directory of mind maps")->required();
+  dt->add_option("--character", a.character, "whose mind map")->required();
+  dt->add_option("--events", a.events, "stimuli to run first (NDJSON), for the mood at --time");
+  dt->add_option("--time", a.time, "seconds: show the mood at this time (starting mood without --events)");
+  dt->add_option("--seed", a.sim.seed, "random seed of the simulation")->capture_default_str();
+  dt->add_option("--out", a.out, "output: .dot (text), .svg, .png or .pdf (needs Graphviz)")->required();
   auto* check = app.add_subcommand("check", "validate mind maps (and their labels against a graph)");
   check->add_option("--maps", a.maps, "directory of mind maps")->required();
   check->add_option("--graph", a.graph, "motion graph whose labels the actions must use");
@@ -313,6 +355,7 @@ int main(int argc, char** argv) {
   return cli::run("mindmap", [&]() -> int {
     if (*sim) return simulate(a);
     if (*cr) return crowd(a);
+    if (*dt) return dot(a);
     std::vector<std::string> labels;
     if (!a.graph.empty()) labels = emoface::mindmotion::graph_labels(mg::read_graph(a.graph));
     const auto maps = mm::read_mind_map_dir(a.maps, labels);

@@ -294,4 +294,20 @@ TEST_F(Mgraph, CaptureExamplesAreReproducibleAndReadBack) {
   EXPECT_EQ(run("capture-example --format xml --out " + path("x")).code, 1);
 }
 
+// Issue 19, item 4: region graphs as Graphviz pictures.
+TEST_F(Mgraph, DotDrawsARegionGraph) {
+  auto r = run("dot --graph " + shared("graph.json") + " --region mouth --depth 1 --weights --out " + path("m.dot"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string dot = slurp(path("m.dot"));
+  EXPECT_EQ(dot.rfind("digraph \"motion graph mouth\"", 0), 0u);
+  EXPECT_NE(dot.find("source"), std::string::npos);
+  r = run("dot --graph " + shared("graph.json") + " --region lips --out " + path("x.dot"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("eyes, eyebrows, nose, mouth, cheeks_jaw"), std::string::npos) << r.err;
+  if (std::system("dot -V > /dev/null 2>&1") == 0) {
+    ASSERT_EQ(run("dot --graph " + shared("graph.json") + " --region eyes --depth 1 --out " + path("e.svg")).code, 0);
+    EXPECT_NE(slurp(path("e.svg")).find("<svg"), std::string::npos);
+  }
+}
+
 }  // namespace
