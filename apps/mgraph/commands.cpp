@@ -91,6 +91,7 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
     const View view = fit_view(all, vo.width, vo.height);
     for (const Pose& pose : all) {
       Image img(vo.width, vo.height);
+      draw_contours(img, pose, contours_for(g.landmark_ids()), view);
       draw_pose(img, pose, groups, view, std::max(1.5, vo.width / 256.0));
       video.add_frame(img.rgb);
     }
@@ -101,7 +102,7 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
     for (std::size_t f = 0; f < all.size(); f += static_cast<std::size_t>(a.every)) shown.push_back(all[f]);
     if ((all.size() - 1) % static_cast<std::size_t>(a.every) != 0) shown.push_back(all.back());
     core::write_file_atomic(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
-                                                              a.cell_width * 7 / 8)));
+                                                              a.cell_width * 7 / 8, contours_for(g.landmark_ids()))));
   }
   if (!a.plot.empty()) core::write_file_atomic(a.plot, encode_png(plot_trajectories(all, groups)));
   if (!a.frames_dir.empty()) {
@@ -171,8 +172,10 @@ int generate(const Args& a) {
         seen.push_back(s.label);
         shown.push_back(s.frames.back());
       }
+    std::vector<int> all_ids(68);
+    for (int i = 0; i < 68; ++i) all_ids[static_cast<std::size_t>(i)] = i;
     core::write_file_atomic(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
-                                                              a.cell_width * 7 / 8)));
+                                                              a.cell_width * 7 / 8, contours_for(all_ids))));
   }
   cli::Output out(a.out);
   const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";

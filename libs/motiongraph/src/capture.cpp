@@ -141,7 +141,8 @@ TrackedFrames parse_openface_csv(std::string_view text, const std::string& file,
   }
   const std::size_t width = fields.size();
   for (++i; i < lines.size(); ++i) {
-    const auto [no, line] = lines[i];
+    const std::size_t no = lines[i].first;  // (no structured binding: lambdas capture it, C++17)
+    const std::string_view line = lines[i].second;
     if (trim(line).empty()) continue;
     if (const std::size_t col = core::split_csv_line(line, fields, &error)) fail(file, no, col, "malformed row: " + error);
     if (fields.size() != width)
@@ -260,8 +261,9 @@ TrackedFrames parse_mediapipe_ndjson(std::string_view text, const std::string& f
   t.dimensions = options.use_z ? 3 : 2;
   const auto& table = mediapipe_to_ibug68();
   bool any_label = false;
-  for (const auto& [no, raw] : lines_of(text)) {
-    const std::string line = trim(raw);
+  for (const auto& numbered : lines_of(text)) {
+    const std::size_t no = numbered.first;
+    const std::string line = trim(numbered.second);
     if (line.empty() || line[0] == '#') continue;
     nlohmann::json doc;
     try {
