@@ -1,6 +1,6 @@
 // libFuzzer target: the capture readers (OpenFace 2.0 CSV, MediaPipe face-landmarker NDJSON, label
-// side files) must reject bad input with an emoface error, never crash or hang; what they accept must
-// survive cleaning, stabilisation, trimming and the writers' round trip. Seeds:
+// side files) must reject bad input with an emoface error, never crash or hang; what they accept
+// must survive cleaning, stabilisation, trimming and the writers' round trip. Seeds:
 // tests/fuzz/corpus/motiongraph_capture (data/capture/ examples, trimmed).
 #include <cstddef>
 #include <cstdint>

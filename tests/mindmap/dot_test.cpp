@@ -1,11 +1,11 @@
 // Graphviz export of mind maps (issue 19, item 4), parsed by the `dot` program.
 #include "emoface/mindmap/dot.hpp"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-
-#include <gtest/gtest.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/graphviz.hpp"
@@ -24,16 +24,21 @@ TEST(MindMapDot, NodesEdgesWeightsAndMood) {
   // Emotion nodes in the mood-chart colours, with the mood; border 1 + 4·mood.
   char colour[16];
   std::snprintf(colour, sizeof colour, "#%06x", emotion_colour(1));
-  EXPECT_NE(dot.find(std::string("e1 [shape=ellipse, style=filled, fillcolor=\"") + colour + "40\", color=\"" +
-                     colour + "\", penwidth=3.00, label=\"sadness\\nmood 0.50\"]"),
-            std::string::npos) << dot;
-  EXPECT_NE(dot.find("a0 [shape=note, label=\"gift\"]"), std::string::npos);                     // stimulus
-  EXPECT_NE(dot.find("a2 [shape=box, style=rounded, label=\"smile\\n[happiness]\"]"), std::string::npos);
+  EXPECT_NE(
+      dot.find(std::string("e1 [shape=ellipse, style=filled, fillcolor=\"") + colour +
+               "40\", color=\"" + colour + "\", penwidth=3.00, label=\"sadness\\nmood 0.50\"]"),
+      std::string::npos)
+      << dot;
+  EXPECT_NE(dot.find("a0 [shape=note, label=\"gift\"]"), std::string::npos);  // stimulus
+  EXPECT_NE(dot.find("a2 [shape=box, style=rounded, label=\"smile\\n[happiness]\"]"),
+            std::string::npos);
   EXPECT_NE(dot.find("a0 -> e0 [color="), std::string::npos);
   EXPECT_NE(dot.find("label=\"0.80\"];"), std::string::npos);  // gift → happiness
   EXPECT_NE(dot.find("label=\"0.90\"];"), std::string::npos);  // happiness → laugh
-  EXPECT_NE(dot.find("a2 -> a5 [style=dashed, label=\"then\"];"), std::string::npos);  // chain smile → wave
-  EXPECT_NE(dot.find("e1 -> a4 [style=dotted, label=\"decay\"];"), std::string::npos);  // representative
+  EXPECT_NE(dot.find("a2 -> a5 [style=dashed, label=\"then\"];"),
+            std::string::npos);  // chain smile → wave
+  EXPECT_NE(dot.find("e1 -> a4 [style=dotted, label=\"decay\"];"),
+            std::string::npos);  // representative
   o.mood = {0.1};
   EXPECT_THROW(mind_map_dot(test::make_alice(), o), InvalidInput);
   o.mood = {0.1, 1.5};
@@ -55,7 +60,8 @@ TEST(MindMapDot, MoodAtPicksTheLastSampleAtOrBeforeTheTime) {
 
 TEST(MindMapDot, DotParsesIt) {
   if (!core::graphviz_available()) GTEST_SKIP() << "Graphviz (dot) not installed: scripts/setup.sh";
-  const std::string path = (std::filesystem::temp_directory_path() / "emoface_mindmap_dot_test.svg").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "emoface_mindmap_dot_test.svg").string();
   MindMap odd = test::make_alice();
   odd.character = "al\"ice \\ the\nfirst";  // quoting
   ASSERT_NO_THROW(core::render_dot(mind_map_dot(odd, {{0.3, 0.7}, true}), path));

@@ -1,12 +1,12 @@
 // Capture readers, writers, cleaning, stabilisation, trimming and labels (issue 19, item 1).
 #include "emoface/motiongraph/capture.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
 #include <set>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/motiongraph/preprocess.hpp"
@@ -25,7 +25,8 @@ CaptureExampleOptions small_example() {
 }
 
 const std::vector<TrackedFrames>& example_takes() {
-  static const std::vector<TrackedFrames> takes = generate_capture_takes(ParametricLandmarkModel(), small_example());
+  static const std::vector<TrackedFrames> takes =
+      generate_capture_takes(ParametricLandmarkModel(), small_example());
   return takes;
 }
 
@@ -66,7 +67,8 @@ std::string expect_format_error(const std::function<void()>& f) {
 TEST(OpenFace, RoundTripOfAGeneratedTakeWithActionUnits) {
   TrackedFrames take = example_takes()[0];
   take.au_names = {"AU01_r", "AU12_r", "AU45_c"};
-  for (std::size_t i = 0; i < take.size(); ++i) take.au.push_back({0.1 * static_cast<double>(i % 5), 1.5, i % 2 ? 1.0 : 0.0});
+  for (std::size_t i = 0; i < take.size(); ++i)
+    take.au.push_back({0.1 * static_cast<double>(i % 5), 1.5, i % 2 ? 1.0 : 0.0});
   const std::string text = openface_csv(take);
   OpenFaceReadOptions o;
   o.label_column = "label";
@@ -96,9 +98,11 @@ std::string openface_header(bool with_3d) {
   return h + ", AU01_r, AU01_c\n";
 }
 
-std::string openface_row(int frame, int face, double time, double conf, int success, double base, bool with_3d) {
-  std::string r = std::to_string(frame) + ", " + std::to_string(face) + ", " + std::to_string(time) + ", " +
-                  std::to_string(conf) + ", " + std::to_string(success) + ", 0.1, 12.5";
+std::string openface_row(int frame, int face, double time, double conf, int success, double base,
+                         bool with_3d) {
+  std::string r = std::to_string(frame) + ", " + std::to_string(face) + ", " +
+                  std::to_string(time) + ", " + std::to_string(conf) + ", " +
+                  std::to_string(success) + ", 0.1, 12.5";
   for (int a = 0; a < 2; ++a)
     for (int i = 0; i < 68; ++i) r += ", " + std::to_string(base + i + 100 * a);
   if (with_3d)
@@ -130,7 +134,9 @@ TEST(OpenFace, ReadsOpenFaceHeadersFacesAnd3D) {
 
 TEST(OpenFace, BadInputIsALocatedFormatError) {
   const std::string h = openface_header(false);
-  auto row = [](int f, double t, double c = 0.9, int s = 1) { return openface_row(f, 0, t, c, s, 10, false); };
+  auto row = [](int f, double t, double c = 0.9, int s = 1) {
+    return openface_row(f, 0, t, c, s, 10, false);
+  };
   auto err = [](const std::string& text, OpenFaceReadOptions o = {}) {
     return expect_format_error([&] { parse_openface_csv(text, "f.csv", o); });
   };
@@ -143,19 +149,24 @@ TEST(OpenFace, BadInputIsALocatedFormatError) {
   EXPECT_NE(err("frame, timestamp, timestamp\n").find("appears twice"), std::string::npos);
   std::string truncated = row(2, 0.1);
   truncated.resize(truncated.size() / 2);
-  EXPECT_NE(err(h + row(1, 0) + truncated + "\n").find("f.csv:3: expected 145 fields"), std::string::npos);
+  EXPECT_NE(err(h + row(1, 0) + truncated + "\n").find("f.csv:3: expected 145 fields"),
+            std::string::npos);
   std::string nan = row(1, 0);
   nan.replace(nan.find(", 12.5, ") + 8, 9, "nan      ");  // x_0
-  EXPECT_NE(err(h + nan).find("f.csv:2:8: expected a finite number"), std::string::npos) << err(h + nan);
+  EXPECT_NE(err(h + nan).find("f.csv:2:8: expected a finite number"), std::string::npos)
+      << err(h + nan);
   std::string inf = row(1, 0);
   inf.replace(inf.find(", 12.5, ") + 8, 9, "1e999    ");
   EXPECT_NE(err(h + inf).find("expected a finite number"), std::string::npos);
   std::string huge = row(1, 0);
   huge.replace(huge.find(", 12.5, ") + 8, 9, "3e7      ");
   EXPECT_NE(err(h + huge).find("f.csv:2:8: coordinate out of range"), std::string::npos);
-  EXPECT_NE(err(h + row(1, 0, 1.5)).find("f.csv:2:4: confidence must be in [0, 1]"), std::string::npos);
-  EXPECT_NE(err(h + row(1, 0, 0.9, 2)).find("f.csv:2:5: success must be 0 or 1"), std::string::npos);
-  EXPECT_NE(err(h + row(1, 0.5) + row(2, 0.5)).find("f.csv:3:3: timestamps must increase"), std::string::npos);
+  EXPECT_NE(err(h + row(1, 0, 1.5)).find("f.csv:2:4: confidence must be in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(err(h + row(1, 0, 0.9, 2)).find("f.csv:2:5: success must be 0 or 1"),
+            std::string::npos);
+  EXPECT_NE(err(h + row(1, 0.5) + row(2, 0.5)).find("f.csv:3:3: timestamps must increase"),
+            std::string::npos);
   EXPECT_NE(err(h + "1, 0, \"0.1, 2\n").find("malformed row"), std::string::npos);
   OpenFaceReadOptions lab;
   lab.label_column = "emotion";
@@ -179,16 +190,18 @@ TEST(MediaPipe, CorrespondenceTableAndTheMeanRule) {
       used.insert(i);
     }
   }
-  EXPECT_EQ(pairs, 5u);  // jaw 3, 4, 12 and nose bridge 27, 28
+  EXPECT_EQ(pairs, 5u);                         // jaw 3, 4, 12 and nose bridge 27, 28
   EXPECT_EQ(table[30], std::vector<int>{4});    // nose tip
   EXPECT_EQ(table[36], std::vector<int>{33});   // subject's right eye, outer corner
   EXPECT_EQ(table[45], std::vector<int>{263});  // subject's left eye, outer corner
   EXPECT_EQ(table[8], std::vector<int>{152});   // chin
-  // Point k at (k, 2k, −k)/1000: iBUG 3 = mean(132, 58) → x = 95/1000·640 = 60.8, y = 190/1000·490 = 93.1.
+  // Point k at (k, 2k, −k)/1000: iBUG 3 = mean(132, 58) → x = 95/1000·640 = 60.8, y = 190/1000·490
+  // = 93.1.
   std::string frame = "{\"timestamp_ms\": 0, \"face_landmarks\": [[";
   for (int k = 0; k < 478; ++k)
-    frame += (k ? ", " : "") + std::string("{\"x\": ") + std::to_string(k / 1000.0) + ", \"y\": " +
-             std::to_string(2 * k / 1000.0) + ", \"z\": " + std::to_string(-k / 1000.0) + "}";
+    frame += (k ? ", " : "") + std::string("{\"x\": ") + std::to_string(k / 1000.0) +
+             ", \"y\": " + std::to_string(2 * k / 1000.0) +
+             ", \"z\": " + std::to_string(-k / 1000.0) + "}";
   frame += "]], \"face_blendshapes\": []}\n";
   MediaPipeReadOptions o;
   o.use_z = true;
@@ -206,17 +219,20 @@ TEST(MediaPipe, GeneratedPointsReadBackAsTheLandmarks) {
   std::vector<Eigen::MatrixXd> points;
   std::vector<double> times;
   for (std::size_t i = 0; i < 6; ++i) {
-    points.push_back(take.success[i] ? mediapipe_points_from_ibug68(take.frames[i]) : Eigen::MatrixXd());
+    points.push_back(take.success[i] ? mediapipe_points_from_ibug68(take.frames[i])
+                                     : Eigen::MatrixXd());
     times.push_back(take.times[i]);
   }
   const std::vector<std::string> labels(6, "neutral");
-  const TrackedFrames back = parse_mediapipe_ndjson(mediapipe_ndjson(times, points, labels), "x.ndjson");
+  const TrackedFrames back =
+      parse_mediapipe_ndjson(mediapipe_ndjson(times, points, labels), "x.ndjson");
   ASSERT_EQ(back.size(), 6u);
   EXPECT_EQ(back.labels, labels);
   for (std::size_t i = 0; i < 6; ++i) {
     EXPECT_EQ(back.success[i], take.success[i]);
     EXPECT_NEAR(back.times[i], times[i], 1e-12);
-    if (take.success[i]) EXPECT_LT((back.frames[i] - take.frames[i]).cwiseAbs().maxCoeff(), 1e-5) << i;
+    if (take.success[i])
+      EXPECT_LT((back.frames[i] - take.frames[i]).cwiseAbs().maxCoeff(), 1e-5) << i;
   }
 }
 
@@ -228,19 +244,24 @@ TEST(MediaPipe, BadInputIsALocatedFormatError) {
   const std::string good = mediapipe_ndjson({0.0}, {pts});
   EXPECT_NE(err("{\"timestamp_ms\": 1,\n").find("m.ndjson:1"), std::string::npos);
   EXPECT_NE(err("[1, 2]\n").find("expected an object"), std::string::npos);
-  EXPECT_NE(err("{\"face_landmarks\": []}\n").find("at /timestamp_ms: missing field"), std::string::npos);
-  EXPECT_NE(err("{\"timestamp_ms\": 1, \"face_landmarks\": [[{\"x\": 1}]]}\n").find("expected 478 points"),
+  EXPECT_NE(err("{\"face_landmarks\": []}\n").find("at /timestamp_ms: missing field"),
             std::string::npos);
-  EXPECT_NE(err(good + good).find("m.ndjson:2: at /timestamp_ms: timestamps must increase"), std::string::npos);  // not increasing
+  EXPECT_NE(err("{\"timestamp_ms\": 1, \"face_landmarks\": [[{\"x\": 1}]]}\n")
+                .find("expected 478 points"),
+            std::string::npos);
+  EXPECT_NE(err(good + good).find("m.ndjson:2: at /timestamp_ms: timestamps must increase"),
+            std::string::npos);  // not increasing
   std::string bad = good;
   bad.replace(bad.find("{\"x\": "), 6, "{\"x\": \"a\", \"x0\": ");
-  EXPECT_NE(err(bad).find("/face_landmarks/0/0/x: expected a number"), std::string::npos) << err(bad);
+  EXPECT_NE(err(bad).find("/face_landmarks/0/0/x: expected a number"), std::string::npos)
+      << err(bad);
   std::string far = good;
   far.replace(far.find("\"y\": "), 5, "\"y\": 1000, \"y0\": ");
   EXPECT_NE(err(far).find("number out of range"), std::string::npos) << err(far);
   EXPECT_NE(err("# only a comment\n").find("no frames"), std::string::npos);
   // No face in a frame: success 0.
-  const TrackedFrames none = parse_mediapipe_ndjson("{\"timestamp_ms\": 5, \"face_landmarks\": []}\n", "m");
+  const TrackedFrames none =
+      parse_mediapipe_ndjson("{\"timestamp_ms\": 5, \"face_landmarks\": []}\n", "m");
   EXPECT_EQ(none.success[0], 0);
   MediaPipeReadOptions o;
   o.image_width = 0;
@@ -251,8 +272,8 @@ TEST(CleanFrames, ShortGapsAreInterpolatedLongGapsSplit) {
   std::vector<Pose> frames;
   for (int i = 0; i < 30; ++i) frames.push_back(face_pose().array() + static_cast<double>(i));
   TrackedFrames t = take_of(frames);
-  for (std::size_t i : {5u, 6u}) t.success[i] = 0, t.frames[i].setZero();          // 2 frames: filled
-  for (std::size_t i : {14u, 15u, 16u, 17u, 18u}) t.confidence[i] = 0.2;            // 5 frames: split
+  for (std::size_t i : {5u, 6u}) t.success[i] = 0, t.frames[i].setZero();  // 2 frames: filled
+  for (std::size_t i : {14u, 15u, 16u, 17u, 18u}) t.confidence[i] = 0.2;   // 5 frames: split
   t.confidence[28] = t.confidence[29] = 0.1;  // the last part ends at 27
   const auto parts = clean_frames(t);
   ASSERT_EQ(parts.size(), 2u);
@@ -260,14 +281,15 @@ TEST(CleanFrames, ShortGapsAreInterpolatedLongGapsSplit) {
   EXPECT_EQ(parts[1].id, "t.p1");
   ASSERT_EQ(parts[0].size(), 14u);  // frames 0–13
   ASSERT_EQ(parts[1].size(), 9u);   // frames 19–27
-  // Frame 5 lies 1/3 of the way from frame 4 to frame 7: 4 + 1 = 5 (the values grow by 1 per frame).
+  // Frame 5 lies 1/3 of the way from frame 4 to frame 7: 4 + 1 = 5 (the values grow by 1 per
+  // frame).
   EXPECT_NEAR(parts[0].frames[5](0, 0), face_pose()(0, 0) + 5.0, 1e-9);
   EXPECT_NEAR(parts[0].frames[6](3, 1), face_pose()(3, 1) + 6.0, 1e-9);
   EXPECT_EQ(parts[0].success[5], 1);
   FrameFilterOptions o;
   o.min_frames = 10;  // the 9-frame part goes
   EXPECT_EQ(clean_frames(t, o).size(), 1u);
-  o.max_gap = 5;      // now the 5-frame gap is filled too
+  o.max_gap = 5;  // now the 5-frame gap is filled too
   ASSERT_EQ(clean_frames(t, o).size(), 1u);
   EXPECT_EQ(clean_frames(t, o)[0].id, "t");
   o.min_confidence = 2.0;
@@ -285,7 +307,8 @@ TEST(StabiliseHead, RemovesAKnownSimilarityMotion) {
     const double a = i < 5 ? 0.0 : 0.02 * (i - 4), s = i < 5 ? 1.0 : 1.0 + 0.01 * (i - 4);
     Eigen::Matrix2d r;
     r << std::cos(a), std::sin(a), -std::sin(a), std::cos(a);
-    Pose q = (p * r * s).rowwise() + Eigen::RowVector2d(3.0 * (i >= 5 ? i : 0), -2.0 * (i >= 5 ? i : 0));
+    Pose q =
+        (p * r * s).rowwise() + Eigen::RowVector2d(3.0 * (i >= 5 ? i : 0), -2.0 * (i >= 5 ? i : 0));
     moved.push_back(q);
   }
   // The reference is the median of the first 5 frames (whose mouths differ): anchors are fixed, so
@@ -303,11 +326,13 @@ TEST(StabiliseHead, RemovesAKnownSimilarityMotion) {
 
 TEST(FindSegments, OnsetsAndPeaksOfAHandMadeTake) {
   // All landmarks move by a(t)·d with |d| = 20 px = 0.2 of the 100 px eye-corner distance.
-  const std::vector<double> a = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, .25, .5, .75, 1, 1, 1, .75, .5, .25,
-                                 0, 0, 0, 0, 0, 0, .02, .04, .06, .04, .02, 0, 0, 0, 0,  // too weak
-                                 0, 0, .25, .5, .5, .5, .25, 0, 0, 0};
+  const std::vector<double> a = {0,   0,   0,   0,   0,   0,   0,   0, 0, 0, .25, .5,
+                                 .75, 1,   1,   1,   .75, .5,  .25, 0, 0, 0, 0,   0,
+                                 0,   .02, .04, .06, .04, .02, 0,   0, 0, 0,  // too weak
+                                 0,   0,   .25, .5,  .5,  .5,  .25, 0, 0, 0};
   std::vector<Pose> frames;
-  for (double x : a) frames.push_back(face_pose().rowwise() + Eigen::RowVector2d(12.0 * x, 16.0 * x));
+  for (double x : a)
+    frames.push_back(face_pose().rowwise() + Eigen::RowVector2d(12.0 * x, 16.0 * x));
   std::vector<double> m;
   const auto segments = find_segments(take_of(frames), {}, &m);
   // The baseline is 0 (rest frames within ±1.5 s everywhere), so e = m. Smoothed m(9) = (0 + 0 +
@@ -332,19 +357,23 @@ TEST(FindSegments, OnsetsAndPeaksOfAHandMadeTake) {
 }
 
 TEST(LabelTable, ParsesRoundTripsAndLocatesErrors) {
-  const LabelTable t = parse_label_table("# comment\ntake,segment,label\nS1,*,happiness\nS1,2,fear\n\"a,b\",0,anger\n",
-                                         "l.csv");
+  const LabelTable t = parse_label_table(
+      "# comment\ntake,segment,label\nS1,*,happiness\nS1,2,fear\n\"a,b\",0,anger\n", "l.csv");
   ASSERT_EQ(t.entries.size(), 3u);
   EXPECT_EQ(t.entries.at({"S1", "*"}), Label::Happiness);
   EXPECT_EQ(t.entries.at({"a,b", "0"}), Label::Anger);
   EXPECT_EQ(parse_label_table(label_table_csv(t), "x").entries, t.entries);
-  auto err = [](const std::string& text) { return expect_format_error([&] { parse_label_table(text, "l.csv"); }); };
+  auto err = [](const std::string& text) {
+    return expect_format_error([&] { parse_label_table(text, "l.csv"); });
+  };
   EXPECT_NE(err("").find("no header"), std::string::npos);
   EXPECT_NE(err("take,label\n").find("l.csv:1:1"), std::string::npos);
   EXPECT_NE(err("take,segment,label\nS1,x,fear\n").find("l.csv:2:2"), std::string::npos);
   EXPECT_NE(err("take,segment,label\nS1,1,joy\n").find("l.csv:2:3"), std::string::npos);
-  EXPECT_NE(err("take,segment,label\nS1,1\n").find("l.csv:2: expected 3 fields"), std::string::npos);
-  EXPECT_NE(err("take,segment,label\nS1,1,fear\nS1,01,anger\n").find("labelled twice"), std::string::npos);
+  EXPECT_NE(err("take,segment,label\nS1,1\n").find("l.csv:2: expected 3 fields"),
+            std::string::npos);
+  EXPECT_NE(err("take,segment,label\nS1,1,fear\nS1,01,anger\n").find("labelled twice"),
+            std::string::npos);
   EXPECT_NE(err("take,segment,label\n,1,fear\n").find("empty take"), std::string::npos);
 }
 
@@ -369,13 +398,16 @@ TEST(CaptureDatabase, LongTakesBecomeTheLabelledSequences) {
     std::vector<Label> expected, found;
     std::vector<std::size_t> len_expected, len_found;
     for (const auto& s : truth.sequences)
-      if (s.subject == subject) expected.push_back(s.label), len_expected.push_back(s.frames.size());
+      if (s.subject == subject)
+        expected.push_back(s.label), len_expected.push_back(s.frames.size());
     for (const auto& s : db.sequences)
-      if (s.subject == std::string("take_") + subject) found.push_back(s.label), len_found.push_back(s.frames.size());
+      if (s.subject == std::string("take_") + subject)
+        found.push_back(s.label), len_found.push_back(s.frames.size());
     EXPECT_EQ(found, expected) << subject;
     ASSERT_EQ(len_found.size(), len_expected.size());
     for (std::size_t k = 0; k < len_found.size(); ++k)
-      EXPECT_NEAR(static_cast<double>(len_found[k]), static_cast<double>(len_expected[k]), 3.0) << subject << " " << k;
+      EXPECT_NEAR(static_cast<double>(len_found[k]), static_cast<double>(len_expected[k]), 3.0)
+          << subject << " " << k;
   }
   // Every sequence starts neutral and passes the preprocessing checks.
   EXPECT_NO_THROW(preprocess(db, default_layout(), [] {
@@ -394,14 +426,16 @@ TEST(CaptureDatabase, LongTakesBecomeTheLabelledSequences) {
   }
   const Database db2 = capture_database(unlabelled, {}, &side);
   ASSERT_EQ(db2.sequences.size(), db.sequences.size());
-  for (std::size_t i = 0; i < db.sequences.size(); ++i) EXPECT_EQ(db2.sequences[i].label, db.sequences[i].label);
+  for (std::size_t i = 0; i < db.sequences.size(); ++i)
+    EXPECT_EQ(db2.sequences[i].label, db.sequences[i].label);
   // A missing label stops the run, or is skipped and reported.
   side.entries.erase(side.entries.begin());
   EXPECT_THROW(capture_database(unlabelled, {}, &side), InvalidInput);
   CaptureOptions skip;
   skip.on_error = OnError::Skip;
   ReadReport r2;
-  EXPECT_EQ(capture_database(unlabelled, skip, &side, &r2).sequences.size(), db.sequences.size() - 1);
+  EXPECT_EQ(capture_database(unlabelled, skip, &side, &r2).sequences.size(),
+            db.sequences.size() - 1);
   ASSERT_EQ(r2.skipped.size(), 1u);
   EXPECT_NE(r2.skipped[0].find("has no label"), std::string::npos);
 }
@@ -409,7 +443,8 @@ TEST(CaptureDatabase, LongTakesBecomeTheLabelledSequences) {
 TEST(CaptureExample, DeterministicWithHeadMotionAndDropouts) {
   const auto again = generate_capture_takes(ParametricLandmarkModel(), small_example());
   ASSERT_EQ(again.size(), 3u);
-  for (std::size_t i = 0; i < again.size(); ++i) EXPECT_EQ(openface_csv(again[i]), openface_csv(example_takes()[i]));
+  for (std::size_t i = 0; i < again.size(); ++i)
+    EXPECT_EQ(openface_csv(again[i]), openface_csv(example_takes()[i]));
   std::size_t dropped = 0;
   for (char s : again[0].success) dropped += s == 0;
   EXPECT_GT(dropped, 2u);

@@ -1,18 +1,18 @@
 // Graphviz export of region motion graphs (issue 19, item 4), parsed by the `dot` program.
 #include "emoface/motiongraph/dot.hpp"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "emoface/core/errors.hpp"
 #include "emoface/core/graphviz.hpp"
-#include "fixtures.hpp"
 #include "emoface/motiongraph/graph.hpp"
 #include "emoface/motiongraph/layout.hpp"
+#include "fixtures.hpp"
 
 namespace emoface::motiongraph {
 namespace {
@@ -44,12 +44,17 @@ TEST(GraphDot, NodesEdgesAndPeaks) {
   o.edge_weights = true;
   const std::string dot = region_graph_dot(tiny(), o);
   EXPECT_EQ(dot.rfind("digraph \"motion graph mouth\" {", 0), 0u);
-  EXPECT_NE(dot.find("n0 [shape=box, fillcolor=\"#dddddd\", label=\"source\\n(neutral, 7 frames)\"]"),
-            std::string::npos) << dot;
-  EXPECT_NE(dot.find("n1 [shape=circle, fillcolor=\"#cccccc80\", label=\"hasa\"]"), std::string::npos) << dot;
+  EXPECT_NE(
+      dot.find("n0 [shape=box, fillcolor=\"#dddddd\", label=\"source\\n(neutral, 7 frames)\"]"),
+      std::string::npos)
+      << dot;
+  EXPECT_NE(dot.find("n1 [shape=circle, fillcolor=\"#cccccc80\", label=\"hasa\"]"),
+            std::string::npos)
+      << dot;
   EXPECT_NE(dot.find("n2 [shape=doublecircle, fillcolor=\"#1f77b4\", fontcolor=white, "
                      "label=\"happiness\\n12±3 f\"]"),
-            std::string::npos) << dot;
+            std::string::npos)
+      << dot;
   EXPECT_NE(dot.find("n0 -> n1 [label=\"0.25\"];"), std::string::npos);
   EXPECT_NE(dot.find("n2 -> n3 [label=\"1.00\"];"), std::string::npos);
   GraphDotOptions near;
@@ -66,7 +71,8 @@ TEST(GraphDot, NodesEdgesAndPeaks) {
 TEST(GraphDot, DotParsesAGraphBuiltFromData) {
   if (!core::graphviz_available()) GTEST_SKIP() << "Graphviz (dot) not installed: scripts/setup.sh";
   const MotionGraph g = build_graph(test::small_prepared());
-  const std::string path = (std::filesystem::temp_directory_path() / "emoface_graph_dot_test.svg").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "emoface_graph_dot_test.svg").string();
   for (const auto& region : g.regions) {
     GraphDotOptions o;
     o.edge_weights = true;

@@ -21,7 +21,8 @@ namespace emoface::core {
 
 namespace {
 
-// Runs args with stdin/stdout from/to /dev/null and stderr into `log`; returns the exit code (-1: not run).
+// Runs args with stdin/stdout from/to /dev/null and stderr into `log`; returns the exit code (-1:
+// not run).
 int run(const std::vector<std::string>& args, const std::string& log) {
   std::vector<char*> argv;
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -64,7 +65,8 @@ void render_dot(std::string_view dot, const std::string& path, const std::string
   const std::string ext = p.extension().string();
   if (ext != ".svg" && ext != ".png" && ext != ".pdf")
     throw InvalidInput("render_dot: \"" + path + "\": the extension must be .svg, .png or .pdf");
-  const std::string stem = (p.parent_path() / ("." + p.filename().string() + "." + std::to_string(::getpid()))).string();
+  const std::string stem =
+      (p.parent_path() / ("." + p.filename().string() + "." + std::to_string(::getpid()))).string();
   const std::string in = stem + ".dot", out = stem + ext, log = stem + ".log";
   write_file_atomic(in, dot);
   const int rc = run({binary, "-T" + ext.substr(1), "-o", out, in}, log);
@@ -77,8 +79,10 @@ void render_dot(std::string_view dot, const std::string& path, const std::string
   std::filesystem::remove(log);
   if (rc != 0) {
     std::filesystem::remove(out);
-    throw IoError(rc < 0 ? "render_dot: cannot run \"" + binary + "\" (install Graphviz: scripts/setup.sh)"
-                         : "render_dot: \"" + binary + "\" failed (exit " + std::to_string(rc) + "): " + first);
+    throw IoError(
+        rc < 0
+            ? "render_dot: cannot run \"" + binary + "\" (install Graphviz: scripts/setup.sh)"
+            : "render_dot: \"" + binary + "\" failed (exit " + std::to_string(rc) + "): " + first);
   }
   std::error_code ec;
   std::filesystem::rename(out, path, ec);

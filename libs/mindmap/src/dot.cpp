@@ -27,7 +27,8 @@ std::string action_id(std::size_t a) { return "a" + std::to_string(a); }
 void MindMapDotOptions::validate(const MindMap& map) const {
   if (mood.empty()) return;
   if (mood.size() != map.emotion_count())
-    throw InvalidInput("mind_map_dot: the mood needs " + std::to_string(map.emotion_count()) + " values");
+    throw InvalidInput("mind_map_dot: the mood needs " + std::to_string(map.emotion_count()) +
+                       " values");
   for (double v : mood)
     if (!(v >= 0.0 && v <= 1.0)) throw InvalidInput("mind_map_dot: mood values must be in [0, 1]");
 }
@@ -38,9 +39,11 @@ std::string mind_map_dot(const MindMap& map, const MindMapDotOptions& options) {
   using core::dot_quote;
   std::string out = "digraph " + dot_quote("mind map " + map.character) + " {\n";
   out += "  graph [layout=neato, overlap=false, splines=true, fontname=\"Helvetica\"];\n";
-  out += "  node [fontname=\"Helvetica\", fontsize=11];\n  edge [fontname=\"Helvetica\", fontsize=9];\n";
-  out += "  character [shape=doubleoctagon, style=filled, fillcolor=\"#eeeeee\", label=" + dot_quote(map.character) +
-         "];\n";
+  out +=
+      "  node [fontname=\"Helvetica\", fontsize=11];\n  edge [fontname=\"Helvetica\", "
+      "fontsize=9];\n";
+  out += "  character [shape=doubleoctagon, style=filled, fillcolor=\"#eeeeee\", label=" +
+         dot_quote(map.character) + "];\n";
   for (std::size_t e = 0; e < map.emotion_count(); ++e) {
     std::string label = map.emotions[e];
     std::string width = "1";
@@ -48,9 +51,9 @@ std::string mind_map_dot(const MindMap& map, const MindMapDotOptions& options) {
       label += "\nmood " + fixed(options.mood[e]);
       width = fixed(1.0 + 4.0 * options.mood[e]);
     }
-    out += "  " + emotion_id(e) + " [shape=ellipse, style=filled, fillcolor=\"" + hex(emotion_colour(e)) +
-           "40\", color=\"" + hex(emotion_colour(e)) + "\", penwidth=" + width + ", label=" + dot_quote(label) +
-           "];\n";
+    out += "  " + emotion_id(e) + " [shape=ellipse, style=filled, fillcolor=\"" +
+           hex(emotion_colour(e)) + "40\", color=\"" + hex(emotion_colour(e)) +
+           "\", penwidth=" + width + ", label=" + dot_quote(label) + "];\n";
     out += "  character -> " + emotion_id(e) + " [arrowhead=none, color=\"#999999\"];\n";
   }
   for (std::size_t a = 0; a < map.actions.size(); ++a) {
@@ -63,14 +66,15 @@ std::string mind_map_dot(const MindMap& map, const MindMapDotOptions& options) {
   }
   for (const StimulusEdge& s : map.stimulus_edges)
     out += "  " + action_id(s.action) + " -> " + emotion_id(s.emotion) + " [color=\"" +
-           hex(emotion_colour(s.emotion)) + "\"" + (options.weights ? ", label=" + dot_quote(fixed(s.weight)) : "") +
-           "];\n";
+           hex(emotion_colour(s.emotion)) + "\"" +
+           (options.weights ? ", label=" + dot_quote(fixed(s.weight)) : "") + "];\n";
   for (const ResponseEdge& r : map.response_edges)
     out += "  " + emotion_id(r.emotion) + " -> " + action_id(r.action) + " [color=\"" +
-           hex(emotion_colour(r.emotion)) + "\"" + (options.weights ? ", label=" + dot_quote(fixed(r.weight)) : "") +
-           "];\n";
+           hex(emotion_colour(r.emotion)) + "\"" +
+           (options.weights ? ", label=" + dot_quote(fixed(r.weight)) : "") + "];\n";
   for (const ChainEdge& c : map.chain_edges)
-    out += "  " + action_id(c.from) + " -> " + action_id(c.to) + " [style=dashed, label=\"then\"];\n";
+    out +=
+        "  " + action_id(c.from) + " -> " + action_id(c.to) + " [style=dashed, label=\"then\"];\n";
   for (std::size_t e = 0; e < map.emotion_count(); ++e)
     if (const std::size_t a = map.representative_of(e); a != kNone)
       out += "  " + emotion_id(e) + " -> " + action_id(a) + " [style=dotted, label=\"decay\"];\n";

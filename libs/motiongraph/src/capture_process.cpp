@@ -2,8 +2,8 @@
 // neutral-to-peak segments, labels; and the example generator.
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <cstdio>
+#include <functional>
 #include <numeric>
 #include <optional>
 
@@ -29,7 +29,8 @@ Pose median_pose(const std::vector<Pose>& frames, std::size_t count) {
       std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(count / 2), v.end());
       double m = v[count / 2];
       if (count % 2 == 0) {
-        m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(count / 2)));
+        m = 0.5 *
+            (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(count / 2)));
       }
       out(r, c) = m;
     }
@@ -46,7 +47,8 @@ double quantile(std::vector<double> v, double q) {
 
 Eigen::MatrixXd rows(const Pose& p, const std::vector<int>& ids) {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(ids.size()), p.cols());
-  for (std::size_t i = 0; i < ids.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = p.row(ids[i]);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    out.row(static_cast<Eigen::Index>(i)) = p.row(ids[i]);
   return out;
 }
 
@@ -69,18 +71,21 @@ TrackedFrames slice(const TrackedFrames& t, std::size_t a, std::size_t b, const 
 }  // namespace
 
 void FrameFilterOptions::validate() const {
-  if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) throw InvalidInput("frame filter: min_confidence must be in [0, 1]");
+  if (!(min_confidence >= 0.0 && min_confidence <= 1.0))
+    throw InvalidInput("frame filter: min_confidence must be in [0, 1]");
   if (max_gap > 1000) throw InvalidInput("frame filter: max_gap must be in [0, 1000]");
   if (min_frames < 2) throw InvalidInput("frame filter: min_frames must be >= 2");
 }
 
-std::vector<TrackedFrames> clean_frames(const TrackedFrames& take, const FrameFilterOptions& options) {
+std::vector<TrackedFrames> clean_frames(const TrackedFrames& take,
+                                        const FrameFilterOptions& options) {
   options.validate();
   take.validate();
   const std::size_t n = take.size();
   std::vector<char> good(n);
   for (std::size_t i = 0; i < n; ++i)
-    good[i] = take.confidence[i] >= options.min_confidence && (!options.require_success || take.success[i]);
+    good[i] = take.confidence[i] >= options.min_confidence &&
+              (!options.require_success || take.success[i]);
   // Parts: maximal ranges of good frames joined across gaps of at most max_gap bad frames.
   std::vector<std::pair<std::size_t, std::size_t>> parts;
   std::size_t i = 0;
@@ -104,7 +109,8 @@ std::vector<TrackedFrames> clean_frames(const TrackedFrames& take, const FrameFi
   std::vector<TrackedFrames> out;
   for (const auto& [a, b] : parts) {
     if (b - a < options.min_frames) continue;
-    const std::string id = parts.size() == 1 ? take.id : take.id + ".p" + std::to_string(out.size());
+    const std::string id =
+        parts.size() == 1 ? take.id : take.id + ".p" + std::to_string(out.size());
     TrackedFrames s = slice(take, a, b, id);
     // Fill the short gaps: linear interpolation between the neighbouring good frames.
     for (std::size_t f = 0; f < s.size(); ++f) {
@@ -114,7 +120,8 @@ std::vector<TrackedFrames> clean_frames(const TrackedFrames& take, const FrameFi
       const double w = (s.times[f] - s.times[prev]) / (s.times[next] - s.times[prev]);
       s.frames[f] = (1.0 - w) * s.frames[prev] + w * s.frames[next];
       if (!s.au.empty())
-        for (std::size_t k = 0; k < s.au[f].size(); ++k) s.au[f][k] = (1.0 - w) * s.au[prev][k] + w * s.au[next][k];
+        for (std::size_t k = 0; k < s.au[f].size(); ++k)
+          s.au[f][k] = (1.0 - w) * s.au[prev][k] + w * s.au[next][k];
       if (!s.labels.empty()) s.labels[f] = w < 0.5 ? s.labels[prev] : s.labels[next];
       s.success[f] = 1;
       s.confidence[f] = std::min(s.confidence[prev], s.confidence[next]);
@@ -127,7 +134,8 @@ std::vector<TrackedFrames> clean_frames(const TrackedFrames& take, const FrameFi
 void StabiliseOptions::validate() const {
   if (anchors.size() < 3) throw InvalidInput("stabilise: need at least 3 anchor landmarks");
   for (int a : anchors)
-    if (a < 0 || a >= 68) throw InvalidInput("stabilise: anchor landmarks must be iBUG indices 0–67");
+    if (a < 0 || a >= 68)
+      throw InvalidInput("stabilise: anchor landmarks must be iBUG indices 0–67");
   if (reference_frames < 1) throw InvalidInput("stabilise: reference_frames must be >= 1");
 }
 
@@ -136,7 +144,8 @@ std::vector<double> stabilise_head(TrackedFrames& take, const StabiliseOptions& 
   take.validate();
   std::vector<double> residual;
   if (take.frames.empty()) return residual;
-  const Eigen::MatrixXd ref = rows(median_pose(take.frames, options.reference_frames), options.anchors);
+  const Eigen::MatrixXd ref =
+      rows(median_pose(take.frames, options.reference_frames), options.anchors);
   for (Pose& p : take.frames) {
     const Eigen::MatrixXd transform = procrustes(rows(p, options.anchors), ref);
     p = apply_transform(transform, p);
@@ -148,10 +157,13 @@ std::vector<double> stabilise_head(TrackedFrames& take, const StabiliseOptions& 
 
 void TrimOptions::validate() const {
   if (reference_frames < 1) throw InvalidInput("trim: reference_frames must be >= 1");
-  if (!(low > 0.0 && low < high && high <= 1.0)) throw InvalidInput("trim: need 0 < low < high <= 1");
-  if (!(baseline_window > 0.0 && baseline_window <= 600.0)) throw InvalidInput("trim: baseline_window must be in (0, 600] s");
+  if (!(low > 0.0 && low < high && high <= 1.0))
+    throw InvalidInput("trim: need 0 < low < high <= 1");
+  if (!(baseline_window > 0.0 && baseline_window <= 600.0))
+    throw InvalidInput("trim: baseline_window must be in (0, 600] s");
   if (min_frames < 2) throw InvalidInput("trim: min_frames must be >= 2");
-  if (!(top_fraction > 0.0 && top_fraction <= 1.0)) throw InvalidInput("trim: top_fraction must be in (0, 1]");
+  if (!(top_fraction > 0.0 && top_fraction <= 1.0))
+    throw InvalidInput("trim: top_fraction must be in (0, 1]");
 }
 
 std::vector<TakeSegment> find_segments(const TrackedFrames& take, const TrimOptions& options,
@@ -170,7 +182,8 @@ std::vector<TakeSegment> find_segments(const TrackedFrames& take, const TrimOpti
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::VectorXd sq = (take.frames[i] - ref).rowwise().squaredNorm();
     for (std::size_t l = 0; l < 68; ++l) d2[l] = sq[static_cast<Eigen::Index>(l)];
-    std::nth_element(d2.begin(), d2.begin() + static_cast<std::ptrdiff_t>(top - 1), d2.end(), std::greater<double>());
+    std::nth_element(d2.begin(), d2.begin() + static_cast<std::ptrdiff_t>(top - 1), d2.end(),
+                     std::greater<double>());
     double sum = 0.0;
     for (std::size_t l = 0; l < top; ++l) sum += d2[l];
     raw[i] = std::sqrt(sum / static_cast<double>(top));
@@ -182,7 +195,8 @@ std::vector<TakeSegment> find_segments(const TrackedFrames& take, const TrimOpti
     m[i] = s / static_cast<double>(b - a + 1);
   }
   const double iod = (ref.row(36) - ref.row(45)).norm();  // outer eye corners
-  if (!(iod > 0.0)) throw InvalidInput("trim: take \"" + take.id + "\" has coincident outer eye corners");
+  if (!(iod > 0.0))
+    throw InvalidInput("trim: take \"" + take.id + "\" has coincident outer eye corners");
   // Slow drift of the rest pose (tracker drift, changed head pose the similarity cannot remove) is
   // removed by a moving baseline: the minimum of m within ±baseline_window seconds.
   std::vector<double> dt;
@@ -239,12 +253,14 @@ LabelTable parse_label_table(std::string_view text, const std::string& file) {
         throw FormatError({file, "", no, 1}, "expected the header \"take,segment,label\"");
       header = true;
     } else {
-      if (fields.size() != 3) throw FormatError({file, "", no, 0}, "expected 3 fields, got " + std::to_string(fields.size()));
+      if (fields.size() != 3)
+        throw FormatError({file, "", no, 0},
+                          "expected 3 fields, got " + std::to_string(fields.size()));
       if (fields[0].empty()) throw FormatError({file, "", no, 1}, "empty take id");
       const std::string& seg = fields[1];
-      if (seg != "*" && (seg.empty() || seg.size() > 9 || !std::all_of(seg.begin(), seg.end(), [](char c) {
-                           return c >= '0' && c <= '9';
-                         })))
+      if (seg != "*" &&
+          (seg.empty() || seg.size() > 9 ||
+           !std::all_of(seg.begin(), seg.end(), [](char c) { return c >= '0' && c <= '9'; })))
         throw FormatError({file, "", no, 2}, "segment must be a 0-based index or *");
       Label label;
       try {
@@ -254,7 +270,8 @@ LabelTable parse_label_table(std::string_view text, const std::string& file) {
       }
       const std::string key = seg == "*" ? "*" : std::to_string(std::stoul(seg));
       if (!t.entries.emplace(std::make_pair(fields[0], key), label).second)
-        throw FormatError({file, "", no, 1}, "take \"" + fields[0] + "\" segment " + seg + " is labelled twice");
+        throw FormatError({file, "", no, 1},
+                          "take \"" + fields[0] + "\" segment " + seg + " is labelled twice");
     }
     if (end == text.size()) break;
   }
@@ -262,7 +279,9 @@ LabelTable parse_label_table(std::string_view text, const std::string& file) {
   return t;
 }
 
-LabelTable read_label_table(const std::string& path) { return parse_label_table(core::read_file(path), path); }
+LabelTable read_label_table(const std::string& path) {
+  return parse_label_table(core::read_file(path), path);
+}
 
 std::string label_table_csv(const LabelTable& table) {
   std::string out = core::csv_stamp() + "take,segment,label\n";
@@ -292,7 +311,8 @@ Database capture_database(const std::vector<TrackedFrames>& takes, const Capture
     if (report) report->skipped.push_back(msg);
   };
   for (const TrackedFrames& take : takes) {
-    if (take.dimensions != db.dimensions) throw InvalidInput("capture: takes mix 2D and 3D landmarks");
+    if (take.dimensions != db.dimensions)
+      throw InvalidInput("capture: takes mix 2D and 3D landmarks");
     std::vector<TrackedFrames> parts = clean_frames(take, options.filter);
     if (parts.empty()) {
       problem("capture: take \"" + take.id + "\" has no usable part (confidence, success, length)");
@@ -322,13 +342,15 @@ Database capture_database(const std::vector<TrackedFrames>& takes, const Capture
           try {
             label = label_from_string(part.labels[s.peak]);
           } catch (const InvalidInput&) {
-            problem("capture: segment \"" + id + "\": peak label \"" + part.labels[s.peak] + "\" is not a label");
+            problem("capture: segment \"" + id + "\": peak label \"" + part.labels[s.peak] +
+                    "\" is not a label");
             continue;
           }
         }
         if (!label || *label == Label::Neutral) {
-          problem("capture: segment \"" + id + "\" (frames " + std::to_string(s.first) + "–" + std::to_string(s.peak) +
-                  ") has " + (label ? "the label neutral" : "no label") + " (side file or label column)");
+          problem("capture: segment \"" + id + "\" (frames " + std::to_string(s.first) + "–" +
+                  std::to_string(s.peak) + ") has " + (label ? "the label neutral" : "no label") +
+                  " (side file or label column)");
           continue;
         }
         Sequence seq;
@@ -345,28 +367,35 @@ Database capture_database(const std::vector<TrackedFrames>& takes, const Capture
   const double rate = quantile(rates, 0.5);
   for (double r : rates)
     if (std::abs(r - rate) > 0.05 * rate)
-      throw InvalidInput("capture: takes have different frame rates (" + std::to_string(r) + " vs " +
-                         std::to_string(rate) + " fps); resample them first");
+      throw InvalidInput("capture: takes have different frame rates (" + std::to_string(r) +
+                         " vs " + std::to_string(rate) + " fps); resample them first");
   db.frame_rate = rate;
-  if (db.sequences.empty()) throw InvalidInput("capture: no labelled neutral-to-peak segment found");
+  if (db.sequences.empty())
+    throw InvalidInput("capture: no labelled neutral-to-peak segment found");
   return db;
 }
 
 void CaptureExampleOptions::validate() const {
   if (rest_frames < 1) throw InvalidInput("capture example: rest_frames must be >= 1");
-  if (!(head_roll >= 0.0 && head_roll <= 0.5)) throw InvalidInput("capture example: head_roll must be in [0, 0.5]");
-  if (!(head_shift >= 0.0 && head_shift <= 100.0)) throw InvalidInput("capture example: head_shift must be in [0, 100]");
-  if (!(head_scale >= 0.0 && head_scale <= 0.3)) throw InvalidInput("capture example: head_scale must be in [0, 0.3]");
+  if (!(head_roll >= 0.0 && head_roll <= 0.5))
+    throw InvalidInput("capture example: head_roll must be in [0, 0.5]");
+  if (!(head_shift >= 0.0 && head_shift <= 100.0))
+    throw InvalidInput("capture example: head_shift must be in [0, 100]");
+  if (!(head_scale >= 0.0 && head_scale <= 0.3))
+    throw InvalidInput("capture example: head_scale must be in [0, 0.3]");
 }
 
-std::vector<TrackedFrames> generate_capture_takes(const LandmarkModel& model, const CaptureExampleOptions& options) {
+std::vector<TrackedFrames> generate_capture_takes(const LandmarkModel& model,
+                                                  const CaptureExampleOptions& options) {
   options.validate();
   const std::size_t count = synthetic_sequence_count(options.database);
   std::vector<Sequence> sequences;
-  for (std::size_t i = 0; i < count; ++i) sequences.push_back(synthetic_sequence(model, options.database, i));
+  for (std::size_t i = 0; i < count; ++i)
+    sequences.push_back(synthetic_sequence(model, options.database, i));
   std::vector<std::string> subjects;
   for (const auto& s : sequences)
-    if (std::find(subjects.begin(), subjects.end(), s.subject) == subjects.end()) subjects.push_back(s.subject);
+    if (std::find(subjects.begin(), subjects.end(), s.subject) == subjects.end())
+      subjects.push_back(s.subject);
   const double fps = options.database.frame_rate;
   std::vector<TrackedFrames> takes;
   for (std::size_t k = 0; k < subjects.size(); ++k) {
@@ -379,7 +408,8 @@ std::vector<TrackedFrames> generate_capture_takes(const LandmarkModel& model, co
     std::vector<char> rest;
     auto noisy = [&](const Pose& p) {
       Pose q = p;
-      for (Eigen::Index i = 0; i < q.size(); ++i) q.data()[i] += rng.normal(0.0, options.database.noise_std);
+      for (Eigen::Index i = 0; i < q.size(); ++i)
+        q.data()[i] += rng.normal(0.0, options.database.noise_std);
       return q;
     };
     auto at_rest = [&](const Pose& neutral) {
@@ -394,11 +424,14 @@ std::vector<TrackedFrames> generate_capture_takes(const LandmarkModel& model, co
       if (s.subject != subjects[k]) continue;
       if (!neutral) at_rest(s.frames.front());
       neutral = &s.frames.front();
-      for (const Pose& p : s.frames) poses.push_back(p), labels.push_back(to_string(s.label)), rest.push_back(0);
+      for (const Pose& p : s.frames)
+        poses.push_back(p), labels.push_back(to_string(s.label)), rest.push_back(0);
       for (std::size_t i = 0; i < options.hold_frames; ++i)
-        poses.push_back(noisy(s.frames.back())), labels.push_back(to_string(s.label)), rest.push_back(0);
+        poses.push_back(noisy(s.frames.back())), labels.push_back(to_string(s.label)),
+            rest.push_back(0);
       for (std::size_t i = s.frames.size() - 1; i-- > 1;)
-        poses.push_back(noisy(s.frames[i])), labels.push_back(to_string(s.label)), rest.push_back(0);
+        poses.push_back(noisy(s.frames[i])), labels.push_back(to_string(s.label)),
+            rest.push_back(0);
       at_rest(s.frames.front());
     }
     // Slow rigid head motion about the face centre (periods of a few seconds, random phases).
@@ -407,9 +440,11 @@ std::vector<TrackedFrames> generate_capture_takes(const LandmarkModel& model, co
     for (std::size_t i = 0; i < poses.size(); ++i) {
       const double time = static_cast<double>(i) / fps;
       const double roll = options.head_roll * std::sin(2.0 * 3.14159265358979 * time / 5.3 + p1);
-      const double scale = 1.0 + options.head_scale * std::sin(2.0 * 3.14159265358979 * time / 7.1 + p2);
-      const Eigen::RowVector2d shift(options.head_shift * std::sin(2.0 * 3.14159265358979 * time / 4.7 + p3),
-                                     0.5 * options.head_shift * std::cos(2.0 * 3.14159265358979 * time / 6.1 + p1));
+      const double scale =
+          1.0 + options.head_scale * std::sin(2.0 * 3.14159265358979 * time / 7.1 + p2);
+      const Eigen::RowVector2d shift(
+          options.head_shift * std::sin(2.0 * 3.14159265358979 * time / 4.7 + p3),
+          0.5 * options.head_shift * std::cos(2.0 * 3.14159265358979 * time / 6.1 + p1));
       const Eigen::RowVector2d c = poses[i].colwise().mean();
       Eigen::Matrix2d r;
       r << std::cos(roll), std::sin(roll), -std::sin(roll), std::cos(roll);

@@ -11,14 +11,15 @@ namespace emoface::motiongraph {
 
 std::string label_colour(Label label) {
   // neutral, happiness, sadness, disgust, surprise, anger, fear, contempt
-  static const char* colours[] = {"#bbbbbb", "#1f77b4", "#ff7f0e", "#8c564b", "#d62728", "#2ca02c", "#9467bd",
-                                  "#e377c2"};
+  static const char* colours[] = {"#bbbbbb", "#1f77b4", "#ff7f0e", "#8c564b",
+                                  "#d62728", "#2ca02c", "#9467bd", "#e377c2"};
   return colours[static_cast<int>(label)];
 }
 
 std::string region_graph_dot(const RegionGraph& region, const GraphDotOptions& options) {
   const std::size_t n = region.nodes.size();
-  if (region.neutral_node >= n) throw InvalidInput("region_graph_dot: the graph has no source node");
+  if (region.neutral_node >= n)
+    throw InvalidInput("region_graph_dot: the graph has no source node");
   // Nodes kept: breadth-first from the source over edges in either direction.
   std::vector<std::size_t> dist(n, n + 1);
   const auto adj = region.adjacency(true);
@@ -36,8 +37,10 @@ std::string region_graph_dot(const RegionGraph& region, const GraphDotOptions& o
   out += "  graph [rankdir=LR, fontname=\"Helvetica\", label=" +
          dot_quote("region " + region.name + ": " + std::to_string(n) + " nodes, " +
                    std::to_string(region.edges.size()) + " edges" +
-                   (options.depth ? " (within " + std::to_string(options.depth) + " of the source)" : "")) +
-         "];\n  node [fontname=\"Helvetica\", fontsize=9, style=filled];\n  edge [fontsize=8, color=\"#888888\"];\n";
+                   (options.depth ? " (within " + std::to_string(options.depth) + " of the source)"
+                                  : "")) +
+         "];\n  node [fontname=\"Helvetica\", fontsize=9, style=filled];\n  edge [fontsize=8, "
+         "color=\"#888888\"];\n";
   char buf[64];
   for (std::size_t i = 0; i < n; ++i) {
     if (!kept(i)) continue;
@@ -45,10 +48,12 @@ std::string region_graph_dot(const RegionGraph& region, const GraphDotOptions& o
     const std::string id = "n" + std::to_string(i);
     if (i == region.neutral_node) {
       out += "  " + id + " [shape=box, fillcolor=\"#dddddd\", label=" +
-             dot_quote("source\n(neutral, " + std::to_string(node.frame_count) + " frames)") + "];\n";
+             dot_quote("source\n(neutral, " + std::to_string(node.frame_count) + " frames)") +
+             "];\n";
       continue;
     }
-    const std::string fill = node.labels.size() == 1 ? label_colour(node.labels[0]) : std::string("#cccccc");
+    const std::string fill =
+        node.labels.size() == 1 ? label_colour(node.labels[0]) : std::string("#cccccc");
     if (node.is_peak()) {
       std::string label;
       for (Label l : node.peak_labels) label += (label.empty() ? "" : "+") + to_string(l);
@@ -58,7 +63,8 @@ std::string region_graph_dot(const RegionGraph& region, const GraphDotOptions& o
     } else {
       std::string initials;
       for (Label l : node.labels) initials += to_string(l).substr(0, 2);
-      out += "  " + id + " [shape=circle, fillcolor=\"" + fill + "80\", label=" + dot_quote(initials) + "];\n";
+      out += "  " + id + " [shape=circle, fillcolor=\"" + fill +
+             "80\", label=" + dot_quote(initials) + "];\n";
     }
   }
   for (const Edge& e : region.edges) {

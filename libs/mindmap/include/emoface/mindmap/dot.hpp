@@ -1,9 +1,9 @@
 #pragma once
-// A mind map as a Graphviz DOT graph (issue 19, item 4; the paper's "visual authoring" of mind maps,
-// §6 and Fig. 2): the character in the centre, its emotion nodes (filled in the mood-chart colours,
-// with the current mood when given), the stimuli it receives and the actions it performs, stimulus and
-// response edges labelled with their weights, chained actions dashed, representative (decay) actions
-// dotted. Render with core::render_dot or `dot -Tsvg`.
+// A mind map as a Graphviz DOT graph (issue 19, item 4; the paper's "visual authoring" of mind
+// maps, §6 and Fig. 2): the character in the centre, its emotion nodes (filled in the mood-chart
+// colours, with the current mood when given), the stimuli it receives and the actions it performs,
+// stimulus and response edges labelled with their weights, chained actions dashed, representative
+// (decay) actions dotted. Render with core::render_dot or `dot -Tsvg`.
 #include <string>
 #include <vector>
 
