@@ -259,6 +259,10 @@ TEST(MediaPipe, BadInputIsALocatedFormatError) {
   far.replace(far.find("\"y\": "), 5, "\"y\": 1000, \"y0\": ");
   EXPECT_NE(err(far).find("number out of range"), std::string::npos) << err(far);
   EXPECT_NE(err("# only a comment\n").find("no frames"), std::string::npos);
+  // Found by the fuzzer: a number that overflows a double is a located error, not a crash.
+  std::string overflow = good;
+  overflow.replace(overflow.find("\"y\": "), 5, "\"y\": 0.659e8628, \"y0\": ");
+  EXPECT_NE(err(overflow).find("m.ndjson:1: not JSON"), std::string::npos) << err(overflow);
   // No face in a frame: success 0.
   const TrackedFrames none =
       parse_mediapipe_ndjson("{\"timestamp_ms\": 5, \"face_landmarks\": []}\n", "m");

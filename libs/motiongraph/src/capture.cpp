@@ -353,6 +353,8 @@ TrackedFrames parse_mediapipe_ndjson(std::string_view text, const std::string& f
       doc = nlohmann::json::parse(line);
     } catch (const nlohmann::json::parse_error& e) {
       fail(file, no, e.byte, "not JSON: " + std::string(e.what()).substr(0, 120));
+    } catch (const nlohmann::json::exception& e) {  // e.g. out_of_range: a number overflows a double
+      fail(file, no, 0, "not JSON: " + std::string(e.what()).substr(0, 120));
     }
     if (!doc.is_object()) fail_json(file, no, "", "expected an object per line");
     auto num = [&](const nlohmann::json& v, const std::string& pointer, double limit) {
