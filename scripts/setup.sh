@@ -19,6 +19,7 @@ PACKAGES=(
   libtinygltf-dev                   # facemesh: animated glTF export
   espeak-ng espeak-ng-data libpugixml-dev   # channels: the espeak-ng *program* (run, never linked), markup
   ffmpeg                            # core::VideoWriter: facerender, obie, mgraph, mindmap crowd videos
+  graphviz                          # core::render_dot: mindmap dot / mgraph dot SVG and PNG pictures
   liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
   nodejs                            # test-only: the Khronos glTF-Validator (scripts/setup_npm.sh)
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest   # EMOFACE_PYTHON: import emoface

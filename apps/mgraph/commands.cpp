@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/cli/cli.hpp"
@@ -13,6 +14,9 @@
 #include "emoface/core/io.hpp"
 #include "emoface/core/rng.hpp"
 #include "emoface/core/video.hpp"
+#include "emoface/motiongraph/capture.hpp"
+#include "emoface/core/graphviz.hpp"
+#include "emoface/motiongraph/dot.hpp"
 #include "emoface/motiongraph/evaluate.hpp"
 #include "emoface/motiongraph/io.hpp"
 #include "emoface/motiongraph/layout.hpp"
@@ -51,7 +55,11 @@ PreparedDatabase load_prepared(const Args& a) {
   o.align = !a.no_align;
   o.clean = !a.no_clean;
   o.append_reversed = !a.no_reverse;
-  return preprocess(db, layout, o);
+  o.skip_bad_samples = ck.on_error == OnError::Skip;  // a sample that does not start neutral
+  PreprocessReport pr;
+  PreparedDatabase data = preprocess(db, layout, o, &pr);
+  for (const auto& s : pr.skipped) std::cerr << "mgraph: skipped: " << s << "\n";
+  return data;
 }
 
 GraphOptions graph_options(const Args& a) {
@@ -83,6 +91,7 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
     const View view = fit_view(all, vo.width, vo.height);
     for (const Pose& pose : all) {
       Image img(vo.width, vo.height);
+      draw_contours(img, pose, contours_for(g.landmark_ids()), view);
       draw_pose(img, pose, groups, view, std::max(1.5, vo.width / 256.0));
       video.add_frame(img.rgb);
     }
@@ -93,7 +102,7 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
     for (std::size_t f = 0; f < all.size(); f += static_cast<std::size_t>(a.every)) shown.push_back(all[f]);
     if ((all.size() - 1) % static_cast<std::size_t>(a.every) != 0) shown.push_back(all.back());
     core::write_file_atomic(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
-                                                              a.cell_width * 7 / 8)));
+                                                              a.cell_width * 7 / 8, contours_for(g.landmark_ids()))));
   }
   if (!a.plot.empty()) core::write_file_atomic(a.plot, encode_png(plot_trajectories(all, groups)));
   if (!a.frames_dir.empty()) {
@@ -114,15 +123,7 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
   return cli::kExitOk;
 }
 
-}  // namespace
-
-int generate(const Args& a) {
-  SyntheticOptions o;
-  o.seed = a.seed;
-  o.sequences_per_label = a.per_label;
-  o.subjects = a.subjects;
-  o.noise_std = a.noise;
-  const cli::Shard shard = cli::parse_shard(a.shard);
+std::unique_ptr<LandmarkModel> landmark_model(const Args& a) {
   std::unique_ptr<LandmarkModel> model;
   if (a.model == "parametric") {
     model = std::make_unique<ParametricLandmarkModel>();
@@ -135,6 +136,19 @@ int generate(const Args& a) {
   } else {
     throw cli::UsageError("--model: unknown value \"" + a.model + "\" (expected face|parametric)");
   }
+  return model;
+}
+
+}  // namespace
+
+int generate(const Args& a) {
+  SyntheticOptions o;
+  o.seed = a.seed;
+  o.sequences_per_label = a.per_label;
+  o.subjects = a.subjects;
+  o.noise_std = a.noise;
+  const cli::Shard shard = cli::parse_shard(a.shard);
+  const std::unique_ptr<LandmarkModel> model = landmark_model(a);
   // Sequence i depends only on (seed, i): shards of a batch are parts of the same database.
   Database db;
   db.dimensions = 2;
@@ -158,8 +172,10 @@ int generate(const Args& a) {
         seen.push_back(s.label);
         shown.push_back(s.frames.back());
       }
+    std::vector<int> all_ids(68);
+    for (int i = 0; i < 68; ++i) all_ids[static_cast<std::size_t>(i)] = i;
     core::write_file_atomic(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
-                                                              a.cell_width * 7 / 8)));
+                                                              a.cell_width * 7 / 8, contours_for(all_ids))));
   }
   cli::Output out(a.out);
   const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
@@ -333,6 +349,124 @@ int eval(const Args& a) {
   std::printf("paper (CK+, 70 sequences): 90%% -> 0.98 +- 1.84 frames, 2.86 +- 2.3 px; 78%% -> 0.071 +- 0.39, "
               "2.12 +- 1.81; 57.53%% -> 0 +- 0, 1.52 +- 1.51\n");
   if (a.out != "-") core::write_file_atomic(a.out, csv);
+  return cli::kExitOk;
+}
+
+// Capture files (issue 19): OpenFace CSV / MediaPipe NDJSON takes → cleaned, stabilised, trimmed,
+// labelled landmark database.
+int capture(const Args& a) {
+  if (a.openface.empty() == a.mediapipe.empty()) throw cli::UsageError("give --openface or --mediapipe files");
+  CaptureOptions co;
+  co.on_error = on_error(a);
+  co.filter.min_confidence = a.min_confidence;
+  co.filter.max_gap = a.max_gap;
+  co.stabilise = !a.no_stabilise;
+  co.trim = !a.no_trim;
+  try {
+    co.validate();
+  } catch (const InvalidInput& e) {
+    throw cli::UsageError(e.what());
+  }
+  std::vector<TrackedFrames> takes;
+  OpenFaceReadOptions oo;
+  oo.use_3d = a.use_3d;
+  oo.label_column = a.label_column;
+  MediaPipeReadOptions mo;
+  mo.image_width = a.image_width;
+  mo.image_height = a.image_height;
+  mo.use_z = a.use_3d;
+  for (const auto& f : a.openface) takes.push_back(read_openface_csv(f, oo));
+  for (const auto& f : a.mediapipe) takes.push_back(read_mediapipe_ndjson(f, mo));
+  std::optional<LabelTable> labels;
+  if (!a.labels_file.empty()) labels = read_label_table(a.labels_file);
+  ReadReport report;
+  const Database db = capture_database(takes, co, labels ? &*labels : nullptr, &report);
+  print_skipped(report);
+  cli::Output out(a.out);
+  const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
+  out.write(csv ? database_to_csv(db) : database_to_json(db));
+  out.commit();
+  std::size_t frames = 0;
+  for (const auto& s : db.sequences) frames += s.frames.size();
+  std::cerr << "mgraph: " << takes.size() << " take(s) → " << db.sequences.size() << " labelled neutral-to-peak "
+            << "sequence(s), " << frames << " frames at " << db.frame_rate << " fps\n";
+  return cli::kExitOk;
+}
+
+// Example capture files from emoface's own face: one file per take and the labels side file.
+int capture_example(const Args& a) {
+  if (a.format != "openface" && a.format != "mediapipe")
+    throw cli::UsageError("--format: unknown value \"" + a.format + "\" (expected openface|mediapipe)");
+  CaptureExampleOptions o;
+  o.database.seed = a.seed;
+  o.database.sequences_per_label = a.per_label;
+  o.database.subjects = a.subjects;
+  o.database.noise_std = a.noise;
+  o.database.min_frames = a.min_frames;
+  o.database.max_frames = a.max_frames;
+  o.rest_frames = a.rest_frames;
+  o.hold_frames = a.hold_frames;
+  try {
+    o.validate();
+  } catch (const InvalidInput& e) {
+    throw cli::UsageError(e.what());
+  }
+  const std::unique_ptr<LandmarkModel> model = landmark_model(a);
+  std::vector<TrackedFrames> takes = generate_capture_takes(*model, o);
+  if (a.max_takes > 0 && takes.size() > a.max_takes) takes.resize(a.max_takes);
+  // Everything is computed before anything is written.
+  std::vector<std::pair<std::string, std::string>> files;
+  LabelTable side;
+  for (const TrackedFrames& t : takes) {
+    // The side file labels every segment the default capture options find, from the take's column.
+    std::size_t k = 0;
+    for (const TrackedFrames& part : clean_frames(t)) {
+      TrackedFrames p = part;
+      stabilise_head(p);
+      for (const TakeSegment& seg : find_segments(p)) {
+        const Label l = label_from_string(p.labels[seg.peak]);
+        if (l != Label::Neutral) side.entries[{t.id, std::to_string(k)}] = l;
+        ++k;
+      }
+    }
+    if (a.format == "openface") {
+      files.emplace_back(a.out + "/" + t.id + ".csv", openface_csv(t));
+    } else {
+      std::vector<Eigen::MatrixXd> points;
+      for (std::size_t i = 0; i < t.size(); ++i)
+        points.push_back(t.success[i] ? mediapipe_points_from_ibug68(t.frames[i]) : Eigen::MatrixXd());
+      files.emplace_back(a.out + "/" + t.id + ".ndjson", mediapipe_ndjson(t.times, points, t.labels));
+    }
+  }
+  files.emplace_back(a.out + "/labels.csv", label_table_csv(side));
+  std::filesystem::create_directories(a.out);
+  for (const auto& [path, content] : files) core::write_file_atomic(path, content);
+  std::cerr << "mgraph: wrote " << takes.size() << " " << a.format << " take(s) and labels.csv to " << a.out << "\n";
+  return cli::kExitOk;
+}
+
+// A region motion graph as a picture (issue 19, item 4).
+int dot(const Args& a) {
+  const MotionGraph g = read_graph(a.graph);
+  const RegionGraph* region = nullptr;
+  std::string names;
+  for (const auto& r : g.regions) {
+    if (r.name == a.region) region = &r;
+    names += (names.empty() ? "" : ", ") + r.name;
+  }
+  if (!region) throw cli::UsageError("--region: no region \"" + a.region + "\" (the graph has " + names + ")");
+  GraphDotOptions o;
+  o.depth = a.depth;
+  o.edge_weights = a.edge_weights;
+  const std::string text = region_graph_dot(*region, o);
+  const auto ext = std::filesystem::path(a.out).extension().string();
+  if (ext == ".svg" || ext == ".png" || ext == ".pdf") {
+    core::render_dot(text, a.out);
+  } else {
+    cli::Output out(a.out);
+    out.write(text);
+    out.commit();
+  }
   return cli::kExitOk;
 }
 

@@ -21,6 +21,15 @@ struct Args {
   int columns = 8, every = 1, cell_width = 200;
   std::vector<std::string> labels;
   std::vector<double> compressions{0.5753, 0.78, 0.90}, thresholds;
+  // capture, capture-example
+  std::vector<std::string> openface, mediapipe;
+  std::string label_column, labels_file, format = "openface";
+  bool use_3d = false, no_stabilise = false, no_trim = false;
+  double min_confidence = 0.75, image_width = 640.0, image_height = 490.0;
+  std::string region;
+  std::size_t depth = 0;
+  bool edge_weights = false;
+  std::size_t max_gap = 3, min_frames = 10, max_frames = 30, rest_frames = 12, hold_frames = 6, max_takes = 0;
 };
 
 int generate(const Args& a);
@@ -28,5 +37,8 @@ int build(const Args& a);
 int synth(const Args& a);
 int idle(const Args& a);
 int eval(const Args& a);
+int capture(const Args& a);
+int capture_example(const Args& a);
+int dot(const Args& a);
 
 }  // namespace emoface::mgraph

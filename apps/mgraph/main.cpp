@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
                "  mgraph build --db db.json --out graph.json\n"
                "  mgraph synth --graph graph.json --labels fear,surprise --out anim.json --sheet anim.png --video anim.gif\n"
                "  mgraph idle --graph graph.json --label happiness --duration 4 --out idle.csv\n"
-               "  mgraph eval --db db.json --compression 0.5753,0.78,0.90"};
+               "  mgraph eval --db db.json --compression 0.5753,0.78,0.90\n"
+               "  mgraph capture --openface take1.csv take2.csv --label-column label --out db.json"};
   app.require_subcommand(1);
   mgraph::Args a;
 
@@ -106,12 +107,53 @@ int main(int argc, char** argv) {
   eval->add_option("--csv", a.out, "also write the rows as CSV (with the sums that merge shards)");
   eval->add_option("--shard", a.shard, "i/N: evaluate only samples with index % N == i")->capture_default_str();
 
+  auto* cap = app.add_subcommand("capture", "tracker output (OpenFace CSV, MediaPipe NDJSON) -> labelled database");
+  cap->add_option("--openface", a.openface, "OpenFace 2.0 FeatureExtraction CSV files (one take each)");
+  cap->add_option("--mediapipe", a.mediapipe, "MediaPipe face-landmarker NDJSON files (one take each)");
+  cap->add_option("--labels", a.labels_file, "side file: CSV take,segment,label (segment index or *)");
+  cap->add_option("--label-column", a.label_column, "OpenFace: a column with a label per frame");
+  cap->add_flag("--3d", a.use_3d, "3D landmarks (OpenFace X_/Y_/Z_, MediaPipe z)");
+  cap->add_option("--image-width", a.image_width, "MediaPipe: image width (px)")->capture_default_str();
+  cap->add_option("--image-height", a.image_height, "MediaPipe: image height (px)")->capture_default_str();
+  cap->add_option("--min-confidence", a.min_confidence, "drop frames below this confidence")->capture_default_str();
+  cap->add_option("--max-gap", a.max_gap, "interpolate gaps up to this many frames; longer ones split takes")
+      ->capture_default_str();
+  cap->add_flag("--no-stabilise", a.no_stabilise, "keep the head motion");
+  cap->add_flag("--no-trim", a.no_trim, "each take is one neutral-to-peak sequence (no onset detection)");
+  cap->add_option("--on-error", a.on_error, "stop|skip segments without a label")->capture_default_str();
+  cap->add_option("--out", a.out, "output database (.json or .csv; - = JSON on stdout)")->required();
+
+  auto* ex = app.add_subcommand("capture-example", "example tracker files from emoface's own face");
+  ex->add_option("--format", a.format, "openface|mediapipe")->capture_default_str();
+  ex->add_option("--out", a.out, "output directory (one file per take, labels.csv)")->required();
+  ex->add_option("--model", a.model, "face|parametric")->capture_default_str();
+  ex->add_option("--seed", a.seed, "random seed")->capture_default_str();
+  ex->add_option("--per-label", a.per_label, "sequences per label (7 labels)")->capture_default_str();
+  ex->add_option("--subjects", a.subjects, "distinct identities (one take each)")->capture_default_str();
+  ex->add_option("--noise", a.noise, "landmark noise std (pixels)")->capture_default_str();
+  ex->add_option("--min-frames", a.min_frames, "shortest onset (frames)")->capture_default_str();
+  ex->add_option("--max-frames", a.max_frames, "longest onset (frames)")->capture_default_str();
+  ex->add_option("--rest", a.rest_frames, "frames at rest around expressions")->capture_default_str();
+  ex->add_option("--hold", a.hold_frames, "frames holding the peak")->capture_default_str();
+  ex->add_option("--max-takes", a.max_takes, "write only the first N takes (0 = all)")->capture_default_str();
+
+  auto* dt = app.add_subcommand("dot", "draw a region graph (Graphviz DOT; .svg/.png/.pdf rendered by dot)");
+  dt->add_option("--graph", a.graph, "motion graph JSON")->required();
+  dt->add_option("--region", a.region, "region name (eyes, eyebrows, nose, mouth, cheeks_jaw)")->required();
+  dt->add_option("--depth", a.depth, "only nodes within this many edges of the source (0 = all)")
+      ->capture_default_str();
+  dt->add_flag("--weights", a.edge_weights, "label edges with their eq. (1) weights");
+  dt->add_option("--out", a.out, "output: .dot or - (text), .svg, .png or .pdf (needs Graphviz)")->required();
+
   if (auto code = cli::parse(app, argc, argv)) return *code;
   return cli::run("mgraph", [&] {
     if (*gen) return mgraph::generate(a);
     if (*build) return mgraph::build(a);
     if (*synth) return mgraph::synth(a);
     if (*idle) return mgraph::idle(a);
+    if (*cap) return mgraph::capture(a);
+    if (*ex) return mgraph::capture_example(a);
+    if (*dt) return mgraph::dot(a);
     return mgraph::eval(a);
   });
 }

@@ -14,7 +14,9 @@
 #include "emoface/core/io.hpp"
 #include "emoface/core/version.hpp"
 #include "emoface/core/video.hpp"
+#include "emoface/core/graphviz.hpp"
 #include "emoface/mindmap/chart.hpp"
+#include "emoface/mindmap/dot.hpp"
 #include "emoface/mindmap/io.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmotion/behaviour.hpp"
@@ -41,8 +43,11 @@ struct Args {
   emoface::mindmotion::CrowdRenderOptions render;
   std::string view = "front";
   double fps = 0.0;
-  bool video = false;
+  bool video = false, no_vary = false;
   std::vector<std::string> weights;  // arkit, facs, livelink: also write <name>_<format>.csv
+  // dot
+  std::string character;
+  double time = -1.0;
 };
 
 // The muscle tracks as ARKit / FACS / Live Link Face CSV (faceweights' shared writer).
@@ -65,6 +70,34 @@ void add_weight_files(std::vector<std::pair<std::string, std::string>>& files, c
   }
 }
 
+
+// Writes DOT text, or renders it with Graphviz by the extension (.svg, .png, .pdf).
+void write_dot(const std::string& dot, const std::string& out) {
+  const auto ext = std::filesystem::path(out).extension().string();
+  if (ext == ".svg" || ext == ".png" || ext == ".pdf") {
+    emoface::core::render_dot(dot, out);
+  } else {
+    emoface::core::write_file_atomic(out, dot);
+  }
+}
+
+// §5.1 variation is on by default (issue 19); --no-vary switches it off.
+void add_motion_options(CLI::App* cmd, Args& a) {
+  cmd->add_flag("--no-vary", a.no_vary, "no motion variation (paper §5.1): the same label gives the same motion");
+  cmd->add_option("--replace", a.motion.synthesis.replace_probability,
+                  "variation: probability of replacing a path node by a neighbour")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--return-after", a.motion.return_after,
+                  "seconds after an animation before the face returns to neutral (0 = never)")
+      ->check(CLI::Range(0.0, 1e5))
+      ->capture_default_str();
+}
+
+void apply_motion_options(Args& a) {
+  if (a.no_vary) a.motion.synthesis = emoface::motiongraph::SynthesisOptions{};  // no §5.1 variation
+}
+
 std::string file_stem(const std::string& name) {  // character names become file names: keep them portable
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') || name[0] == '.')
@@ -76,6 +109,7 @@ std::string file_stem(const std::string& name) {  // character names become file
 int simulate(Args& a) {
   a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
   a.motion.seed = a.sim.seed;
+  apply_motion_options(a);
   std::optional<mg::MotionGraph> graph;
   std::vector<std::string> labels;
   if (!a.graph.empty()) {
@@ -148,6 +182,7 @@ int crowd(Args& a) {
   namespace fm = emoface::facemesh;
   a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
   a.render.view = fm::view_from_string(a.view);  // checked by CLI11 (IsMember) when parsing
+  apply_motion_options(a);
   mo::CrowdOptions co;
   co.simulation = a.sim;
   co.motion = a.motion;
@@ -235,6 +270,12 @@ int crowd(Args& a) {
   }
   for (const auto& s : crowd.simulation.copied)
     std::cout << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time << " s\n";
+  const auto distance = mo::face_distances(crowd);  // issue 19: how different the faces are
+  std::cout << "face distance (mean per-frame parameter distance):";
+  for (std::size_t i = 0; i < distance.size(); ++i)
+    for (std::size_t j = i + 1; j < distance.size(); ++j)
+      std::printf(" %s-%s %.3f", crowd.characters[i].name.c_str(), crowd.characters[j].name.c_str(), distance[i][j]);
+  std::cout << "\n";
   const double frames = static_cast<double>(crowd.frame_count());
   std::printf("%zu characters, %zu frames at %g fps (%g s), %zu key moments, frame %dx%d\n", maps.size(),
               crowd.frame_count(), crowd.fps, crowd.simulation.duration, crowd.key_moments.size(), renderer.width(),
@@ -248,6 +289,26 @@ int crowd(Args& a) {
               1e3 * timings.fitting.cpu / faces, render_seconds, render_cpu, rendered,
               rendered ? 1e3 * render_cpu / static_cast<double>(rendered) : 0.0);
   std::cout << "wrote " << files.size() + (a.video ? 1 : 0) << " file(s) to " << a.out << "\n";
+  return cli::kExitOk;
+}
+
+// The mind map as a picture (issue 19, item 4), with the mood at --time after --events.
+int dot(Args& a) {
+  const std::vector<mm::MindMap> maps = mm::read_mind_map_dir(a.maps, {});
+  std::size_t c = maps.size();
+  for (std::size_t i = 0; i < maps.size(); ++i)
+    if (maps[i].character == a.character) c = i;
+  if (c == maps.size()) throw cli::UsageError("--character: no mind map of \"" + a.character + "\" in " + a.maps);
+  mm::MindMapDotOptions o;
+  if (!a.events.empty()) {
+    if (a.time < 0.0) throw cli::UsageError("--events needs --time (seconds)");
+    a.sim.duration = a.time;
+    o.mood = mm::mood_at(mm::simulate(maps, mm::read_events(a.events), a.sim), c, a.time);
+  } else if (a.time >= 0.0) {
+    o.mood = maps[c].traits.starting_mood;  // no stimuli: the starting mood
+  }
+  write_dot(mm::mind_map_dot(maps[c], o), a.out);
+  std::cout << "wrote " << a.out << "\n";
   return cli::kExitOk;
 }
 
@@ -285,6 +346,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   sim->add_option("--hint-fraction", a.motion.hint_path_fraction, "path fraction of decay hints")
       ->capture_default_str();
+  add_motion_options(sim, a);
   sim->add_option("--chart-width", a.chart.width, "chart pixels")->capture_default_str();
   sim->add_option("--chart-height", a.chart.height, "chart pixels")->capture_default_str();
   sim->add_flag("--no-charts", a.no_charts, "do not write PNG mood charts");
@@ -292,7 +354,7 @@ int main(int argc, char** argv) {
   cr->add_option("--maps", a.maps, "directory of mind maps (*.json, 2 to 16 characters)")->required();
   cr->add_option("--events", a.events, "shared stimuli (NDJSON, see docs/mindmap.md)")->required();
   cr->add_option("--out", a.out, "output directory")->required();
-  cr->add_option("--graph", a.graph, "motion graph (mgraph build); default: built from the synthetic database (~6 s)");
+  cr->add_option("--graph", a.graph, "motion graph (mgraph build); default: mgraph generate + build defaults (~3 s)");
   cr->add_option("--rig", a.rigs, "rig for everyone (FILE) or for one character (NAME=FILE); default: the built-in face");
   cr->add_option("--weights", a.weights,
                  "arkit,facs,livelink: also write <name>_arkit.csv, _facs.csv, _livelink.csv")
@@ -312,6 +374,14 @@ int main(int argc, char** argv) {
   cr->add_option("--propagate", a.sim.propagation_depth, "hops a performed stimulus travels to the others (0 = off)")
       ->capture_default_str();
   cr->add_flag("--no-charts", a.no_charts, "do not write PNG mood charts");
+  add_motion_options(cr, a);
+  auto* dt = app.add_subcommand("dot", "draw a mind map (Graphviz DOT; .svg/.png/.pdf rendered by dot)");
+  dt->add_option("--maps", a.maps, "directory of mind maps")->required();
+  dt->add_option("--character", a.character, "whose mind map")->required();
+  dt->add_option("--events", a.events, "stimuli to run first (NDJSON), for the mood at --time");
+  dt->add_option("--time", a.time, "seconds: show the mood at this time (starting mood without --events)");
+  dt->add_option("--seed", a.sim.seed, "random seed of the simulation")->capture_default_str();
+  dt->add_option("--out", a.out, "output: .dot (text), .svg, .png or .pdf (needs Graphviz)")->required();
   auto* check = app.add_subcommand("check", "validate mind maps (and their labels against a graph)");
   check->add_option("--maps", a.maps, "directory of mind maps")->required();
   check->add_option("--graph", a.graph, "motion graph whose labels the actions must use");
@@ -320,6 +390,7 @@ int main(int argc, char** argv) {
   return cli::run("mindmap", [&]() -> int {
     if (*sim) return simulate(a);
     if (*cr) return crowd(a);
+    if (*dt) return dot(a);
     std::vector<std::string> labels;
     if (!a.graph.empty()) labels = emoface::mindmotion::graph_labels(mg::read_graph(a.graph));
     const auto maps = mm::read_mind_map_dir(a.maps, labels);

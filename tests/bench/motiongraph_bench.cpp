@@ -5,6 +5,7 @@
 //   build-bench/tests/bench/motiongraph_bench
 #include <benchmark/benchmark.h>
 
+#include "emoface/motiongraph/capture.hpp"
 #include "emoface/motiongraph/graph.hpp"
 #include "emoface/motiongraph/preprocess.hpp"
 #include "emoface/motiongraph/synthesis.hpp"
@@ -83,5 +84,26 @@ static void BM_SimilarityEq1(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(mg::similarity(a.data(), va.data(), b.data(), vb.data(), 10, 2, o));
 }
 BENCHMARK(BM_SimilarityEq1);
+
+// Captures (issue 19): the 20 generated long takes of the default synthetic database (parametric
+// model), ~4 800 frames. Baseline: the OpenFace writer and reader on the same takes; then cleaning +
+// stabilisation + trimming + labels (capture_database).
+static const std::vector<mg::TrackedFrames>& capture_takes() {
+  static const std::vector<mg::TrackedFrames> t = mg::generate_capture_takes(mg::ParametricLandmarkModel(), {});
+  return t;
+}
+static void BM_CaptureReadOpenFace(benchmark::State& state) {
+  std::vector<std::string> texts;
+  for (const auto& t : capture_takes()) texts.push_back(mg::openface_csv(t));
+  mg::OpenFaceReadOptions o;
+  o.label_column = "label";
+  for (auto _ : state)
+    for (const auto& text : texts) benchmark::DoNotOptimize(mg::parse_openface_csv(text, "take.csv", o));
+}
+BENCHMARK(BM_CaptureReadOpenFace)->Unit(benchmark::kMillisecond);
+static void BM_CaptureDatabase(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(mg::capture_database(capture_takes()));
+}
+BENCHMARK(BM_CaptureDatabase)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -1,3 +1,4 @@
+#include <algorithm>
 // mgraph end to end: face/parametric generation, shards, --on-error, batch requests, GIF/MP4
 // output.
 #include <gtest/gtest.h>
@@ -132,6 +133,22 @@ TEST_F(Mgraph, OnErrorSkipReportsBadSequences) {
   EXPECT_TRUE(fs::exists(path("g.json")));
   r = run("build --db " + bad + " --on-error ignore --out " + path("g2.json"));
   EXPECT_EQ(r.code, 1);
+  // A sequence that does not start neutral (issue 19): stop by default, skipped and reported with skip.
+  auto reversed = nlohmann::json::parse(slurp(shared("db.json")));
+  auto& frames = reversed["sequences"][1]["frames"];
+  std::reverse(frames.begin(), frames.end());
+  const std::string rev = write("rev.json", reversed.dump());
+  r = run("build --db " + rev + " --no-clean --out " + path("g3.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("does not start neutral"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("g3.json")));
+  r = run("build --db " + rev + " --no-clean --on-error skip --out " + path("g3.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("skipped: preprocess: sequence \"" + reversed["sequences"][1]["id"].get<std::string>() +
+                       "\" does not start neutral"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(path("g3.json")));
 }
 
 TEST_F(Mgraph, EvalShardsMergeToTheWholeTable) {
@@ -229,6 +246,68 @@ TEST_F(Mgraph, WritesGifAndMp4) {
   EXPECT_EQ(r.code, 2);
   EXPECT_FALSE(fs::exists(path("s.avi")));
   EXPECT_FALSE(fs::exists(path("s3.json")));
+}
+
+// Issue 19: the committed capture examples are what `mgraph capture-example` writes (data/capture/README.md),
+// and `mgraph capture` turns them into labelled sequences; bad files stop with a located error.
+TEST_F(Mgraph, CaptureExamplesAreReproducibleAndReadBack) {
+  const std::string data = std::string(EMOFACE_SOURCE_DIR) + "/data/capture/";
+  auto r = run("capture-example --format openface --out " + path("of") +
+               " --subjects 7 --per-label 1 --max-takes 2 --min-frames 8 --max-frames 12 --rest 6 --hold 3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"take_S001.csv", "take_S002.csv", "labels.csv"})
+    EXPECT_EQ(slurp(path("of/") + f), slurp(data + "openface/" + f)) << f;
+  r = run("capture-example --format mediapipe --out " + path("mp") +
+          " --subjects 7 --per-label 1 --max-takes 1 --min-frames 5 --max-frames 5 --rest 3 --hold 1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"take_S001.ndjson", "labels.csv"})
+    EXPECT_EQ(slurp(path("mp/") + f), slurp(data + "mediapipe/" + f)) << f;
+  // Read back: labels from the column and from the side file give the same database.
+  r = run("capture --openface " + data + "openface/take_S001.csv " + data + "openface/take_S002.csv" +
+          " --label-column label --out " + path("a.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("2 take(s) → 2 labelled neutral-to-peak sequence(s)"), std::string::npos) << r.err;
+  r = run("capture --openface " + data + "openface/take_S001.csv " + data + "openface/take_S002.csv" +
+          " --labels " + data + "openface/labels.csv --out " + path("b.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(path("a.json")), slurp(path("b.json")));
+  const auto db = nlohmann::json::parse(slurp(path("a.json")));
+  EXPECT_EQ(db["sequences"][0]["label"], "happiness");
+  EXPECT_EQ(db["sequences"][1]["label"], "sadness");
+  r = run("capture --mediapipe " + data + "mediapipe/take_S001.ndjson --out " + path("m.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  // Without labels a segment is an error (exit 2, nothing written), or skipped and reported.
+  r = run("capture --openface " + data + "openface/take_S001.csv --out " + path("none.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("has no label"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("none.json")));
+  // A broken file names its line and field.
+  std::string text = slurp(data + "openface/take_S001.csv");
+  const std::size_t line3 = text.find('\n', text.find('\n') + 1) + 1;
+  text.replace(text.find(", ", line3 + 2) + 2, 1, "x");  // the timestamp of the second frame
+  const std::string bad = write("bad.csv", text);
+  r = run("capture --openface " + bad + " --label-column label --out " + path("bad.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bad.csv:3:3: expected a finite number"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("bad.json")));
+  EXPECT_EQ(run("capture --out " + path("x.json")).code, 1);  // no input
+  EXPECT_EQ(run("capture-example --format xml --out " + path("x")).code, 1);
+}
+
+// Issue 19, item 4: region graphs as Graphviz pictures.
+TEST_F(Mgraph, DotDrawsARegionGraph) {
+  auto r = run("dot --graph " + shared("graph.json") + " --region mouth --depth 1 --weights --out " + path("m.dot"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string dot = slurp(path("m.dot"));
+  EXPECT_EQ(dot.rfind("digraph \"motion graph mouth\"", 0), 0u);
+  EXPECT_NE(dot.find("source"), std::string::npos);
+  r = run("dot --graph " + shared("graph.json") + " --region lips --out " + path("x.dot"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("eyes, eyebrows, nose, mouth, cheeks_jaw"), std::string::npos) << r.err;
+  if (std::system("dot -V > /dev/null 2>&1") == 0) {
+    ASSERT_EQ(run("dot --graph " + shared("graph.json") + " --region eyes --depth 1 --out " + path("e.svg")).code, 0);
+    EXPECT_NE(slurp(path("e.svg")).find("<svg"), std::string::npos);
+  }
 }
 
 }  // namespace

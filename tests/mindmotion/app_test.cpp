@@ -1,6 +1,8 @@
 // End-to-end tests of the mindmap CLI: run the built binary on the example characters.
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -98,5 +100,28 @@ TEST(MindmapApp, ErrorsHaveTheirExitCodes) {
             2);
   EXPECT_FALSE(fs::exists(out / "o"));  // nothing written on failure
   EXPECT_EQ(run("check --maps " + kData + "/characters"), 0);
+  fs::remove_all(out);
+}
+
+// Issue 19, item 4: a mind map as a Graphviz picture, with the mood after the events.
+TEST(MindmapApp, DotDrawsAMindMapWithItsMood) {
+  const fs::path out = scratch("dot");
+  fs::create_directories(out);
+  const std::string maps = " --maps " + kData + "/crowd";
+  ASSERT_EQ(run("dot" + maps + " --character ana --events " + kData + "/crowd_events.ndjson --time 8 --seed 1 --out " +
+                (out / "ana.dot").string()),
+            0);
+  std::ifstream in(out / "ana.dot");
+  const std::string dot{std::istreambuf_iterator<char>(in), {}};
+  EXPECT_EQ(dot.rfind("digraph \"mind map ana\"", 0), 0u);
+  EXPECT_NE(dot.find("mood 0."), std::string::npos);
+  EXPECT_EQ(run("dot" + maps + " --character nobody --out " + (out / "x.dot").string()), 1);
+  EXPECT_EQ(run("dot" + maps + " --character ana --events " + kData + "/crowd_events.ndjson --out " +
+                (out / "x.dot").string()),
+            1);  // --events without --time
+  if (std::system("dot -V > /dev/null 2>&1") == 0) {
+    ASSERT_EQ(run("dot" + maps + " --character rex --out " + (out / "rex.svg").string()), 0);
+    EXPECT_TRUE(fs::exists(out / "rex.svg"));
+  }
   fs::remove_all(out);
 }

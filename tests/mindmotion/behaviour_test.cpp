@@ -52,7 +52,9 @@ TEST(Behaviour, SegmentsCoverTheTimelineWithIdleBetweenActions) {
   const auto m = mo::synthesize_behaviour(small_graph(), actions, "ana", 0, 8.0);
   ASSERT_GE(m.segments.size(), 5u);  // idle, smile, gasp, (idle), pout, idle
   const auto cut = mo::synthesize_behaviour(small_graph(), actions, "ana", 0, 1.2);  // actions after 1.2 s ignored
-  EXPECT_EQ(cut.segments.size(), 2u);
+  ASSERT_GE(cut.segments.size(), 2u);  // idle, smile (then idle if the smile ends before 1.2 s)
+  EXPECT_EQ(cut.segments[1].action, "smile");
+  for (std::size_t i = 2; i < cut.segments.size(); ++i) EXPECT_EQ(cut.segments[i].kind, mo::SegmentKind::Idle);
   EXPECT_EQ(m.segments.front().kind, mo::SegmentKind::Idle);
   EXPECT_EQ(m.segments.front().label, "neutral");
   EXPECT_EQ(m.segments[1].action, "smile");
@@ -113,8 +115,96 @@ TEST(Behaviour, DeterministicPerSeedAndBadInputThrows) {
   o.hint_path_fraction = 0.0;
   EXPECT_THROW(mo::synthesize_behaviour(small_graph(), actions, "ana", 0, 1.0, o), emoface::InvalidInput);
   EXPECT_THROW(mo::synthesize_behaviour(small_graph(), actions, "ana", 0, -1.0), emoface::InvalidInput);
-  for (auto k : {mo::SegmentKind::Action, mo::SegmentKind::Hint, mo::SegmentKind::Idle})
+  for (auto k : {mo::SegmentKind::Action, mo::SegmentKind::Hint, mo::SegmentKind::Idle, mo::SegmentKind::Rest})
     EXPECT_EQ(mo::segment_kind_from_string(mo::to_string(k)), k);
+  EXPECT_EQ(mo::segment_kind_from_string("resting"), std::nullopt);
+  o = {};
+  o.return_after = -1.0;
+  EXPECT_THROW(mo::synthesize_behaviour(small_graph(), actions, "ana", 0, 1.0, o), emoface::InvalidInput);
+}
+
+// Issue 19: variation (§5.1) is on by default, so the same label differs between characters.
+TEST(Behaviour, VariationIsOnByDefaultAndCanBeSwitchedOff) {
+  const mo::BehaviourMotionOptions defaults;
+  EXPECT_TRUE(defaults.synthesis.vary_duration);
+  EXPECT_DOUBLE_EQ(defaults.synthesis.replace_probability, 0.3);
+  EXPECT_TRUE(defaults.synthesis.vary_peak);
+  // The same action at t = 0 (no idle before it) for characters 0 and 1 of the world.
+  auto face = [&](std::size_t index, const mo::BehaviourMotionOptions& o) {
+    return mo::synthesize_behaviour(small_graph(), {act(0.0, "a", "fear", mm::Cause::Stimulus, "x")}, "x", index,
+                                    0.0, o);
+  };
+  mo::BehaviourMotionOptions off;
+  off.synthesis = mg::SynthesisOptions{};
+  const auto a0 = face(0, off), a1 = face(1, off);
+  ASSERT_EQ(a0.frames.size(), a1.frames.size());
+  for (std::size_t f = 0; f < a0.frames.size(); ++f) ASSERT_EQ(a0.frames[f], a1.frames[f]);  // identical
+  int differing = 0;
+  for (std::size_t index = 1; index < 6; ++index) {
+    const auto v0 = face(0, defaults), v = face(index, defaults);
+    bool same = v0.frames.size() == v.frames.size();
+    for (std::size_t f = 0; same && f < v.frames.size(); ++f) same = v0.frames[f] == v.frames[f];
+    differing += same ? 0 : 1;
+  }
+  EXPECT_GE(differing, 4);  // per-character seeds give different faces for the same label
+}
+
+// Issue 19: faces rest. They move at rest before the first stimulus, return to neutral through the
+// graph source `return_after` seconds after their last animation, and `neutral` is a label.
+TEST(Behaviour, FacesIdleAtRestAndReturnToNeutral) {
+  const auto labels = mo::graph_labels(small_graph());
+  EXPECT_EQ(labels.front(), "neutral");
+  const std::vector<mm::TriggeredAction> actions = {act(1.0, "smile", "happiness", mm::Cause::Stimulus)};
+  const auto m = mo::synthesize_behaviour(small_graph(), actions, "ana", 0, 8.0);
+  // Before the stimulus: idle at rest, and not frozen.
+  ASSERT_EQ(m.segments.front().kind, mo::SegmentKind::Idle);
+  double moved = 0.0;
+  for (std::size_t f = 0; f < m.segments.front().frame_count; ++f)
+    moved = std::max(moved, (m.frames[f] - m.frames[0]).cwiseAbs().maxCoeff());
+  EXPECT_GT(moved, 0.05);
+  // After the smile: 2 s of idle around happiness, then the return, then rest until the end.
+  std::vector<mo::SegmentKind> kinds;
+  for (const auto& s : m.segments) kinds.push_back(s.kind);
+  const std::vector<mo::SegmentKind> expected = {mo::SegmentKind::Idle, mo::SegmentKind::Action,
+                                                 mo::SegmentKind::Idle, mo::SegmentKind::Rest,
+                                                 mo::SegmentKind::Idle};
+  ASSERT_EQ(kinds, expected);
+  const auto& smile = m.segments[1];
+  const auto& rest = m.segments[3];
+  EXPECT_EQ(rest.label, "neutral");
+  EXPECT_NEAR(rest.start, smile.start + static_cast<double>(smile.frame_count) / m.frame_rate + 2.0,
+              1.0 / m.frame_rate + 1e-9);
+  EXPECT_EQ(m.segments[4].label, "neutral");
+  // At the end of the return the face is back at the averaged neutral (within the smoothing of the
+  // last frames), while the smile's peak was far from it.
+  const std::size_t back = rest.first_frame + rest.frame_count - 1;
+  const std::size_t peak = smile.first_frame + smile.frame_count - 1;
+  double at_rest = 0.0, at_peak = 0.0;
+  for (Eigen::Index l = 0; l < m.frames[0].rows(); ++l) {
+    at_rest = std::max(at_rest, (m.frames[back].row(l) - m.frames[0].row(l)).norm());
+    at_peak = std::max(at_peak, (m.frames[peak].row(l) - m.frames[0].row(l)).norm());
+  }
+  EXPECT_GT(at_peak, 5.0);
+  EXPECT_LT(at_rest, 1.0 + 2.0 * moved);
+  // return_after = 0 keeps the old behaviour: the face holds its expression.
+  mo::BehaviourMotionOptions hold;
+  hold.return_after = 0.0;
+  const auto h = mo::synthesize_behaviour(small_graph(), actions, "ana", 0, 8.0, hold);
+  for (const auto& s : h.segments) EXPECT_NE(s.kind, mo::SegmentKind::Rest);
+  // A return that does not fit before the next action is not started (the action is not delayed).
+  const auto tight = mo::synthesize_behaviour(
+      small_graph(), {actions[0], act(1.0 + 2.6, "gasp", "surprise", mm::Cause::Stimulus)}, "ana", 0, 6.0);
+  for (const auto& s : tight.segments)
+    if (s.action == "gasp") EXPECT_NEAR(s.start, 3.6, 1.0 / tight.frame_rate + 1e-9);
+  // `neutral` actions synthesize the return too.
+  const auto calm = mo::synthesize_behaviour(
+      small_graph(), {actions[0], act(2.0, "calm", "neutral", mm::Cause::Stimulus)}, "ana", 0, 3.0);
+  const auto it = std::find_if(calm.segments.begin(), calm.segments.end(),
+                               [](const mo::Segment& x) { return x.action == "calm"; });
+  ASSERT_NE(it, calm.segments.end());
+  EXPECT_EQ(it->kind, mo::SegmentKind::Action);
+  EXPECT_EQ(it->label, "neutral");
+  EXPECT_GT(it->frame_count, 3u);
 }
 
 TEST(MuscleTracks, NeutralPoseAndDisplacementsInFaceUnits) {

@@ -82,6 +82,30 @@ TEST_F(MindmapCrowdApp, WritesTracksMoodChartsAndTheKeyMomentSheet) {
     EXPECT_EQ(slurp(path("out/") + f), slurp(path("again/") + f)) << f;
 }
 
+// Issue 19: variation is on by default (--no-vary switches it off), and the distinctness is printed.
+TEST_F(MindmapCrowdApp, VariationFlagAndFaceDistances) {
+  const auto on = mindmap(crowd_args(path("on")) + " --no-charts");
+  ASSERT_EQ(on.code, 0) << on.err;
+  EXPECT_NE(on.out.find("face distance (mean per-frame parameter distance): ana-ben "), std::string::npos) << on.out;
+  const auto off = mindmap(crowd_args(path("off")) + " --no-charts --no-vary --return-after 0");
+  ASSERT_EQ(off.code, 0) << off.err;
+  EXPECT_NE(slurp(path("on/ana_muscles.csv")), slurp(path("off/ana_muscles.csv")));
+  // The library with variation switched off gives what --no-vary wrote (same graph, seed, fps).
+  emoface::mindmotion::CrowdOptions o;
+  o.simulation.duration = 8;
+  o.fps = 10;
+  o.seed = 2;
+  o.motion.synthesis = mg::SynthesisOptions{};
+  o.motion.return_after = 0.0;
+  const auto maps = emoface::mindmap::read_mind_map_dir(kData + "/crowd", {});
+  const emoface::mindmotion::CrowdFaces faces(maps, {});
+  const auto crowd = emoface::mindmotion::animate_crowd(
+      maps, emoface::mindmap::read_events(kData + "/crowd_events.ndjson"), mg::read_graph(graph()), faces.rigs(), o);
+  EXPECT_EQ(slurp(path("off/ana_muscles.csv")), emoface::muscles::format_parameter_frames_csv(crowd.characters[0].tracks));
+  EXPECT_EQ(mindmap(crowd_args(path("bad")) + " --replace 1.5").code, 1);
+  EXPECT_EQ(mindmap(crowd_args(path("bad")) + " --return-after -1").code, 1);
+}
+
 TEST_F(MindmapCrowdApp, ErrorsHaveTheirExitCodesAndWriteNothing) {
   EXPECT_EQ(mindmap("crowd --maps " + kData + "/crowd --out " + path("o")).code, 1);  // --events missing
   EXPECT_EQ(mindmap(crowd_args(path("o")) + " --fps 1000").code, 1);

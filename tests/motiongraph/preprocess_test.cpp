@@ -88,6 +88,27 @@ TEST(Preprocess, AlignmentRemovesPoseDifferences) {
   EXPECT_GT((raw.samples[0].displacement[3] - raw.samples[1].displacement[3]).cwiseAbs().maxCoeff(), 1.0);
 }
 
+TEST(Preprocess, SkipBadSamplesLeavesOutSequencesThatDoNotStartNeutral) {
+  Database db = test::small_synthetic(1);
+  std::reverse(db.sequences[0].frames.begin(), db.sequences[0].frames.end());  // peak first
+  EXPECT_THROW(preprocess(db, default_layout()), InvalidInput);
+  PreprocessOptions o;
+  o.skip_bad_samples = true;
+  o.clean = false;
+  PreprocessReport rep;
+  const PreparedDatabase p = preprocess(db, default_layout(), o, &rep);
+  ASSERT_EQ(rep.skipped.size(), 1u);
+  EXPECT_NE(rep.skipped[0].find(db.sequences[0].id), std::string::npos) << rep.skipped[0];
+  EXPECT_NE(rep.skipped[0].find("does not start neutral"), std::string::npos);
+  ASSERT_EQ(p.samples.size(), db.sequences.size() - 1);
+  // The same as preprocessing the database without it (mean neutral recomputed).
+  Database kept = db;
+  kept.sequences.erase(kept.sequences.begin());
+  const PreparedDatabase q = preprocess(kept, default_layout(), o);
+  for (std::size_t r = 0; r < p.neutral.size(); ++r) EXPECT_EQ(p.neutral[r], q.neutral[r]);
+  for (std::size_t s = 0; s < p.samples.size(); ++s) EXPECT_EQ(p.samples[s].id, q.samples[s].id);
+}
+
 TEST(Preprocess, RejectsBadInput) {
   Database db = test::small_synthetic(1);
   EXPECT_THROW(preprocess(db, single_region_layout(10)), InvalidInput);  // layout mismatch

@@ -70,3 +70,51 @@ TEST(Render, FitViewContactSheetAndPlot) {
 
 }  // namespace
 }  // namespace emoface::motiongraph
+
+namespace emoface::motiongraph {
+namespace {
+
+// Issue 19: landmark sheets with contour lines.
+TEST(Contours, Ibug68GroupsAndSubsets) {
+  const auto& c = ibug68_contours();
+  ASSERT_EQ(c.size(), 9u);
+  EXPECT_EQ(c[0].front(), 0);
+  EXPECT_EQ(c[0].back(), 16);
+  EXPECT_EQ(c[5], (std::vector<int>{36, 37, 38, 39, 40, 41, 36}));  // right eye, closed
+  // Reduced landmarks (as synthesized poses carry them): rows of the ids present, in contour order.
+  const std::vector<int> ids = {36, 39, 42, 45, 17, 21, 48, 54, 57};
+  const auto sub = contours_for(ids);
+  // brows: {17, 21} → rows 4, 5; right eye: 36, 39, (36) → rows 0, 1, 0; left eye 42, 45, 42 → 2, 3, 2;
+  // outer lips 48, 54, 57, 48 → 6, 7, 8, 6; the rest has < 2 landmarks.
+  ASSERT_EQ(sub.size(), 4u);
+  EXPECT_EQ(sub[0], (std::vector<int>{4, 5}));
+  EXPECT_EQ(sub[1], (std::vector<int>{0, 1, 0}));
+  EXPECT_EQ(sub[2], (std::vector<int>{2, 3, 2}));
+  EXPECT_EQ(sub[3], (std::vector<int>{6, 7, 8, 6}));
+  // A closed contour without its first landmark does not end on a repeat.
+  EXPECT_EQ(contours_for({37, 38}), (std::vector<std::vector<int>>{{0, 1}}));
+}
+
+TEST(Contours, LinesAreDrawnBetweenTheLandmarks) {
+  Pose p(2, 2);
+  p << 10, 10, 50, 10;
+  Image img(60, 20);
+  View v;  // identity
+  draw_contours(img, p, {{0, 1}}, v, 0x123456);
+  auto at = [&](int x, int y) {
+    const std::uint8_t* q = &img.rgb[(static_cast<std::size_t>(y) * 60 + x) * 3];
+    return (q[0] << 16) | (q[1] << 8) | q[2];
+  };
+  EXPECT_EQ(at(30, 10), 0x123456);  // midway
+  EXPECT_NE(at(30, 15), 0x123456);
+  EXPECT_THROW(draw_contours(img, p, {{0, 2}}, v), InvalidInput);
+  // The sheet draws them under the dots.
+  const Image sheet = contact_sheet({p}, {}, 1, 64, 32, {{0, 1}});
+  std::size_t grey = 0;
+  for (std::size_t i = 0; i + 2 < sheet.rgb.size(); i += 3)
+    grey += sheet.rgb[i] == 0xb0 && sheet.rgb[i + 1] == 0xb0 && sheet.rgb[i + 2] == 0xb0;
+  EXPECT_GT(grey, 20u);
+}
+
+}  // namespace
+}  // namespace emoface::motiongraph

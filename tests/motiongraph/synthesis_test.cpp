@@ -1,5 +1,7 @@
 #include "emoface/motiongraph/synthesis.hpp"
 
+#include <set>
+
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -123,6 +125,31 @@ TEST(Synthesize, SeededVariation) {
   EXPECT_TRUE(differs);
 }
 
+TEST(Synthesize, VaryPeakReachesDifferentPeaksOfTheLabel) {
+  // Without it every run from neutral ends at the cheapest peak; with it at random peaks of the label.
+  std::set<std::vector<std::size_t>> ends;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    SynthesisOptions o;
+    o.vary_peak = true;
+    o.seed = seed;
+    SynthesisState s = initial_state(graph());
+    synthesize(graph(), s, Label::Happiness, o);
+    for (std::size_t r = 0; r < graph().regions.size(); ++r)
+      EXPECT_TRUE(graph().regions[r].nodes[s.nodes[r]].has_peak_label(Label::Happiness));
+    ends.insert(s.nodes);
+  }
+  EXPECT_GE(ends.size(), 6u);
+  SynthesisState plain = initial_state(graph());
+  synthesize(graph(), plain, Label::Happiness);
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SynthesisOptions o;
+    o.seed = seed;
+    SynthesisState s = initial_state(graph());
+    synthesize(graph(), s, Label::Happiness, o);
+    EXPECT_EQ(s.nodes, plain.nodes);  // off: the cheapest peak, whatever the seed
+  }
+}
+
 TEST(Synthesize, MoodDecayHintUsesInitialNodes) {
   SynthesisState full_state = initial_state(graph()), hint_state = initial_state(graph());
   SynthesisReport full, hint;
@@ -138,7 +165,6 @@ TEST(Synthesize, MoodDecayHintUsesInitialNodes) {
 
 TEST(Synthesize, BadInput) {
   SynthesisState s = initial_state(graph());
-  EXPECT_THROW(synthesize(graph(), s, Label::Neutral), InvalidInput);  // no neutral peaks
   SynthesisState wrong;
   EXPECT_THROW(synthesize(graph(), wrong, Label::Fear), InvalidInput);
   SynthesisOptions o;
@@ -226,6 +252,76 @@ TEST(Idle, HopsOnlyAmongLabelledNeighbours) {
   EXPECT_EQ(dump(idle(graph(), again, Label::Happiness, o)), dump(frames));  // seeded
   o.dwell = o.hop_interval;
   EXPECT_THROW(idle(graph(), again, Label::Happiness, o), InvalidInput);
+}
+
+// Issue 19: `neutral` returns to rest through the graph source.
+TEST(Synthesize, NeutralReturnsToTheSourceNode) {
+  SynthesisState s = initial_state(graph());
+  const auto up = synthesize(graph(), s, Label::Surprise);
+  SynthesisReport rep;
+  const auto down = synthesize(graph(), s, Label::Neutral, {}, &rep);
+  ASSERT_GE(down.size(), 2u);
+  EXPECT_LT((down.front() - up.back()).cwiseAbs().maxCoeff(), 1e-9);  // continuous
+  for (std::size_t r = 0; r < graph().regions.size(); ++r) {
+    const RegionGraph& rg = graph().regions[r];
+    EXPECT_EQ(s.nodes[r], rg.neutral_node);
+    EXPECT_EQ(rep.paths[r].back(), rg.neutral_node);
+    // Step 2 for a peak-to-neutral path: Ls·(1 − dc/ds) + Lt·(1 − dc/dt) with Ls the source peak's
+    // mean length, Lt = 1 (the source node) and dc the smallest displacement norm on the path.
+    const auto& path = rep.paths[r];
+    const Node& peak = rg.nodes[path.front()];
+    if (peak.is_peak() && path.size() > 1) {
+      double dc = 1e300;
+      for (std::size_t i : path) dc = std::min(dc, rg.nodes[i].displacement.norm());
+      const double ds = peak.displacement.norm(), dt = rg.nodes[path.back()].displacement.norm();
+      const double expected =
+          peak.peak_length_mean * (1.0 - dc / ds) + (dt > 0.0 ? 1.0 - dc / dt : 0.0);
+      EXPECT_EQ(rep.region_lengths[r], static_cast<std::size_t>(std::lround(std::max(2.0, expected))))
+          << rg.name;
+      EXPECT_GE(rep.region_lengths[r] + 1.0, 0.9 * peak.peak_length_mean) << rg.name;
+    }
+  }
+  // The last frame is the averaged neutral of every region (up to the Savitzky–Golay smoothing of
+  // the last frames, which is not pinned), while the surprise peak was > 10 px away.
+  Eigen::Index row = 0;
+  double largest = 0.0;
+  for (const RegionGraph& rg : graph().regions) {
+    const Eigen::RowVectorXd home = rg.neutral + rg.nodes[rg.neutral_node].displacement;
+    for (Eigen::Index l = 0; l < home.size() / 2; ++l, ++row)
+      for (int j = 0; j < 2; ++j) largest = std::max(largest, std::abs(down.back()(row, j) - home[l * 2 + j]));
+  }
+  EXPECT_LT(largest, 0.5);
+  // From rest, neutral is one frame (nothing to do).
+  SynthesisState rest = initial_state(graph());
+  EXPECT_EQ(synthesize(graph(), rest, Label::Neutral).size(), 1u);
+}
+
+TEST(Idle, AtRestMovesAroundTheNeutralPose) {
+  // Before the first stimulus the face is at the source node; idling there used to freeze it.
+  SynthesisState s = initial_state(graph());
+  IdleOptions o;
+  o.duration = 4.0;
+  const auto frames = idle(graph(), s, Label::Neutral, o);
+  ASSERT_EQ(frames.size(), 120u);
+  double moved = 0.0;
+  for (const Pose& p : frames) moved = std::max(moved, (p - frames.front()).cwiseAbs().maxCoeff());
+  EXPECT_GT(moved, 0.05);  // it moves ...
+  // ... but stays near rest: every hop target is within rest_fraction (0.1) of the region's mean
+  // peak displacement norm, so no landmark moves more than that bound (plus the source's own offset).
+  double bound = 0.0;
+  for (std::size_t r = 0; r < graph().regions.size(); ++r) {
+    const RegionGraph& rg = graph().regions[r];
+    double sum = 0.0, count = 0.0;
+    for (const Node& n : rg.nodes)
+      if (n.is_peak()) sum += n.displacement.norm(), count += 1.0;
+    const double rest = 0.1 * sum / count;
+    const Node& n = rg.nodes[s.nodes[r]];
+    EXPECT_TRUE(s.nodes[r] == rg.neutral_node || n.displacement.norm() <= rest) << rg.name;
+    bound = std::max(bound, rest + rg.nodes[rg.neutral_node].displacement.norm());
+  }
+  EXPECT_LE(moved, bound + 1e-9);
+  o.rest_fraction = 0.0;
+  EXPECT_THROW(idle(graph(), s, Label::Neutral, o), InvalidInput);
 }
 
 }  // namespace

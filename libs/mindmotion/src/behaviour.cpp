@@ -17,6 +17,7 @@ std::string_view to_string(SegmentKind kind) {
     case SegmentKind::Action: return "action";
     case SegmentKind::Hint: return "hint";
     case SegmentKind::Idle: return "idle";
+    case SegmentKind::Rest: return "rest";
   }
   return "idle";
 }
@@ -25,7 +26,16 @@ std::optional<SegmentKind> segment_kind_from_string(std::string_view name) {
   if (name == "action") return SegmentKind::Action;
   if (name == "hint") return SegmentKind::Hint;
   if (name == "idle") return SegmentKind::Idle;
+  if (name == "rest") return SegmentKind::Rest;
   return std::nullopt;
+}
+
+mg::SynthesisOptions varied_synthesis() {
+  mg::SynthesisOptions o;
+  o.vary_duration = true;
+  o.replace_probability = 0.3;
+  o.vary_peak = true;
+  return o;
 }
 
 void BehaviourMotionOptions::validate() const {
@@ -33,6 +43,8 @@ void BehaviourMotionOptions::validate() const {
     throw InvalidInput("BehaviourMotionOptions: hint_path_fraction must be in (0, 1]");
   if (!(min_idle >= 0.0 && std::isfinite(min_idle)))
     throw InvalidInput("BehaviourMotionOptions: min_idle must be finite and >= 0");
+  if (!(return_after >= 0.0 && std::isfinite(return_after)))
+    throw InvalidInput("BehaviourMotionOptions: return_after must be finite and >= 0");
   synthesis.validate();
   mg::IdleOptions probe = idle;
   probe.duration = 1.0;
@@ -42,7 +54,7 @@ void BehaviourMotionOptions::validate() const {
 std::vector<std::string> graph_labels(const mg::MotionGraph& graph) {
   std::vector<std::string> out;
   for (mg::Label l : mg::all_labels()) {
-    bool found = false;
+    bool found = l == mg::Label::Neutral;  // synthesize() returns to the source node
     for (const auto& r : graph.regions)
       for (const auto& n : r.nodes) found = found || n.has_peak_label(l);
     if (found) out.push_back(mg::to_string(l));
@@ -62,9 +74,28 @@ class Animator {
   }
   double now() const { return static_cast<double>(motion_.frames.size()) / motion_.frame_rate; }
 
+  // Fills [now, t): idle around the current label; after return_after seconds away from rest, the
+  // return to neutral (when all of it fits before t) and idle at rest.
+  void idle_until(double t) {
+    if (label_ != mg::Label::Neutral && options_.return_after > 0.0) {
+      const double rest_at = now() + options_.return_after;
+      if (rest_at < t) {
+        idle_plain(rest_at);
+        mg::SynthesisState trial = state_;  // synthesis is cheap: try, keep it only if it fits
+        std::vector<mg::Pose> back = mg::synthesize(graph_, trial, mg::Label::Neutral, options_.synthesis);
+        if (now() + static_cast<double>(back.size() - 1) / motion_.frame_rate <= t + 1e-9) {
+          state_ = std::move(trial);
+          label_ = mg::Label::Neutral;
+          append({SegmentKind::Rest, {}, "neutral", now(), now(), 0, 0}, std::move(back), true);
+        }
+      }
+    }
+    idle_plain(t);
+  }
+
   // Fills [now, t) (rounded up to whole frames, so the next animation never starts early): idle
   // movements (§5), or the last pose held when the gap is shorter than min_idle.
-  void idle_until(double t) {
+  void idle_plain(double t) {
     const double fps = motion_.frame_rate;
     const double n = std::ceil((t - now()) * fps - 1e-6);
     if (n < 1.0) return;

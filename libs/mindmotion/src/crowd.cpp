@@ -13,6 +13,7 @@
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
+#include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/mindmap/chart.hpp"
@@ -27,7 +28,7 @@ namespace fm = facemesh;
 
 mg::MotionGraph default_motion_graph(const mg::SyntheticOptions& database, const mg::GraphOptions& graph) {
   // The one place that picks the synthetic landmark model for a crowd without a graph (issue #9 §2).
-  const mg::Database db = mg::generate_synthetic_database(mg::ParametricLandmarkModel(), database);
+  const mg::Database db = mg::generate_synthetic_database(bridge::FaceLandmarkModel(), database);
   return mg::build_graph(mg::preprocess(db, mg::default_layout()), graph);
 }
 
@@ -82,6 +83,31 @@ void CrowdRenderOptions::validate() const {
   if (gap < 0 || gap > 64) throw InvalidInput("CrowdRenderOptions: gap must be in [0, 64]");
   if (!(zoom >= 0.5 && zoom <= 4.0)) throw InvalidInput("CrowdRenderOptions: zoom must be in [0.5, 4]");
   if (threads < 0 || threads > 64) throw InvalidInput("CrowdRenderOptions: threads must be in [0, 64]");
+}
+
+double face_distance(const Crowd& crowd, std::size_t a, std::size_t b) {
+  if (a >= crowd.characters.size() || b >= crowd.characters.size())
+    throw InvalidInput("face_distance: character index out of range");
+  const auto& ta = crowd.characters[a].tracks;
+  const auto& tb = crowd.characters[b].tracks;
+  const std::size_t n = std::min(ta.size(), tb.size());
+  if (n == 0) return 0.0;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    double d2 = 0.0;
+    const std::size_t m = std::min(ta[k].values.size(), tb[k].values.size());
+    for (std::size_t j = 0; j < m; ++j) d2 += (ta[k].values[j] - tb[k].values[j]) * (ta[k].values[j] - tb[k].values[j]);
+    sum += std::sqrt(d2);
+  }
+  return sum / static_cast<double>(n);
+}
+
+std::vector<std::vector<double>> face_distances(const Crowd& crowd) {
+  const std::size_t n = crowd.characters.size();
+  std::vector<std::vector<double>> d(n, std::vector<double>(n, 0.0));
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b) d[a][b] = d[b][a] = face_distance(crowd, a, b);
+  return d;
 }
 
 std::vector<double> Crowd::strip_values(std::size_t c, std::size_t k) const {

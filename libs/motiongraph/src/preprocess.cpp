@@ -121,9 +121,11 @@ PreparedDatabase preprocess(const Database& db, const LandmarkLayout& layout,
 
   PreprocessReport rep;
   double rms_sum = 0.0;
+  std::vector<char> bad(db.sequences.size(), 0);
   for (std::size_t s = 0; s < db.sequences.size(); ++s) {
     const Sequence& seq = db.sequences[s];
     const std::size_t n = seq.frames.size();
+    try {
     // Sequences must start neutral: the first frame is (about) the farthest from the peak.
     if (options.check_neutral_start && seq.label != Label::Neutral) {
       const Eigen::MatrixXd last = rows_of(seq.frames[n - 1], reduced);
@@ -145,6 +147,12 @@ PreparedDatabase preprocess(const Database& db, const LandmarkLayout& layout,
       if (rms_to_mean(0) > rms_to_mean(n - 1) + options.neutral_mean_slack)
         throw InvalidInput("preprocess: sequence \"" + seq.id +
                            "\" does not start neutral (its last frame is closer to the mean neutral pose)");
+    }
+    } catch (const InvalidInput& e) {
+      if (!options.skip_bad_samples) throw;
+      rep.skipped.push_back(e.what());
+      bad[s] = 1;
+      continue;
     }
     PreparedSample ps;
     ps.id = seq.id;
@@ -195,6 +203,18 @@ PreparedDatabase preprocess(const Database& db, const LandmarkLayout& layout,
     out.samples.push_back(std::move(ps));
   }
   rep.mean_fit_rms = rep.sigmoid_fits ? rms_sum / static_cast<double>(rep.sigmoid_fits) : 0.0;
+  if (!rep.skipped.empty()) {
+    // The mean neutral included the left-out samples: start again without them.
+    Database kept = db;
+    kept.sequences.clear();
+    for (std::size_t s = 0; s < db.sequences.size(); ++s)
+      if (!bad[s]) kept.sequences.push_back(db.sequences[s]);
+    PreprocessReport again;
+    PreparedDatabase result = preprocess(kept, layout, options, &again);
+    again.skipped.insert(again.skipped.begin(), rep.skipped.begin(), rep.skipped.end());
+    if (report) *report = std::move(again);
+    return result;
+  }
   if (report) *report = rep;
   return out;
 }

@@ -84,8 +84,56 @@ void draw_pose(Image& image, const Pose& pose, const std::vector<int>& groups, c
   }
 }
 
+const std::vector<std::vector<int>>& ibug68_contours() {
+  // iBUG 300-W 68-point mark-up (Sagonas et al. 2013): the standard groups of the annotation.
+  static const std::vector<std::vector<int>> c = [] {
+    auto range = [](int a, int b, bool closed) {
+      std::vector<int> v;
+      for (int i = a; i <= b; ++i) v.push_back(i);
+      if (closed) v.push_back(a);
+      return v;
+    };
+    return std::vector<std::vector<int>>{range(0, 16, false),  range(17, 21, false), range(22, 26, false),
+                                         range(27, 30, false), range(31, 35, false), range(36, 41, true),
+                                         range(42, 47, true),  range(48, 59, true),  range(60, 67, true)};
+  }();
+  return c;
+}
+
+std::vector<std::vector<int>> contours_for(const std::vector<int>& landmark_ids) {
+  std::vector<std::vector<int>> out;
+  for (const auto& contour : ibug68_contours()) {
+    std::vector<int> rows;
+    for (int id : contour) {
+      const auto it = std::find(landmark_ids.begin(), landmark_ids.end(), id);
+      if (it != landmark_ids.end()) rows.push_back(static_cast<int>(it - landmark_ids.begin()));
+    }
+    // A closed contour whose first landmark is missing must not end on a dangling repeat.
+    while (rows.size() >= 2 && rows.back() == rows[rows.size() - 2]) rows.pop_back();
+    if (rows.size() >= 2) out.push_back(std::move(rows));
+  }
+  return out;
+}
+
+void draw_contours(Image& image, const Pose& pose, const std::vector<std::vector<int>>& contours, const View& view,
+                   std::uint32_t colour) {
+  if (pose.cols() < 2) throw InvalidInput("draw_contours: poses need at least 2 columns");
+  auto px = [&](int r, double& x, double& y) {
+    if (r < 0 || r >= pose.rows()) throw InvalidInput("draw_contours: contour row out of range");
+    x = view.offset_x + view.scale * pose(r, 0);
+    y = view.offset_y + view.scale * pose(r, 1);
+    return std::isfinite(x) && std::isfinite(y) && std::abs(x) < 1e6 && std::abs(y) < 1e6;
+  };
+  for (const auto& c : contours)
+    for (std::size_t i = 1; i < c.size(); ++i) {
+      double x0, y0, x1, y1;
+      const bool a = px(c[i - 1], x0, y0), b = px(c[i], x1, y1);
+      if (a && b) line(image, x0, y0, x1, y1, colour);
+    }
+}
+
 Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& groups, int columns,
-                    int cell_width, int cell_height) {
+                    int cell_width, int cell_height, const std::vector<std::vector<int>>& contours) {
   if (frames.empty() || columns < 1 || cell_width < 8 || cell_height < 8 || cell_width > 4096 ||
       cell_height > 4096)
     throw InvalidInput("contact sheet: need frames, columns >= 1 and cells of 8..4096 pixels");
@@ -102,6 +150,7 @@ Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& gro
     View v = base;
     v.offset_x += cx;
     v.offset_y += cy;
+    draw_contours(img, frames[f], contours, v);
     draw_pose(img, frames[f], groups, v, radius);
   }
   return img;

@@ -44,6 +44,7 @@ void IdleOptions::validate() const {
     throw InvalidInput("idle: hop_interval must be > 0");
   if (!(dwell >= 0.0 && dwell < hop_interval))
     throw InvalidInput("idle: dwell must be in [0, hop_interval)");
+  if (!(rest_fraction > 0.0 && rest_fraction <= 1.0)) throw InvalidInput("idle: rest_fraction must be in (0, 1]");
   smoothing.validate();
 }
 
@@ -255,7 +256,7 @@ std::vector<Pose> synthesize(const MotionGraph& graph, SynthesisState& state, La
                              const SynthesisOptions& options, SynthesisReport* report) {
   options.validate();
   check_state(graph, state);
-  bool any = false;
+  bool any = label == Label::Neutral;  // the source node is every region's neutral target
   for (const RegionGraph& rg : graph.regions)
     for (const Node& n : rg.nodes) any = any || n.has_peak_label(label);
   if (!any) throw InvalidInput("synthesis: the graph has no peak labelled \"" + to_string(label) + "\"");
@@ -268,6 +269,18 @@ std::vector<Pose> synthesize(const MotionGraph& graph, SynthesisState& state, La
     core::Rng rng(options.seed, state.calls * 1024 + r);
     std::vector<char> target(rg.nodes.size(), 0);
     for (std::size_t i = 0; i < rg.nodes.size(); ++i) target[i] = rg.nodes[i].has_peak_label(label);
+    if (label == Label::Neutral) target[rg.neutral_node] = 1;  // back to rest through the source (§4.1)
+    // Variation of the apex (issue 19): one of the label's peaks at random instead of the cheapest.
+    if (options.vary_peak && label != Label::Neutral) {
+      std::vector<std::size_t> peaks;
+      for (std::size_t i = 0; i < target.size(); ++i)
+        if (target[i]) peaks.push_back(i);
+      if (peaks.size() > 1) {
+        const std::size_t pick = peaks[rng.uniform_int(peaks.size())];
+        std::fill(target.begin(), target.end(), 0);
+        target[pick] = 1;
+      }
+    }
     double cost = 0.0;
     std::vector<std::size_t> path = shortest_path(rg.adjacency(false), state.nodes[r], target, &cost);
     if (path.empty() && options.allow_reverse_edges) {
@@ -276,8 +289,9 @@ std::vector<Pose> synthesize(const MotionGraph& graph, SynthesisState& state, La
     }
     if (path.empty()) path = {state.nodes[r]};
     // §5.1: replace inner path nodes by random neighbours.
+    const auto adj = options.replace_probability > 0.0 ? rg.adjacency(true)
+                                                       : decltype(rg.adjacency(true)){};
     if (options.replace_probability > 0.0 && path.size() > 2) {
-      const auto adj = rg.adjacency(true);
       for (std::size_t i = 1; i + 1 < path.size(); ++i) {
         if (rng.uniform() >= options.replace_probability || adj[path[i]].empty()) continue;
         path[i] = adj[path[i]][rng.uniform_int(adj[path[i]].size())].first;
@@ -289,6 +303,12 @@ std::vector<Pose> synthesize(const MotionGraph& graph, SynthesisState& state, La
     if (options.vary_duration && tgt.is_peak())
       target_length = std::clamp(rng.normal(tgt.peak_length_mean, tgt.peak_length_std), 2.0, kMaxFrames);
     double length = path_length_impl(rg, path, target_length);
+    // Back to rest: step 2 gives the source peak's own neutral-to-peak length; vary it alike (§5.1).
+    const Node& src = rg.nodes[path.front()];
+    if (label == Label::Neutral && options.vary_duration && path.size() > 1 && src.is_peak() &&
+        src.peak_length_mean > 0.0)
+      length *= std::clamp(rng.normal(src.peak_length_mean, src.peak_length_std), 2.0, kMaxFrames) /
+                src.peak_length_mean;
     // §6.1: mood-decay hints use only the initial path nodes.
     if (options.path_fraction < 1.0 && path.size() > 1) {
       const std::size_t keep = std::max<std::size_t>(
@@ -328,8 +348,16 @@ std::vector<Pose> idle(const MotionGraph& graph, SynthesisState& state, Label la
     // Hop candidates (§5): the current node and its neighbours sharing the label.
     std::vector<std::size_t> candidates{home};
     const auto adjacency = rg.adjacency(true);
+    // At rest: nodes near the neutral pose count as neutral (issue 19; see the header).
+    double peak_norm = 0.0, peaks = 0.0;
+    for (const Node& n : rg.nodes)
+      if (n.is_peak()) peak_norm += n.displacement.norm(), peaks += 1.0;
+    const double rest_norm = peaks > 0.0 ? options.rest_fraction * peak_norm / peaks : 0.0;
+    auto fits = [&](const Node& n) {
+      return n.has_label(label) || (label == Label::Neutral && n.displacement.norm() <= rest_norm);
+    };
     for (const auto& [v, w] : adjacency[home])
-      if (rg.nodes[v].has_label(label) &&
+      if (fits(rg.nodes[v]) &&
           std::find(candidates.begin(), candidates.end(), v) == candidates.end())
         candidates.push_back(v);
     std::vector<Eigen::RowVectorXd> frames;

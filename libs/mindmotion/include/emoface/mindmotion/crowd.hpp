@@ -32,10 +32,11 @@ namespace emoface::mindmotion {
 /// Largest crowd animate_crowd accepts (the grid and the per-frame cost grow with it).
 inline constexpr std::size_t kMaxCrowdSize = 16;
 
-/// The motion graph used when the caller has none: the synthetic CK+-like database of motiongraph
-/// (the one place that picks the landmark model), cleaned and aligned with the default layout, and
-/// built with `graph` options. Deterministic for given options. About 6 s with the defaults (70
-/// sequences); tests pass fewer sequences.
+/// The motion graph used when the caller has none: the synthetic CK+-like database of the face-driven
+/// landmark model (bridge::FaceLandmarkModel with its defaults, as `mgraph generate`; the one place that
+/// picks the landmark model), cleaned and aligned with the default layout, and built with `graph`
+/// options — what `mgraph generate` + `mgraph build` give with the same options. Deterministic for given
+/// options. About 3 s with the defaults (70 sequences); tests pass fewer sequences.
 motiongraph::MotionGraph default_motion_graph(const motiongraph::SyntheticOptions& database = {},
                                               const motiongraph::GraphOptions& graph = {});
 
@@ -111,6 +112,15 @@ struct Crowd {
   /// Mood of character c at frame k per strip slot (emotions); NaN where the character lacks the node.
   std::vector<double> strip_values(std::size_t c, std::size_t k) const;
 };
+
+/// How different two characters' faces are (issue 19): the mean over the crowd's frames of the
+/// Euclidean distance between the two characters' parameter vectors (all muscles::kParameterCount
+/// values of `tracks`, contraction units; jaw and head parameters included). 0 for identical faces.
+/// Throws InvalidInput for an index out of range.
+double face_distance(const Crowd& crowd, std::size_t a, std::size_t b);
+
+/// face_distance for every pair: a symmetric matrix (characters × characters) with a zero diagonal.
+std::vector<std::vector<double>> face_distances(const Crowd& crowd);
 
 /// Time spent in one stage: wall-clock seconds and the process' CPU seconds (std::clock; the stages of
 /// animate_crowd run on one thread, so on a loaded machine `cpu` is the better measure of their cost).

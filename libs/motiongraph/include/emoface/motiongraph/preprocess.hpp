@@ -25,6 +25,10 @@ struct PreprocessOptions {
   double neutral_start_tolerance = 0.25;
   double neutral_start_slack = 1.0;
   double neutral_mean_slack = 0.25;
+  /// A sample failing the neutral-start check is left out and named in PreprocessReport::skipped
+  /// (`mgraph build --on-error skip`) instead of stopping the run; the mean neutral is then
+  /// recomputed without it.
+  bool skip_bad_samples = false;
   SigmoidFitOptions sigmoid;
   void validate() const;
 };
@@ -53,6 +57,7 @@ struct PreprocessReport {
   std::size_t sigmoid_fits = 0;
   std::size_t sigmoid_not_converged = 0;
   double mean_fit_rms = 0.0;  ///< landmark units
+  std::vector<std::string> skipped;  ///< with skip_bad_samples: one message per left-out sample
 };
 
 /// Runs the preprocessing. Throws InvalidInput for an invalid database (see validate()), a layout

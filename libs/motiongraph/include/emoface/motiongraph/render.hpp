@@ -31,10 +31,26 @@ View fit_view(const std::vector<Pose>& frames, int width, int height, double mar
 void draw_pose(Image& image, const Pose& pose, const std::vector<int>& groups, const View& view,
                double dot_radius = 2.5);
 
+/// The iBUG-68 face outline as polylines of landmark ids: jaw 0–16, brows 17–21 and 22–26, nose bridge
+/// 27–30, nose base 31–35, eyes 36–41 and 42–47 and lips 48–59 and 60–67 (closed: the first id is
+/// repeated at the end).
+const std::vector<std::vector<int>>& ibug68_contours();
+
+/// The iBUG-68 contours through the landmarks a pose has: `landmark_ids[r]` is the iBUG id of pose row r
+/// (e.g. MotionGraph::landmark_ids() of synthesized poses; 0…67 for full poses). Each contour keeps its
+/// present landmarks in order, as pose rows; contours with fewer than 2 present landmarks are dropped.
+std::vector<std::vector<int>> contours_for(const std::vector<int>& landmark_ids);
+
+/// Draws polylines through pose rows (`contours` as from contours_for) in `colour` (0xRRGGBB).
+void draw_contours(Image& image, const Pose& pose, const std::vector<std::vector<int>>& contours,
+                   const View& view, std::uint32_t colour = 0xb0b0b0);
+
 /// Frames tiled left-to-right, top-to-bottom in cells of cell_width × cell_height pixels, all with
-/// the same view (so motion is visible across cells).
+/// the same view (so motion is visible across cells); `contours` (pose rows, contours_for) are drawn
+/// as light lines under the dots (issue 19: sheets with contour lines).
 Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& groups, int columns,
-                    int cell_width = 160, int cell_height = 140);
+                    int cell_width = 160, int cell_height = 140,
+                    const std::vector<std::vector<int>>& contours = {});
 
 /// Line plot of several series over frames: each series in its own horizontal band, scaled to its
 /// own range (at least `min_range`), with a frame tick per sample. No text.

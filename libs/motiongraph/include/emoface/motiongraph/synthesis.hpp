@@ -38,6 +38,10 @@ struct SynthesisOptions {
   bool vary_duration = false;
   /// ... and replace each inner path node by a random neighbour with this probability, [0, 1].
   double replace_probability = 0.0;
+  /// Target one of the label's peak nodes (per region, uniformly at random) instead of the cheapest
+  /// one, so the same label need not end in the same apex pose (issue 19: a graph holds one peak per
+  /// training sample, and Dijkstra from the neutral pose always finds the same one). Not in the paper.
+  bool vary_peak = false;
   /// §6.1 mood-decay hint: use only this leading fraction of each path, (0, 1].
   double path_fraction = 1.0;
   /// Search reversed edges when the requested peak is unreachable along directed edges.
@@ -68,7 +72,11 @@ struct SynthesisReport {
 
 /// Synthesizes the transition from `state` to a peak of `label` (steps 1–4 of §5) and advances
 /// `state` to the reached peak nodes. Frames are poses of graph.landmark_ids() (neutral + displacement).
-/// The first frame is the current pose. Throws InvalidInput if no region has a peak of `label`.
+/// The first frame is the current pose. `Label::Neutral` returns to rest: its target in every region
+/// is the graph source (`neutral_node`, the averaged neutral pose, §4.1) and any node that is a peak
+/// of a neutral sample; the length follows step 2 (a peak-to-neutral path takes the source peak's
+/// neutral-to-peak length; varied as that peak's N(mean, std) with `vary_duration`).
+/// Throws InvalidInput if no region has a peak of `label` (never for Neutral).
 std::vector<Pose> synthesize(const MotionGraph& graph, SynthesisState& state, Label label,
                              const SynthesisOptions& options = {},
                              SynthesisReport* report = nullptr);
@@ -92,11 +100,19 @@ struct IdleOptions {
   double dwell = 0.4;         ///< seconds spent at each hop target, [0, hop_interval)
   SmoothingOptions smoothing{5, 2, false, 1.5, 0.5};
   std::uint64_t seed = 1;
+  /// Idle at rest (`Label::Neutral`): a neighbour counts as "at rest" when its displacement norm is at
+  /// most this fraction of the mean displacement norm of the region's peak nodes, (0, 1]. Onsets start
+  /// slowly (CK+, φ+), so their first nodes are small motions around the neutral pose: what a face at
+  /// rest does. 0.1 keeps rest motion at a tenth of an average expression.
+  double rest_fraction = 0.1;
   void validate() const;
 };
 
 /// Idle movements (§5): random hops among neighbours that share `label` (falling back to staying
 /// put when none does), linear moves then dwell. Advances `state` to the last hop target.
+/// For `Label::Neutral` (a face at rest, e.g. before its first stimulus) the candidates are the
+/// neighbours labelled neutral or within `rest_fraction` of an expression from the neutral pose (databases without neutral
+/// samples label no node neutral, and the paper's rule would leave the face frozen).
 std::vector<Pose> idle(const MotionGraph& graph, SynthesisState& state, Label label,
                        const IdleOptions& options = {});
 

@@ -1,0 +1,76 @@
+// Graphviz export of mind maps (issue 19, item 4), parsed by the `dot` program.
+#include "emoface/mindmap/dot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/core/graphviz.hpp"
+#include "emoface/mindmap/chart.hpp"
+#include "fixtures.hpp"
+
+namespace emoface::mindmap {
+namespace {
+
+TEST(MindMapDot, NodesEdgesWeightsAndMood) {
+  MindMapDotOptions o;
+  o.mood = {0.25, 0.5};
+  const std::string dot = mind_map_dot(test::make_alice(), o);
+  EXPECT_EQ(dot.rfind("digraph \"mind map alice\" {", 0), 0u);
+  EXPECT_NE(dot.find("character [shape=doubleoctagon"), std::string::npos);
+  // Emotion nodes in the mood-chart colours, with the mood; border 1 + 4·mood.
+  char colour[16];
+  std::snprintf(colour, sizeof colour, "#%06x", emotion_colour(1));
+  EXPECT_NE(
+      dot.find(std::string("e1 [shape=ellipse, style=filled, fillcolor=\"") + colour +
+               "40\", color=\"" + colour + "\", penwidth=3.00, label=\"sadness\\nmood 0.50\"]"),
+      std::string::npos)
+      << dot;
+  EXPECT_NE(dot.find("a0 [shape=note, label=\"gift\"]"), std::string::npos);  // stimulus
+  EXPECT_NE(dot.find("a2 [shape=box, style=rounded, label=\"smile\\n[happiness]\"]"),
+            std::string::npos);
+  EXPECT_NE(dot.find("a0 -> e0 [color="), std::string::npos);
+  EXPECT_NE(dot.find("label=\"0.80\"];"), std::string::npos);  // gift → happiness
+  EXPECT_NE(dot.find("label=\"0.90\"];"), std::string::npos);  // happiness → laugh
+  EXPECT_NE(dot.find("a2 -> a5 [style=dashed, label=\"then\"];"),
+            std::string::npos);  // chain smile → wave
+  EXPECT_NE(dot.find("e1 -> a4 [style=dotted, label=\"decay\"];"),
+            std::string::npos);  // representative
+  o.mood = {0.1};
+  EXPECT_THROW(mind_map_dot(test::make_alice(), o), InvalidInput);
+  o.mood = {0.1, 1.5};
+  EXPECT_THROW(mind_map_dot(test::make_alice(), o), InvalidInput);
+  o.mood.clear();
+  o.weights = false;
+  EXPECT_EQ(mind_map_dot(test::make_alice(), o).find("0.80"), std::string::npos);
+}
+
+TEST(MindMapDot, MoodAtPicksTheLastSampleAtOrBeforeTheTime) {
+  SimulationResult r;
+  r.times = {0.0, 0.5, 1.0};
+  r.mood = {{0.1, 0.2, 0.3, 0.4, 0.5, 0.6}};
+  EXPECT_EQ(mood_at(r, 0, 0.7), (std::vector<double>{0.3, 0.4}));
+  EXPECT_EQ(mood_at(r, 0, -1.0), (std::vector<double>{0.1, 0.2}));
+  EXPECT_EQ(mood_at(r, 0, 9.0), (std::vector<double>{0.5, 0.6}));
+  EXPECT_THROW(mood_at(r, 1, 0.0), InvalidInput);
+}
+
+TEST(MindMapDot, DotParsesIt) {
+  if (!core::graphviz_available()) GTEST_SKIP() << "Graphviz (dot) not installed: scripts/setup.sh";
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "emoface_mindmap_dot_test.svg").string();
+  MindMap odd = test::make_alice();
+  odd.character = "al\"ice \\ the\nfirst";  // quoting
+  ASSERT_NO_THROW(core::render_dot(mind_map_dot(odd, {{0.3, 0.7}, true}), path));
+  std::ifstream in(path);
+  const std::string svg{std::istreambuf_iterator<char>(in), {}};
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("laugh"), std::string::npos);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace emoface::mindmap
