@@ -55,17 +55,19 @@ class MeshDocument {
   const std::vector<MeshGroup>& groups() const;
   /// Texture coordinates present (OBJ `vt` referenced by faces, glTF TEXCOORD_0).
   bool has_uvs() const;
-  /// Per-vertex colours present (OBJ `v x y z r g b`, PLY colour properties, glTF COLOR_0), else empty.
+  /// Per-vertex colours when every vertex has one (OBJ `v x y z r g b`, glTF COLOR_0 on every primitive),
+  /// else empty. PLY colour properties are not read (PLY/OFF documents go through read_mesh).
   const std::vector<Eigen::Vector3f>& vertex_colors() const;
   /// OBJ `mtllib` files named by the document (paths as written, relative to the file's directory).
   const std::vector<std::string>& material_libraries() const;
 
   /// Writes the document with `positions` (#V by 3, input frame) in place of the original vertex
   /// positions; everything else byte for byte where the format allows (OBJ: only the numbers of the `v`
-  /// lines change, colours on them kept; `vn` lines are recomputed from the new positions when
-  /// `recompute_normals`; glTF: POSITION (and NORMAL when recompute_normals) accessors of the first mesh
-  /// rewritten, min/max updated). `positions` equal to triangles().vertices reproduces the input file
-  /// byte for byte for OBJ. Copies the OBJ's material libraries next to `path` when `copy_materials`
+  /// lines whose position changed (bit comparison) change, `%.17g`, colours on them kept; with
+  /// `recompute_normals` each `vn` used by a triangle with a moved vertex is recomputed, area-weighted;
+  /// glTF: POSITION (and NORMAL when recompute_normals) data of the first mesh rewritten in place,
+  /// min/max updated; `path` may be .gltf (buffers embedded) or .glb). `positions` equal to
+  /// triangles().vertices reproduces the input file byte for byte for OBJ. Copies the OBJ's material libraries next to `path` when `copy_materials`
   /// and the target directory differs. Atomic (temporary file + rename); throws InvalidInput on a size
   /// mismatch or non-finite positions, IoError on failure.
   void write(const std::string& path, const Vertices& positions, bool recompute_normals = true,
