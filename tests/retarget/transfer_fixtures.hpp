@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <memory>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -105,14 +104,19 @@ std::vector<ParameterError> compare(const fm::Face& source, const fm::Mesh& targ
 }
 
 // Shared fixtures: the built-in face and transfers made once per suite.
+// The transfers are made on first use (gtest_discover_tests runs every test in its own process, so a
+// test pays only for the transfers it uses).
 struct Fixtures {
   fm::Face source = fm::make_default_face();
   fm::Mesh remeshed;  // half-edge-collapse decimation: a different triangulation, vertices on the built-in surface
-  std::unique_ptr<rt::TransferResult> self, remesh;
-  Fixtures() {
-    remeshed = rt::decimate(source.mesh, 0.6, true);
-    self = std::make_unique<rt::TransferResult>(rt::transfer_rig(source, source.mesh, {}, quick_options()));
-    remesh = std::make_unique<rt::TransferResult>(rt::transfer_rig(source, remeshed, {}, quick_options()));
+  Fixtures() { remeshed = rt::decimate(source.mesh, 0.6, true); }
+  const rt::TransferResult& self_transfer() const {
+    static const rt::TransferResult r = rt::transfer_rig(source, source.mesh, {}, quick_options());
+    return r;
+  }
+  const rt::TransferResult& remesh_transfer() const {
+    static const rt::TransferResult r = rt::transfer_rig(source, remeshed, {}, quick_options());
+    return r;
   }
 };
 const Fixtures& fixtures() {

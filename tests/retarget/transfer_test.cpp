@@ -33,7 +33,7 @@ TEST(Registration, PullsAnEllipsoidOntoALargerOneAndHonoursLandmarks) {
 
 TEST(Transfer, OntoTheBuiltInFaceItselfReproducesEveryParameter) {
   const auto& f = fixtures();
-  const auto& r = *f.self;
+  const auto& r = f.self_transfer();
   ASSERT_EQ(r.face.mesh.vertices.rows(), f.source.mesh.vertices.rows());
   EXPECT_EQ(r.face.mesh.faces, f.source.mesh.faces);
   EXPECT_FALSE(r.face.rig.lips.samples_in_mesh);
@@ -52,7 +52,7 @@ TEST(Transfer, OntoTheBuiltInFaceItselfReproducesEveryParameter) {
 
 TEST(Transfer, OntoARemeshedCopyReproducesTheBuiltInDeformation) {
   const auto& f = fixtures();
-  const auto& r = *f.remesh;
+  const auto& r = f.remesh_transfer();
   std::size_t worst_over = 0;
   for (const auto& e : compare(f.source, f.remeshed, r, Eigen::Matrix3d::Identity(), 1.0)) {
     std::printf("  %-34s largest %.2f mm  worst %.3f mm (%.1f %%)  over 3 %%: %zu of %ld vertices\n", e.name.c_str(),
@@ -271,7 +271,7 @@ TEST(LandmarksFile, RoundTripAndBadInput) {
 }
 
 TEST(TransferReport, HasTheTransferSection) {
-  const auto& r = *fixtures().remesh;
+  const auto& r = fixtures().remesh_transfer();
   const std::string text = rt::format_transfer_report(r, false);
   for (const char* key : {"\"version\": \"1.2\"", "\"transfer\"", "\"residuals\"", "\"ibug68\"", "\"parts\"", "\"frame\"", "\"mouth_bag\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
