@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -172,3 +173,43 @@ TEST(RetargetApp, TransferOfGltfWritesGlb) {
     worst = std::max(worst, (rigged.rig.frame.to_mesh(rigged.mesh.vertices.row(v).transpose()) - face.mesh.vertices.row(v).transpose()).norm());
   EXPECT_LT(worst, 1e-6);  // glTF stores float32
 }
+
+#ifdef FACEANIM_EXE
+// End to end: faceanim animates the transferred rig, writing frames of the user's own file (UVs, groups,
+// materials and every other line kept; only vertex positions change, in the file's own frame).
+TEST(RetargetApp, FaceanimAnimatesTheTransferredMesh) {
+  TempDir t;
+  const auto in = t.path / "in";
+  fs::create_directories(in);
+  write_user_obj(in / "head.obj");
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + (in / "head.obj").string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
+  std::ofstream(t.path / "p.csv") << "masseter,zygomatic_major_l,zygomatic_major_r\n0,0,0\n1,0.8,0.8\n";
+  const auto frames = t.path / "frames";
+  const int status = std::system((std::string(FACEANIM_EXE) + " --rig " + (out / "face.rig").string() + " --params " +
+                                  (t.path / "p.csv").string() + " --out " + frames.string() + " 2>/dev/null").c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  auto lines = [](const std::string& text) {
+    std::vector<std::string> v;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);) v.push_back(l);
+    return v;
+  };
+  const auto input = lines(slurp(in / "head.obj"));
+  const auto neutral = lines(slurp(frames / "frame_0000.obj")), open = lines(slurp(frames / "frame_0001.obj"));
+  ASSERT_EQ(open.size(), input.size());
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    if (input[i].rfind("v ", 0) == 0) {
+      moved += open[i] != input[i];
+      continue;
+    }
+    EXPECT_EQ(open[i], input[i]) << "line " << i + 1;  // vt, f, g, usemtl, mtllib, comments: unchanged
+  }
+  EXPECT_GT(moved, 300u);
+  // the neutral frame puts every vertex back where the user had it (input frame and units)
+  const auto a = emoface::facemesh::read_mesh((in / "head.obj").string()), b = emoface::facemesh::read_mesh((frames / "frame_0000.obj").string());
+  ASSERT_EQ(a.vertices.rows(), b.vertices.rows());
+  EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-6);
+}
+#endif

@@ -1,6 +1,7 @@
-// transfer_rig: the rig carried onto the target's own vertices (issue 13), the dense registration, the
-// landmarks file, and the self-made ground truth (the built-in face, remeshed). Slower cases (rotated
-// decimetre copy, finer remesh, user landmarks) are in transfer_slow_test.cpp (label "slow").
+// transfer_rig: the rig carried onto the target's own vertices (issue 13), the dense registration,
+// the landmarks file, and the self-made ground truth (the built-in face, remeshed). Slower cases
+// (rotated decimetre copy, finer remesh, user landmarks) are in transfer_slow_test.cpp (label
+// "slow").
 #include "transfer_fixtures.hpp"
 
 TEST(LipSurface, MatchesTheSamplerAtItsGridPoints) {
@@ -8,9 +9,11 @@ TEST(LipSurface, MatchesTheSamplerAtItsGridPoints) {
   const auto& lips = face.rig.lips;
   for (int j = 0; j < lips.samples_across; ++j)
     for (int i = 0; i < lips.samples_around; i += 5) {
-      const Eigen::Vector3d p = rt::lip_surface_point(lips, static_cast<double>(i) / lips.samples_around,
-                                                      static_cast<double>(j) / (lips.samples_across - 1));
-      const Eigen::Vector3d q = face.mesh.vertices.row(lips.first_vertex + j * lips.samples_around + i);
+      const Eigen::Vector3d p =
+          rt::lip_surface_point(lips, static_cast<double>(i) / lips.samples_around,
+                                static_cast<double>(j) / (lips.samples_across - 1));
+      const Eigen::Vector3d q =
+          face.mesh.vertices.row(lips.first_vertex + j * lips.samples_around + i);
       EXPECT_LT((p - q).norm(), 1e-12) << i << "," << j;
     }
 }
@@ -24,8 +27,10 @@ TEST(Registration, PullsAnEllipsoidOntoALargerOneAndHonoursLandmarks) {
   EXPECT_GT(r.report.initial_rms, 0.08);
   EXPECT_LT(r.report.final_rms, 0.01);  // ~10x better; a point-to-point ICP leaves a little
   EXPECT_NEAR(r.vertices(0, 1), 1.35, 0.02);
-  EXPECT_THROW(rt::register_nonrigid(source, std::vector<std::uint8_t>(3, 1), target), emoface::InvalidInput);
-  EXPECT_THROW(rt::register_nonrigid(source, {}, target, {{999999, Eigen::Vector3d::Zero()}}), emoface::InvalidInput);
+  EXPECT_THROW(rt::register_nonrigid(source, std::vector<std::uint8_t>(3, 1), target),
+               emoface::InvalidInput);
+  EXPECT_THROW(rt::register_nonrigid(source, {}, target, {{999999, Eigen::Vector3d::Zero()}}),
+               emoface::InvalidInput);
   rt::RegistrationOptions bad;
   bad.stiffness = {};
   EXPECT_THROW(bad.validate(), emoface::InvalidInput);
@@ -33,7 +38,7 @@ TEST(Registration, PullsAnEllipsoidOntoALargerOneAndHonoursLandmarks) {
 
 TEST(Transfer, OntoTheBuiltInFaceItselfReproducesEveryParameter) {
   const auto& f = fixtures();
-  const auto& r = *f.self;
+  const auto& r = f.self_transfer();
   ASSERT_EQ(r.face.mesh.vertices.rows(), f.source.mesh.vertices.rows());
   EXPECT_EQ(r.face.mesh.faces, f.source.mesh.faces);
   EXPECT_FALSE(r.face.rig.lips.samples_in_mesh);
@@ -45,20 +50,24 @@ TEST(Transfer, OntoTheBuiltInFaceItselfReproducesEveryParameter) {
   EXPECT_EQ(r.face.rig.ibug68, f.source.rig.ibug68);
   // eyeballs found by the sphere fit, with the built-in radius
   for (int e = 0; e < 2; ++e) {
-    EXPECT_EQ(r.face.rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices, f.source.rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices);
-    EXPECT_NEAR(r.face.rig.eyes[static_cast<std::size_t>(e)].radius, f.source.rig.eyes[static_cast<std::size_t>(e)].radius, 1e-9);
+    EXPECT_EQ(r.face.rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices,
+              f.source.rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices);
+    EXPECT_NEAR(r.face.rig.eyes[static_cast<std::size_t>(e)].radius,
+                f.source.rig.eyes[static_cast<std::size_t>(e)].radius, 1e-9);
   }
 }
 
 TEST(Transfer, OntoARemeshedCopyReproducesTheBuiltInDeformation) {
   const auto& f = fixtures();
-  const auto& r = *f.remesh;
+  const auto& r = f.remesh_transfer();
   std::size_t worst_over = 0;
   for (const auto& e : compare(f.source, f.remeshed, r, Eigen::Matrix3d::Identity(), 1.0)) {
-    std::printf("  %-34s largest %.2f mm  worst %.3f mm (%.1f %%)  over 3 %%: %zu of %ld vertices\n", e.name.c_str(),
-                1e3 * e.largest, 1e3 * e.worst, 100 * e.worst / e.largest, e.over, static_cast<long>(f.remeshed.vertices.rows()));
-    // Measured: at most 9 of 3014 vertices beyond 3 %, all on the built-in's mouth rim, where the rim and
-    // the lip border row coincide but move differently (docs/retarget.md).
+    std::printf(
+        "  %-34s largest %.2f mm  worst %.3f mm (%.1f %%)  over 3 %%: %zu of %ld vertices\n",
+        e.name.c_str(), 1e3 * e.largest, 1e3 * e.worst, 100 * e.worst / e.largest, e.over,
+        static_cast<long>(f.remeshed.vertices.rows()));
+    // Measured: at most 9 of 3014 vertices beyond 3 %, all on the built-in's mouth rim, where the
+    // rim and the lip border row coincide but move differently (docs/retarget.md).
     EXPECT_LE(e.over, f.remeshed.vertices.rows() / 200) << e.name;
     worst_over = std::max(worst_over, e.over);
   }
@@ -67,15 +76,19 @@ TEST(Transfer, OntoARemeshedCopyReproducesTheBuiltInDeformation) {
 
 TEST(Transfer, SeparatePartsMove) {
   const auto& f = fixtures();
-  // The remeshed face (eyeballs are separate spheres) plus a lower-teeth box inside the mouth, named
-  // through a group, and an unnamed box behind the upper lip.
+  // The remeshed face (eyeballs are separate spheres) plus a lower-teeth box inside the mouth,
+  // named through a group, and an unnamed box behind the upper lip.
   fm::Mesh m = f.remeshed;
   const auto add_box = [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
     const auto base = static_cast<int>(m.vertices.rows());
     m.vertices.conservativeResize(base + 8, 3);
     for (int i = 0; i < 8; ++i)
-      m.vertices.row(base + i) = (c + Eigen::Vector3d((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(), (i & 4 ? 1 : -1) * h.z())).transpose();
-    const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+      m.vertices.row(base + i) =
+          (c + Eigen::Vector3d((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(),
+                               (i & 4 ? 1 : -1) * h.z()))
+              .transpose();
+    const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                         {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     std::vector<int> faces;
     for (const auto& s : q) {
       const auto nf = m.faces.rows();
@@ -90,8 +103,10 @@ TEST(Transfer, SeparatePartsMove) {
   const double mouth_y = f.source.mesh.vertices(f.source.rig.ibug68[66], 1);
   fm::MeshGroup teeth;
   teeth.group = "lower_teeth";
-  teeth.faces = add_box(Eigen::Vector3d(0.0, mouth_y - 0.006, 0.085), Eigen::Vector3d(0.012, 0.003, 0.003));
-  const auto upper_faces = add_box(Eigen::Vector3d(0.0, mouth_y + 0.007, 0.085), Eigen::Vector3d(0.012, 0.003, 0.003));
+  teeth.faces =
+      add_box(Eigen::Vector3d(0.0, mouth_y - 0.006, 0.085), Eigen::Vector3d(0.012, 0.003, 0.003));
+  const auto upper_faces =
+      add_box(Eigen::Vector3d(0.0, mouth_y + 0.007, 0.085), Eigen::Vector3d(0.012, 0.003, 0.003));
   const auto r = rt::transfer_rig(f.source, m, {teeth}, quick_options());
   std::map<fm::PartKind, int> kinds;
   for (const auto& p : r.report.parts) ++kinds[p.kind];
@@ -109,20 +124,25 @@ TEST(Transfer, SeparatePartsMove) {
     double moved = 0.0;
     for (int v : eye.eyeball_vertices) {
       moved = std::max(moved, (g.vertices.row(v) - n.vertices.row(v)).norm());
-      EXPECT_NEAR((g.vertices.row(v).transpose() - eye.centre).norm(), (n.vertices.row(v).transpose() - eye.centre).norm(), 1e-12);
+      EXPECT_NEAR((g.vertices.row(v).transpose() - eye.centre).norm(),
+                  (n.vertices.row(v).transpose() - eye.centre).norm(), 1e-12);
     }
     EXPECT_GT(moved, 0.5 * eye.radius * 0.29);  // a 0.3 rad turn moves the front by ~0.3 r
   }
   double head_moved = 0.0;
-  for (int v : r.face.rig.parts.front().vertices) head_moved = std::max(head_moved, (g.vertices.row(v) - n.vertices.row(v)).norm());
+  for (int v : r.face.rig.parts.front().vertices)
+    head_moved = std::max(head_moved, (g.vertices.row(v) - n.vertices.row(v)).norm());
   EXPECT_EQ(head_moved, 0.0);
-  // the jaw carries the lower teeth (weight 1: a rigid rotation about the pivot), not the upper ones
+  // the jaw carries the lower teeth (weight 1: a rigid rotation about the pivot), not the upper
+  // ones
   const auto j = solver.deform(std::map<std::string, double>{{"masseter", 1.0}});
   const double angle = r.face.rig.jaw.max_angle;
   const int lower = m.faces(teeth.faces.front(), 0), upper = m.faces(upper_faces.front(), 0);
   const Eigen::Vector3d q = n.vertices.row(lower).transpose() - r.face.rig.jaw.pivot;
-  const Eigen::Vector3d want = r.face.rig.jaw.pivot + Eigen::Vector3d(q.x(), q.y() * std::cos(angle) - q.z() * std::sin(angle),
-                                                                      q.y() * std::sin(angle) + q.z() * std::cos(angle));
+  const Eigen::Vector3d want =
+      r.face.rig.jaw.pivot + Eigen::Vector3d(q.x(),
+                                             q.y() * std::cos(angle) - q.z() * std::sin(angle),
+                                             q.y() * std::sin(angle) + q.z() * std::cos(angle));
   EXPECT_LT((j.vertices.row(lower).transpose() - want).norm(), 1e-12);
   EXPECT_EQ((j.vertices.row(upper) - n.vertices.row(upper)).norm(), 0.0);
 }
@@ -137,22 +157,29 @@ TEST(Transfer, MakeHumanHeadOpensItsClosedMouthAndClosesItsLids) {
   const fm::Mesh mh = fm::read_mesh(kMakeHuman);
   const auto r = rt::transfer_rig(f.source, mh, {}, quick_options());
   EXPECT_EQ(r.face.mesh.vertices.rows(), 4459);
-  EXPECT_GT(r.report.mouth_bag, 100u);  // the closed mouth's bag was found
+  EXPECT_GT(r.report.mouth_bag, 100u);                     // the closed mouth's bag was found
   const double h = r.report.head_height * r.report.scale;  // rig frame
   const ms::FaceSolver solver(r.face.mesh, r.face.rig);
   const auto& ib = r.face.rig.ibug68;
   const auto n = solver.deform(std::map<std::string, double>{});
   const auto open = solver.deform(std::map<std::string, double>{{"masseter", 1.0}});
-  auto gap = [&](const ms::Deformation& d, int a, int b) { return (d.vertices.row(ib[static_cast<std::size_t>(a)]) - d.vertices.row(ib[static_cast<std::size_t>(b)])).norm(); };
+  auto gap = [&](const ms::Deformation& d, int a, int b) {
+    return (d.vertices.row(ib[static_cast<std::size_t>(a)]) -
+            d.vertices.row(ib[static_cast<std::size_t>(b)]))
+        .norm();
+  };
   // inner lip centres 62 (upper) and 66 (lower)
   const double closed_gap = gap(n, 62, 66), open_gap = gap(open, 62, 66);
-  std::printf("  MakeHuman lip gap: %.2f %% -> %.2f %% of the head height\n", 100 * closed_gap / h, 100 * open_gap / h);
+  std::printf("  MakeHuman lip gap: %.2f %% -> %.2f %% of the head height\n", 100 * closed_gap / h,
+              100 * open_gap / h);
   EXPECT_GT(open_gap - closed_gap, 0.06 * h);
   // the upper half of the bag stays, the lower half follows the jaw
   std::size_t bag_upper_moved = 0, bag_upper = 0;
   const double mouth_y = n.vertices(ib[62], 1);
   for (Eigen::Index v = 0; v < n.vertices.rows(); ++v) {
-    if (r.face.rig.materials[static_cast<std::size_t>(v)] != fm::Material::MouthInterior || n.vertices(v, 1) < mouth_y + 0.01) continue;
+    if (r.face.rig.materials[static_cast<std::size_t>(v)] != fm::Material::MouthInterior ||
+        n.vertices(v, 1) < mouth_y + 0.01)
+      continue;
     ++bag_upper;
     if ((open.vertices.row(v) - n.vertices.row(v)).norm() > 0.01 * h) ++bag_upper_moved;
   }
@@ -160,19 +187,23 @@ TEST(Transfer, MakeHumanHeadOpensItsClosedMouthAndClosesItsLids) {
   EXPECT_LT(bag_upper_moved, bag_upper / 5);
   // blink: the upper lid margin (upper-lid vertices of weight ≥ 0.9) comes down to the lower lid's
   // margin (lower-lid vertices of weight ≥ 0.9): their mean heights, per eye
-  const auto blink = solver.deform(std::map<std::string, double>{{"orbicularis_oculi_palpebralis_l", 1.0},
-                                                                  {"orbicularis_oculi_palpebralis_r", 1.0}});
+  const auto blink = solver.deform(std::map<std::string, double>{
+      {"orbicularis_oculi_palpebralis_l", 1.0}, {"orbicularis_oculi_palpebralis_r", 1.0}});
   for (const auto& eye : r.face.rig.eyes) {
-    auto mean_y = [](const ms::Deformation& d, const std::vector<int>& ids, const std::vector<double>& w) {
+    auto mean_y = [](const ms::Deformation& d, const std::vector<int>& ids,
+                     const std::vector<double>& w) {
       double s = 0.0;
       int c = 0;
       for (std::size_t k = 0; k < ids.size(); ++k)
         if (w[k] >= 0.9) s += d.vertices(ids[k], 1), ++c;
       return c ? s / c : std::nan("");
     };
-    const double before = mean_y(n, eye.upper_lid, eye.upper_lid_weights) - mean_y(n, eye.lower_lid, eye.lower_lid_weights);
-    const double after = mean_y(blink, eye.upper_lid, eye.upper_lid_weights) - mean_y(blink, eye.lower_lid, eye.lower_lid_weights);
-    std::printf("  MakeHuman lid margins apart: %.2f %% -> %.2f %% of the head height\n", 100 * before / h, 100 * after / h);
+    const double before = mean_y(n, eye.upper_lid, eye.upper_lid_weights) -
+                          mean_y(n, eye.lower_lid, eye.lower_lid_weights);
+    const double after = mean_y(blink, eye.upper_lid, eye.upper_lid_weights) -
+                         mean_y(blink, eye.lower_lid, eye.lower_lid_weights);
+    std::printf("  MakeHuman lid margins apart: %.2f %% -> %.2f %% of the head height\n",
+                100 * before / h, 100 * after / h);
     EXPECT_GT(before, 0.005 * h);
     EXPECT_LT(std::abs(after), 0.25 * before);
   }
@@ -217,7 +248,8 @@ TEST(Transfer, BadInputGivesClearErrors) {
   // landmarks with wrong ids or counts
   rt::UserLandmarks lm;
   lm.points.resize(68);
-  for (int k : {36, 39, 42, 45, 30}) lm.points[static_cast<std::size_t>(k)] = {rt::UserLandmarkKind::Vertex, 10, {}};
+  for (int k : {36, 39, 42, 45, 30})
+    lm.points[static_cast<std::size_t>(k)] = {rt::UserLandmarkKind::Vertex, 10, {}};
   lm.points[30].vertex = static_cast<int>(f.remeshed.vertices.rows());  // one past the end
   try {
     rt::transfer_rig(f.source, f.remeshed, {}, o, lm);
@@ -252,28 +284,34 @@ TEST(LandmarksFile, RoundTripAndBadInput) {
       EXPECT_NE(std::string(e.what()).find("lm.json"), std::string::npos) << e.what();
     }
   };
-  const std::string head = R"({"format": "emoface.landmarks", "version": "1.0", "scheme": "ibug68", "points": )";
+  const std::string head =
+      R"({"format": "emoface.landmarks", "version": "1.0", "scheme": "ibug68", "points": )";
   std::string nulls = "[";
   for (int k = 0; k < 67; ++k) nulls += "null, ";
-  expect_error(head + nulls + "null, null]}", "/points");                  // 69 entries
-  expect_error(head + "[1, 2]}", "/points");                                // 2 entries
-  expect_error(head + nulls + "-4]}", "/points/67");                        // negative id
-  expect_error(head + nulls + "1.5]}", "/points/67");                       // not an integer
-  expect_error(head + nulls + "[1, 2]]}", "/points/67");                    // 2 coordinates
-  expect_error(head + nulls + "[1, \"a\", 2]]}", "/points/67/1");           // not a number
-  expect_error(head + nulls + "[1, 1e999, 2]]}", "overflow");                // infinite: refused by the parser
-  expect_error(head + nulls + "\"nan\"]}", "/points/67");                   // a string
-  expect_error(R"({"format": "emoface.landmarks", "version": "2.0", "scheme": "ibug68", "points": []})", "version");
-  expect_error(R"({"format": "emoface.landmarks", "version": "1.0", "scheme": "mediapipe", "points": []})", "/scheme");
+  expect_error(head + nulls + "null, null]}", "/points");          // 69 entries
+  expect_error(head + "[1, 2]}", "/points");                       // 2 entries
+  expect_error(head + nulls + "-4]}", "/points/67");               // negative id
+  expect_error(head + nulls + "1.5]}", "/points/67");              // not an integer
+  expect_error(head + nulls + "[1, 2]]}", "/points/67");           // 2 coordinates
+  expect_error(head + nulls + "[1, \"a\", 2]]}", "/points/67/1");  // not a number
+  expect_error(head + nulls + "[1, 1e999, 2]]}", "overflow");  // infinite: refused by the parser
+  expect_error(head + nulls + "\"nan\"]}", "/points/67");      // a string
+  expect_error(
+      R"({"format": "emoface.landmarks", "version": "2.0", "scheme": "ibug68", "points": []})",
+      "version");
+  expect_error(
+      R"({"format": "emoface.landmarks", "version": "1.0", "scheme": "mediapipe", "points": []})",
+      "/scheme");
   expect_error(head + nulls + "null], \"extra\": 1}", "/extra");
   expect_error(head + nulls + "null", "lm.json");  // truncated
   EXPECT_THROW(rt::read_landmarks("/nonexistent/lm.json"), emoface::IoError);
 }
 
 TEST(TransferReport, HasTheTransferSection) {
-  const auto& r = *fixtures().remesh;
+  const auto& r = fixtures().remesh_transfer();
   const std::string text = rt::format_transfer_report(r, false);
-  for (const char* key : {"\"version\": \"1.2\"", "\"transfer\"", "\"residuals\"", "\"ibug68\"", "\"parts\"", "\"frame\"", "\"mouth_bag\""})
+  for (const char* key : {"\"version\": \"1.2\"", "\"transfer\"", "\"residuals\"", "\"ibug68\"",
+                          "\"parts\"", "\"frame\"", "\"mouth_bag\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
   EXPECT_EQ(text.find("\"seconds\""), std::string::npos);
   EXPECT_EQ(text, rt::format_transfer_report(r, false));

@@ -1,6 +1,7 @@
 // Transfer of a rig onto the user's own mesh (transfer.hpp).
 #include "emoface/retarget/transfer.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,8 +11,6 @@
 #include <queue>
 #include <set>
 #include <string>
-
-#include <Eigen/Dense>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/facemesh/bspline.hpp"
@@ -24,7 +23,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
@@ -44,7 +45,8 @@ fm::PartKind kind_from_name(const std::string& raw) {
   if (has(s, "brow")) return fm::PartKind::Brows;
   if (has(s, "tongue")) return fm::PartKind::Tongue;
   if (has(s, "teeth") || has(s, "tooth") || has(s, "gum") || has(s, "dent")) {
-    if (has(s, "lower") || has(s, "bottom") || has(s, "_lo") || has(s, "low")) return fm::PartKind::LowerTeeth;
+    if (has(s, "lower") || has(s, "bottom") || has(s, "_lo") || has(s, "low"))
+      return fm::PartKind::LowerTeeth;
     if (has(s, "upper") || has(s, "top") || has(s, "_up")) return fm::PartKind::UpperTeeth;
     return fm::PartKind::Other;  // side decided by position (caller)
   }
@@ -69,7 +71,9 @@ std::vector<Component> components(const fm::Mesh& m) {
   std::vector<int> parent(nv);
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+    while (parent[static_cast<std::size_t>(x)] != x)
+      x = parent[static_cast<std::size_t>(x)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
     return x;
   };
   for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
@@ -86,7 +90,8 @@ std::vector<Component> components(const fm::Mesh& m) {
     if (it == id.end()) it = id.emplace(r, out.size()).first, out.emplace_back();
     Component& c = out[it->second];
     c.faces.push_back(static_cast<int>(f));
-    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)), cc = m.vertices.row(m.faces(f, 2));
+    const Eigen::Vector3d a = m.vertices.row(m.faces(f, 0)), b = m.vertices.row(m.faces(f, 1)),
+                          cc = m.vertices.row(m.faces(f, 2));
     c.area += 0.5 * (b - a).cross(cc - a).norm();
     for (int k = 0; k < 3; ++k) {
       const int v = m.faces(f, k);
@@ -98,12 +103,14 @@ std::vector<Component> components(const fm::Mesh& m) {
     }
   }
   for (auto& c : out) std::sort(c.vertices.begin(), c.vertices.end());
-  std::stable_sort(out.begin(), out.end(), [](const Component& a, const Component& b) { return a.area > b.area; });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Component& a, const Component& b) { return a.area > b.area; });
   return out;
 }
 
 // Least-squares sphere: |p|² = 2c·p + (r² − |c|²), linear in (c, d).
-bool fit_sphere(const fm::Vertices& v, const std::vector<int>& ids, Eigen::Vector3d& centre, double& radius, double& rms) {
+bool fit_sphere(const fm::Vertices& v, const std::vector<int>& ids, Eigen::Vector3d& centre,
+                double& radius, double& rms) {
   if (ids.size() < 8) return false;
   Eigen::MatrixXd A(static_cast<Eigen::Index>(ids.size()), 4);
   Eigen::VectorXd b(static_cast<Eigen::Index>(ids.size()));
@@ -126,7 +133,8 @@ bool fit_sphere(const fm::Vertices& v, const std::vector<int>& ids, Eigen::Vecto
 // Multi-source Dijkstra over the edges of `faces`, restricted to vertices with allowed[v] (sources
 // always allowed). Unreached: +inf.
 std::vector<double> geodesic(const fm::Vertices& x, const std::vector<std::vector<int>>& adjacency,
-                             const std::vector<int>& sources, const std::vector<std::uint8_t>& allowed) {
+                             const std::vector<int>& sources,
+                             const std::vector<std::uint8_t>& allowed) {
   std::vector<double> d(adjacency.size(), std::numeric_limits<double>::infinity());
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
@@ -152,7 +160,8 @@ double wrap_u(double u) {
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  const auto k = static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size() - 1), std::ceil(p * static_cast<double>(v.size())) - 1));
+  const auto k = static_cast<std::size_t>(std::min<double>(
+      static_cast<double>(v.size() - 1), std::ceil(p * static_cast<double>(v.size())) - 1));
   return v[k];
 }
 
@@ -165,14 +174,18 @@ void UserLandmarks::validate(std::size_t vertex_count) const {
   int given = 0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const auto& p = points[k];
-    if (p.kind == UserLandmarkKind::Vertex && (p.vertex < 0 || static_cast<std::size_t>(p.vertex) >= vertex_count))
-      throw InvalidInput("landmarks: point " + std::to_string(k) + ": vertex id " + std::to_string(p.vertex) +
-                         " out of range (the mesh has " + std::to_string(vertex_count) + " vertices)");
+    if (p.kind == UserLandmarkKind::Vertex &&
+        (p.vertex < 0 || static_cast<std::size_t>(p.vertex) >= vertex_count))
+      throw InvalidInput("landmarks: point " + std::to_string(k) + ": vertex id " +
+                         std::to_string(p.vertex) + " out of range (the mesh has " +
+                         std::to_string(vertex_count) + " vertices)");
     if (p.kind == UserLandmarkKind::Point && !p.point.allFinite())
       throw InvalidInput("landmarks: point " + std::to_string(k) + " is not finite");
     if (p.kind != UserLandmarkKind::Missing) ++given;
   }
-  if (given < 4) throw InvalidInput("landmarks: at least 4 of the 68 points must be given, got " + std::to_string(given));
+  if (given < 4)
+    throw InvalidInput("landmarks: at least 4 of the 68 points must be given, got " +
+                       std::to_string(given));
 }
 
 void TransferOptions::validate() const {
@@ -185,16 +198,19 @@ void TransferOptions::validate() const {
 }
 
 Eigen::Vector3d lip_surface_point(const fm::LipGrid& lips, double u, double v) {
-  if (lips.control_points.size() != static_cast<std::size_t>(fm::LipGrid::kAround * fm::LipGrid::kAcross))
+  if (lips.control_points.size() !=
+      static_cast<std::size_t>(fm::LipGrid::kAround * fm::LipGrid::kAcross))
     throw InvalidInput("lip_surface_point: no lip grid");
   u -= std::floor(u);
   if (u >= 1.0) u = 0.0;
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (const auto& t : fm::lip_surface_terms(u, std::clamp(v, 0.0, 1.0))) p += t.weight * lips.control_points[static_cast<std::size_t>(t.control)];
+  for (const auto& t : fm::lip_surface_terms(u, std::clamp(v, 0.0, 1.0)))
+    p += t.weight * lips.control_points[static_cast<std::size_t>(t.control)];
   return p;
 }
 
-TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, const std::vector<fm::MeshGroup>& groups,
+TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
+                            const std::vector<fm::MeshGroup>& groups,
                             const TransferOptions& options, const UserLandmarks& user,
                             const std::function<void(const GaProgress&)>& progress) {
   options.validate();
@@ -203,7 +219,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   if (!target.vertices.allFinite()) {
     for (Eigen::Index v = 0; v < nv; ++v)
       if (!target.vertices.row(v).allFinite())
-        throw InvalidInput("transfer: target vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+        throw InvalidInput("transfer: target vertex " + std::to_string(v) +
+                           " has a NaN or infinite coordinate");
   }
   try {
     fm::validate_mesh(target, "target");
@@ -213,11 +230,17 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   user.validate(static_cast<std::size_t>(nv));
   for (const auto& g : groups)
     for (int f : g.faces)
-      if (f < 0 || f >= target.faces.rows()) throw InvalidInput("transfer: group '" + g.group + "' names face " + std::to_string(f) + " out of range");
+      if (f < 0 || f >= target.faces.rows())
+        throw InvalidInput("transfer: group '" + g.group + "' names face " + std::to_string(f) +
+                           " out of range");
   const auto& srig = source.rig;
-  if (srig.ibug68.size() != 68) throw InvalidInput("transfer: the source rig has no iBUG-68 landmarks");
-  if (srig.lips.control_points.empty()) throw InvalidInput("transfer: the source rig has no lip grid");
-  if (!srig.lips.samples_in_mesh) throw InvalidInput("transfer: the source rig's lips must be sampled in its mesh (a built-in style rig)");
+  if (srig.ibug68.size() != 68)
+    throw InvalidInput("transfer: the source rig has no iBUG-68 landmarks");
+  if (srig.lips.control_points.empty())
+    throw InvalidInput("transfer: the source rig has no lip grid");
+  if (!srig.lips.samples_in_mesh)
+    throw InvalidInput(
+        "transfer: the source rig's lips must be sampled in its mesh (a built-in style rig)");
 
   TransferResult out;
   TransferReport& rep = out.report;
@@ -230,16 +253,21 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   const Component& head = comps.front();
   for (std::size_t c = 1; c < comps.size(); ++c) {
     const Eigen::Vector3d centre = 0.5 * (comps[c].lo + comps[c].hi);
-    const bool inside = (centre.array() >= head.lo.array()).all() && (centre.array() <= head.hi.array()).all();
+    const bool inside =
+        (centre.array() >= head.lo.array()).all() && (centre.array() <= head.hi.array()).all();
     if (comps[c].area >= options.several_heads_area * head.area && !inside)
-      throw InvalidInput("transfer: the mesh holds several heads: components of " + std::to_string(head.vertices.size()) + " and " +
-                         std::to_string(comps[c].vertices.size()) + " vertices are both head-sized and apart; give one head per file");
+      throw InvalidInput("transfer: the mesh holds several heads: components of " +
+                         std::to_string(head.vertices.size()) + " and " +
+                         std::to_string(comps[c].vertices.size()) +
+                         " vertices are both head-sized and apart; give one head per file");
   }
   // Part names per component from the groups (majority of named faces).
-  std::vector<int> comp_of_face(static_cast<std::size_t>(target.faces.rows()), -1), comp_of_vertex(static_cast<std::size_t>(nv), -1);
+  std::vector<int> comp_of_face(static_cast<std::size_t>(target.faces.rows()), -1),
+      comp_of_vertex(static_cast<std::size_t>(nv), -1);
   for (std::size_t c = 0; c < comps.size(); ++c) {
     for (int f : comps[c].faces) comp_of_face[static_cast<std::size_t>(f)] = static_cast<int>(c);
-    for (int v : comps[c].vertices) comp_of_vertex[static_cast<std::size_t>(v)] = static_cast<int>(c);
+    for (int v : comps[c].vertices)
+      comp_of_vertex[static_cast<std::size_t>(v)] = static_cast<int>(c);
   }
   std::vector<std::string> comp_name(comps.size());
   {
@@ -250,7 +278,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       for (const std::string& n : {g.group, g.material, g.object})
         if (kind_from_name(n) != fm::PartKind::Head || is_teeth_name(n)) name = n;
       if (name.empty()) continue;
-      for (int f : g.faces) ++votes[static_cast<std::size_t>(comp_of_face[static_cast<std::size_t>(f)])][name];
+      for (int f : g.faces)
+        ++votes[static_cast<std::size_t>(comp_of_face[static_cast<std::size_t>(f)])][name];
     }
     for (std::size_t c = 0; c < comps.size(); ++c) {
       std::size_t best = 0;
@@ -269,7 +298,9 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   }
   head_mesh.faces.resize(static_cast<Eigen::Index>(head.faces.size()), 3);
   for (std::size_t k = 0; k < head.faces.size(); ++k)
-    for (int j = 0; j < 3; ++j) head_mesh.faces(static_cast<Eigen::Index>(k), j) = local[static_cast<std::size_t>(target.faces(head.faces[k], j))];
+    for (int j = 0; j < 3; ++j)
+      head_mesh.faces(static_cast<Eigen::Index>(k), j) =
+          local[static_cast<std::size_t>(target.faces(head.faces[k], j))];
   auto t0 = Clock::now();
   out.fit = retarget_face(source, head_mesh, options.fit, progress);
   RetargetResult& fit = out.fit;
@@ -279,21 +310,27 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   std::vector<std::pair<int, Eigen::Vector3d>> given;  // (iBUG index, rig-frame point)
   for (std::size_t k = 0; k < user.points.size(); ++k) {
     const auto& p = user.points[k];
-    if (p.kind == UserLandmarkKind::Vertex) given.push_back({static_cast<int>(k), T.row(p.vertex).transpose()});
-    if (p.kind == UserLandmarkKind::Point) given.push_back({static_cast<int>(k), al.apply(p.point)});
+    if (p.kind == UserLandmarkKind::Vertex)
+      given.push_back({static_cast<int>(k), T.row(p.vertex).transpose()});
+    if (p.kind == UserLandmarkKind::Point)
+      given.push_back({static_cast<int>(k), al.apply(p.point)});
   }
   if (!given.empty()) {
     // RBF on the fit's landmarks plus the user's points (the user's win where they coincide).
     std::vector<Eigen::Vector3d> src, dst;
-    for (const auto& [k, p] : given) src.push_back(source.mesh.vertices.row(srig.ibug68[static_cast<std::size_t>(k)]).transpose()), dst.push_back(p);
+    for (const auto& [k, p] : given)
+      src.push_back(source.mesh.vertices.row(srig.ibug68[static_cast<std::size_t>(k)]).transpose()),
+          dst.push_back(p);
     for (Eigen::Index i = 0; i < fit.source_landmarks.rows(); ++i) {
       const Eigen::Vector3d s = fit.source_landmarks.row(i).transpose();
       bool near = false;
       for (const auto& q : src) near = near || (q - s).norm() < 0.004;
       if (!near) src.push_back(s), dst.push_back(fit.target_landmarks.row(i).transpose());
     }
-    Eigen::MatrixX3d S(static_cast<Eigen::Index>(src.size()), 3), D(static_cast<Eigen::Index>(src.size()), 3);
-    for (std::size_t k = 0; k < src.size(); ++k) S.row(static_cast<Eigen::Index>(k)) = src[k], D.row(static_cast<Eigen::Index>(k)) = dst[k];
+    Eigen::MatrixX3d S(static_cast<Eigen::Index>(src.size()), 3),
+        D(static_cast<Eigen::Index>(src.size()), 3);
+    for (std::size_t k = 0; k < src.size(); ++k)
+      S.row(static_cast<Eigen::Index>(k)) = src[k], D.row(static_cast<Eigen::Index>(k)) = dst[k];
     fit.face = transfer_face(source, fit_rbf(S, D, options.fit.rbf), fit.length_scale);
   }
   rep.fit_seconds = since(t0);
@@ -303,19 +340,24 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   const fm::Face& gen = fit.face;  // generic face after the RBF (rig frame)
   const auto ng = gen.mesh.vertices.rows();
   const auto& glips = srig.lips;
-  const int lip_first = glips.first_vertex, lip_na = glips.samples_around, lip_nac = glips.samples_across;
+  const int lip_first = glips.first_vertex, lip_na = glips.samples_around,
+            lip_nac = glips.samples_across;
   auto lip_sample = [&](int v) { return v >= lip_first && v < lip_first + lip_na * lip_nac; };
   std::vector<std::uint8_t> eyeball(static_cast<std::size_t>(ng), 0);
   for (const auto& e : srig.eyes)
     for (int v : e.eyeball_vertices) eyeball[static_cast<std::size_t>(v)] = 1;
-  std::vector<std::uint8_t> data_mask(static_cast<std::size_t>(ng), 1), socket(static_cast<std::size_t>(ng), 0);
+  std::vector<std::uint8_t> data_mask(static_cast<std::size_t>(ng), 1),
+      socket(static_cast<std::size_t>(ng), 0);
   for (Eigen::Index v = 0; v < ng; ++v) {
     const auto m = srig.materials[static_cast<std::size_t>(v)];
     const Eigen::Vector3d p = source.mesh.vertices.row(v);
     bool in = !eyeball[static_cast<std::size_t>(v)] && m != fm::Material::MouthInterior;
-    if (lip_sample(static_cast<int>(v)) && (static_cast<int>(v) - lip_first) / lip_na >= lip_nac - 2) in = false;
+    if (lip_sample(static_cast<int>(v)) &&
+        (static_cast<int>(v) - lip_first) / lip_na >= lip_nac - 2)
+      in = false;
     for (const auto& e : srig.eyes)  // socket caps behind the eyeballs
-      if ((p - e.centre).norm() < 2.0 * e.radius && p.z() < e.centre.z()) in = false, socket[static_cast<std::size_t>(v)] = 1;
+      if ((p - e.centre).norm() < 2.0 * e.radius && p.z() < e.centre.z())
+        in = false, socket[static_cast<std::size_t>(v)] = 1;
     data_mask[static_cast<std::size_t>(v)] = in;
   }
   // Registration mesh: the generic without its eyeballs (they are not part of the target surface).
@@ -323,14 +365,18 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   {
     std::vector<Eigen::Vector3i> keep;
     for (Eigen::Index f = 0; f < gen.mesh.faces.rows(); ++f)
-      if (!eyeball[static_cast<std::size_t>(gen.mesh.faces(f, 0))]) keep.push_back(gen.mesh.faces.row(f).transpose());
+      if (!eyeball[static_cast<std::size_t>(gen.mesh.faces(f, 0))])
+        keep.push_back(gen.mesh.faces.row(f).transpose());
     gsurf.faces.resize(static_cast<Eigen::Index>(keep.size()), 3);
-    for (std::size_t k = 0; k < keep.size(); ++k) gsurf.faces.row(static_cast<Eigen::Index>(k)) = keep[k].transpose();
+    for (std::size_t k = 0; k < keep.size(); ++k)
+      gsurf.faces.row(static_cast<Eigen::Index>(k)) = keep[k].transpose();
   }
   std::vector<RegistrationLandmark> reg_landmarks;
-  for (const auto& [k, p] : given) reg_landmarks.push_back({srig.ibug68[static_cast<std::size_t>(k)], p});
+  for (const auto& [k, p] : given)
+    reg_landmarks.push_back({srig.ibug68[static_cast<std::size_t>(k)], p});
   fm::Mesh head_rig{al.apply(head_mesh.vertices), head_mesh.faces};
-  const RegistrationResult reg = register_nonrigid(gsurf, data_mask, head_rig, reg_landmarks, options.registration);
+  const RegistrationResult reg =
+      register_nonrigid(gsurf, data_mask, head_rig, reg_landmarks, options.registration);
   rep.registration = reg.report;
   out.registered = reg.vertices;
   const fm::Vertices& G = reg.vertices;
@@ -339,12 +385,13 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   for (Eigen::Index v = 0; v < ng; ++v)
     if (!eyeball[static_cast<std::size_t>(v)]) field_ids.push_back(static_cast<int>(v));
   fm::Vertices field_points(static_cast<Eigen::Index>(field_ids.size()), 3);
-  for (std::size_t k = 0; k < field_ids.size(); ++k) field_points.row(static_cast<Eigen::Index>(k)) = gen.mesh.vertices.row(field_ids[k]);
+  for (std::size_t k = 0; k < field_ids.size(); ++k)
+    field_points.row(static_cast<Eigen::Index>(k)) = gen.mesh.vertices.row(field_ids[k]);
   const detail::SurfaceIndex field_index(fm::Mesh{gen.mesh.vertices, gsurf.faces});
   auto residual_at = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
     // Inverse-square-distance average of the residuals of the 3 vertices of the closest fitted-face
-    // triangle and its barycentric interpolation blended by the distance (points inside the head, such
-    // as muscle heads, take the residual of the surface above them).
+    // triangle and its barycentric interpolation blended by the distance (points inside the head,
+    // such as muscle heads, take the residual of the surface above them).
     const auto hit = field_index.closest(p);
     if (hit.face < 0) return Eigen::Vector3d::Zero();
     Eigen::Vector3d r = Eigen::Vector3d::Zero();
@@ -389,27 +436,35 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     const auto& se = gen.rig.eyes[static_cast<std::size_t>(e)];
     auto& te = rig.eyes[static_cast<std::size_t>(e)];
     te = se;
-    te.eyeball_vertices.clear(), te.upper_lid.clear(), te.upper_lid_weights.clear(), te.lower_lid.clear(), te.lower_lid_weights.clear();
+    te.eyeball_vertices.clear(), te.upper_lid.clear(), te.upper_lid_weights.clear(),
+        te.lower_lid.clear(), te.lower_lid_weights.clear();
     te.centre = se.centre + residual_at(se.centre);
   }
 
   // Per generic vertex attributes.
   std::vector<double> gjaw(static_cast<std::size_t>(ng), 0.0);
-  for (std::size_t k = 0; k < srig.jaw.vertices.size(); ++k) gjaw[static_cast<std::size_t>(srig.jaw.vertices[k])] = srig.jaw.weights[k];
+  for (std::size_t k = 0; k < srig.jaw.vertices.size(); ++k)
+    gjaw[static_cast<std::size_t>(srig.jaw.vertices[k])] = srig.jaw.weights[k];
   std::array<std::vector<double>, 4> glid;  // eye 0 upper, eye 0 lower, eye 1 upper, eye 1 lower
   for (int e = 0; e < 2; ++e) {
     const auto& se = srig.eyes[static_cast<std::size_t>(e)];
     glid[static_cast<std::size_t>(2 * e)].assign(static_cast<std::size_t>(ng), 0.0);
     glid[static_cast<std::size_t>(2 * e + 1)].assign(static_cast<std::size_t>(ng), 0.0);
-    for (std::size_t k = 0; k < se.upper_lid.size(); ++k) glid[static_cast<std::size_t>(2 * e)][static_cast<std::size_t>(se.upper_lid[k])] = se.upper_lid_weights[k];
-    for (std::size_t k = 0; k < se.lower_lid.size(); ++k) glid[static_cast<std::size_t>(2 * e + 1)][static_cast<std::size_t>(se.lower_lid[k])] = se.lower_lid_weights[k];
+    for (std::size_t k = 0; k < se.upper_lid.size(); ++k)
+      glid[static_cast<std::size_t>(2 * e)][static_cast<std::size_t>(se.upper_lid[k])] =
+          se.upper_lid_weights[k];
+    for (std::size_t k = 0; k < se.lower_lid.size(); ++k)
+      glid[static_cast<std::size_t>(2 * e + 1)][static_cast<std::size_t>(se.lower_lid[k])] =
+          se.lower_lid_weights[k];
   }
   // Lip parameters of the generic's lip samples.
   auto lip_uv = [&](int v) {
     const int s = v - lip_first;
-    return Eigen::Vector2d(static_cast<double>(s % lip_na) / lip_na, static_cast<double>(s / lip_na) / (lip_nac - 1));
+    return Eigen::Vector2d(static_cast<double>(s % lip_na) / lip_na,
+                           static_cast<double>(s / lip_na) / (lip_nac - 1));
   };
-  auto face_uv = [&](int f, const Eigen::Vector3d& b) {  // (u, v) at barycentrics b of a lip triangle
+  auto face_uv = [&](int f,
+                     const Eigen::Vector3d& b) {  // (u, v) at barycentrics b of a lip triangle
     const Eigen::Vector2d a = lip_uv(gsurf.faces(f, 0));
     Eigen::Vector2d r = Eigen::Vector2d::Zero();
     for (int k = 0; k < 3; ++k) {
@@ -421,8 +476,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     return r;
   };
   const auto nf = gsurf.faces.rows();
-  std::vector<std::uint8_t> lip_face(static_cast<std::size_t>(nf), 0), upper_face(static_cast<std::size_t>(nf), 0),
-      lower_face(static_cast<std::size_t>(nf), 0);
+  std::vector<std::uint8_t> lip_face(static_cast<std::size_t>(nf), 0),
+      upper_face(static_cast<std::size_t>(nf), 0), lower_face(static_cast<std::size_t>(nf), 0);
   for (Eigen::Index f = 0; f < nf; ++f) {
     bool all = true;
     for (int k = 0; k < 3; ++k) all = all && lip_sample(gsurf.faces(f, k));
@@ -431,19 +486,22 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     const double u = face_uv(static_cast<int>(f), Eigen::Vector3d::Constant(1.0 / 3.0)).x();
     (std::sin(2 * kPi * u) >= 0.0 ? upper_face : lower_face)[static_cast<std::size_t>(f)] = 1;
   }
-  // The generic's mouth cavity (triangles touching a MouthInterior vertex): a target vertex near it is
-  // part of a mouth bag unless it lies on it (a remeshed copy of the generic itself).
+  // The generic's mouth cavity (triangles touching a MouthInterior vertex): a target vertex near it
+  // is part of a mouth bag unless it lies on it (a remeshed copy of the generic itself).
   std::vector<std::uint8_t> cavity_face(static_cast<std::size_t>(nf), 0);
   for (Eigen::Index f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)
-      if (srig.materials[static_cast<std::size_t>(gsurf.faces(f, k))] == fm::Material::MouthInterior) cavity_face[static_cast<std::size_t>(f)] = 1;
+      if (srig.materials[static_cast<std::size_t>(gsurf.faces(f, k))] ==
+          fm::Material::MouthInterior)
+        cavity_face[static_cast<std::size_t>(f)] = 1;
   const fm::Mesh Gmesh{G, gsurf.faces};
-  const detail::SurfaceIndex gindex(Gmesh), upper_index(Gmesh, upper_face), lower_index(Gmesh, lower_face),
-      lip_index(Gmesh, lip_face);
+  const detail::SurfaceIndex gindex(Gmesh), upper_index(Gmesh, upper_face),
+      lower_index(Gmesh, lower_face), lip_index(Gmesh, lip_face);
   const fm::Vertices gnormals = fm::face_normals(G, gsurf.faces);
   const fm::Vertices tnormals = fm::vertex_normals(T, target.faces);
   std::vector<detail::SurfaceHit> hit(static_cast<std::size_t>(nv));
-  std::vector<std::uint8_t> on_lip(static_cast<std::size_t>(nv), 0), outer(static_cast<std::size_t>(nv), 0);
+  std::vector<std::uint8_t> on_lip(static_cast<std::size_t>(nv), 0),
+      outer(static_cast<std::size_t>(nv), 0);
   double head_height_rig = 0.0;
   {
     int top_v = -1, chin_v = -1;
@@ -464,16 +522,22 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     if (!lip_face[static_cast<std::size_t>(h.face)] && !lip_index.empty()) {
       // ties on the edges shared by the lips and the skin or the mouth cavity go to the lips
       const auto lh = lip_index.closest(p);
-      const double tie = (cavity_face[static_cast<std::size_t>(h.face)] ? 0.002 : 1e-4) * head_height_rig;
+      const double tie =
+          (cavity_face[static_cast<std::size_t>(h.face)] ? 0.002 : 1e-4) * head_height_rig;
       if (lh.face >= 0 && lh.distance <= h.distance + tie) h = lh;
     }
     const Eigen::Vector3d n = tnormals.row(v).transpose();
     const bool agree = n.dot(gnormals.row(h.face).transpose()) > 0.3;
-    // On the generic's surface (within 0.1 % of the head height: a remeshed copy, whose normals at a
-    // cone's apex may disagree), or near it and facing the same way; a mouth bag faces into the mouth.
+    // On the generic's surface (within 0.1 % of the head height: a remeshed copy, whose normals at
+    // a cone's apex may disagree), or near it and facing the same way; a mouth bag faces into the
+    // mouth.
     const bool on_surface = h.distance < 0.001 * head_height_rig;
-    if (lip_face[static_cast<std::size_t>(h.face)] && (agree || h.distance < 0.0025 * head_height_rig)) on_lip[static_cast<std::size_t>(v)] = 1;
-    else if (cavity_face[static_cast<std::size_t>(h.face)] ? on_surface : (on_surface || (agree && h.distance < outer_distance)))
+    if (lip_face[static_cast<std::size_t>(h.face)] &&
+        (agree || h.distance < 0.0025 * head_height_rig))
+      on_lip[static_cast<std::size_t>(v)] = 1;
+    else if (cavity_face[static_cast<std::size_t>(h.face)]
+                 ? on_surface
+                 : (on_surface || (agree && h.distance < outer_distance)))
       outer[static_cast<std::size_t>(v)] = 1;
   }
   // Adjacency of the target.
@@ -484,15 +548,19 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       adjacency[static_cast<std::size_t>(a)].push_back(b);
       adjacency[static_cast<std::size_t>(b)].push_back(a);
     }
-  for (auto& a : adjacency) std::sort(a.begin(), a.end()), a.erase(std::unique(a.begin(), a.end()), a.end());
-  // Mouth bag: reachable from the lip vertices through vertices that are neither outer skin nor lip.
+  for (auto& a : adjacency)
+    std::sort(a.begin(), a.end()), a.erase(std::unique(a.begin(), a.end()), a.end());
+  // Mouth bag: reachable from the lip vertices through vertices that are neither outer skin nor
+  // lip.
   std::vector<std::uint8_t> bag(static_cast<std::size_t>(nv), 0);
   {
     std::vector<int> stack;
     for (int v : head.vertices)
       if (on_lip[static_cast<std::size_t>(v)]) stack.push_back(v);
-    Eigen::Vector3d mouth = Eigen::Vector3d::Zero();  // mean lip control point (LipGrid::centre may lie deep inside)
-    for (const auto& c : rig.lips.control_points) mouth += c / static_cast<double>(rig.lips.control_points.size());
+    Eigen::Vector3d mouth =
+        Eigen::Vector3d::Zero();  // mean lip control point (LipGrid::centre may lie deep inside)
+    for (const auto& c : rig.lips.control_points)
+      mouth += c / static_cast<double>(rig.lips.control_points.size());
     std::vector<std::uint8_t> seen(static_cast<std::size_t>(nv), 0);
     for (int v : stack) seen[static_cast<std::size_t>(v)] = 1;
     while (!stack.empty()) {
@@ -508,31 +576,38 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       }
     }
   }
-  // Upper/lower lip labels by geodesic distance from the clearly upper and clearly lower lip halves,
-  // through the lips and the bag only (a closed mouth's two lips touch in space, not on the mesh).
+  // Upper/lower lip labels by geodesic distance from the clearly upper and clearly lower lip
+  // halves, through the lips and the bag only (a closed mouth's two lips touch in space, not on the
+  // mesh).
   std::vector<std::uint8_t> mouth_allowed(static_cast<std::size_t>(nv), 0);
   std::vector<int> upper_seeds, lower_seeds;
   for (int v : head.vertices) {
     if (!on_lip[static_cast<std::size_t>(v)] && !bag[static_cast<std::size_t>(v)]) continue;
     mouth_allowed[static_cast<std::size_t>(v)] = 1;
     if (!on_lip[static_cast<std::size_t>(v)]) continue;
-    const Eigen::Vector2d uv = face_uv(hit[static_cast<std::size_t>(v)].face, hit[static_cast<std::size_t>(v)].bary);
+    const Eigen::Vector2d uv =
+        face_uv(hit[static_cast<std::size_t>(v)].face, hit[static_cast<std::size_t>(v)].bary);
     const double s = std::sin(2 * kPi * uv.x());
     if (uv.y() < 0.45 && s > 0.25) upper_seeds.push_back(v);
     if (uv.y() < 0.45 && s < -0.25) lower_seeds.push_back(v);
   }
   const auto du = geodesic(T, adjacency, upper_seeds, mouth_allowed);
   const auto dl = geodesic(T, adjacency, lower_seeds, mouth_allowed);
-  // Jaw weights of the bag: geodesic distances through the bag alone from every vertex of each lip (so
-  // no path runs round a mouth corner through the lips), by the side of its projection.
+  // Jaw weights of the bag: geodesic distances through the bag alone from every vertex of each lip
+  // (so no path runs round a mouth corner through the lips), by the side of its projection.
   std::vector<std::uint8_t> bag_only(static_cast<std::size_t>(nv), 0);
   std::vector<int> upper_lip, lower_lip;
   for (int v : head.vertices) {
     bag_only[static_cast<std::size_t>(v)] = bag[static_cast<std::size_t>(v)];
     if (!on_lip[static_cast<std::size_t>(v)]) continue;
-    const double s = std::sin(2 * kPi * face_uv(hit[static_cast<std::size_t>(v)].face, hit[static_cast<std::size_t>(v)].bary).x());
-    const bool labelled_upper = std::isfinite(du[static_cast<std::size_t>(v)]) || std::isfinite(dl[static_cast<std::size_t>(v)])
-                                    ? du[static_cast<std::size_t>(v)] <= dl[static_cast<std::size_t>(v)] : s >= 0.0;
+    const double s = std::sin(
+        2 * kPi *
+        face_uv(hit[static_cast<std::size_t>(v)].face, hit[static_cast<std::size_t>(v)].bary).x());
+    const bool labelled_upper =
+        std::isfinite(du[static_cast<std::size_t>(v)]) ||
+                std::isfinite(dl[static_cast<std::size_t>(v)])
+            ? du[static_cast<std::size_t>(v)] <= dl[static_cast<std::size_t>(v)]
+            : s >= 0.0;
     if (std::abs(s) < 0.25) continue;  // corners belong to both
     (labelled_upper ? upper_lip : lower_lip).push_back(v);
   }
@@ -550,14 +625,18 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       detail::SurfaceHit lh = h;
       const double s = std::sin(2 * kPi * face_uv(h.face, h.bary).x());
       const auto uq = du[static_cast<std::size_t>(v)], lq = dl[static_cast<std::size_t>(v)];
-      // A closed mouth's two lips touch in space, not on the mesh: a vertex of one lip may project onto
-      // the other. Where the mesh says clearly which lip the vertex belongs to (geodesic distances
-      // through the lips and the bag) and that lip's surface is about as near, it is used instead.
-      if ((std::isfinite(uq) || std::isfinite(lq)) && std::abs(s) > 0.3 && std::min(uq, lq) < 0.8 * std::max(uq, lq)) {
+      // A closed mouth's two lips touch in space, not on the mesh: a vertex of one lip may project
+      // onto the other. Where the mesh says clearly which lip the vertex belongs to (geodesic
+      // distances through the lips and the bag) and that lip's surface is about as near, it is used
+      // instead.
+      if ((std::isfinite(uq) || std::isfinite(lq)) && std::abs(s) > 0.3 &&
+          std::min(uq, lq) < 0.8 * std::max(uq, lq)) {
         const bool is_upper = uq <= lq;
         detail::SurfaceHit alt;
-        if (is_upper && s < 0.0 && !upper_index.empty()) alt = upper_index.closest(T.row(v).transpose());
-        if (!is_upper && s > 0.0 && !lower_index.empty()) alt = lower_index.closest(T.row(v).transpose());
+        if (is_upper && s < 0.0 && !upper_index.empty())
+          alt = upper_index.closest(T.row(v).transpose());
+        if (!is_upper && s > 0.0 && !lower_index.empty())
+          alt = lower_index.closest(T.row(v).transpose());
         if (alt.face >= 0 && alt.distance < h.distance + 0.005 * head_height_rig) lh = alt;
       }
       const Eigen::Vector2d uv = face_uv(lh.face, lh.bary);
@@ -567,24 +646,27 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       b.offset = T.row(v).transpose() - lip_surface_point(rig.lips, b.u, b.v);
       b.weight = 1.0;
       rig.lips.bound.push_back(b);
-      rig.materials[static_cast<std::size_t>(v)] = uv.y() < 1.0 / (lip_nac - 1) - 1e-9 ? fm::Material::Skin : fm::Material::Lip;
+      rig.materials[static_cast<std::size_t>(v)] =
+          uv.y() < 1.0 / (lip_nac - 1) - 1e-9 ? fm::Material::Skin : fm::Material::Lip;
       rig.regions[static_cast<std::size_t>(v)] = fm::Region::Rest;
       continue;
     }
     if (bag[static_cast<std::size_t>(v)]) {
       const double a = bu[static_cast<std::size_t>(v)], b = bl[static_cast<std::size_t>(v)];
-      // the share of the way from the upper lip to the lower, sharpened: the upper half of the bag stays
-      // with the skull, the lower half follows the jaw, with a smooth fold at the back
-      const double share = std::isfinite(a) && std::isfinite(b) && a + b > 0 ? a / (a + b) : std::isfinite(b) ? 1.0 : 0.0;
+      // the share of the way from the upper lip to the lower, sharpened: the upper half of the bag
+      // stays with the skull, the lower half follows the jaw, with a smooth fold at the back
+      const double share = std::isfinite(a) && std::isfinite(b) && a + b > 0 ? a / (a + b)
+                           : std::isfinite(b)                                ? 1.0
+                                                                             : 0.0;
       jaw_w[static_cast<std::size_t>(v)] = smoothstep(0.35, 0.65, share);
       rig.materials[static_cast<std::size_t>(v)] = fm::Material::MouthInterior;
       continue;
     }
     // Skin. On the strip between the mouth rim and the lip border row (triangles with both skin and
-    // lip-sample corners) the vertex is bound to the lip border with the interpolated lip share as its
-    // weight, and its muscle-side attributes come from the skin corners alone: the weight falls from 1
-    // at the border row to 0 at the rim, so the lips and the skin meet without a seam, and a vertex on
-    // the strip of the built-in face moves as the strip itself does.
+    // lip-sample corners) the vertex is bound to the lip border with the interpolated lip share as
+    // its weight, and its muscle-side attributes come from the skin corners alone: the weight falls
+    // from 1 at the border row to 0 at the rim, so the lips and the skin meet without a seam, and a
+    // vertex on the strip of the built-in face moves as the strip itself does.
     double lip_share = 0.0, skin_share = 0.0, j = 0.0;
     Eigen::Index skin_arg = -1;
     Eigen::Vector2d uv = Eigen::Vector2d::Zero();
@@ -618,15 +700,16 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       rig.lips.bound.push_back(b);
     }
   }
-  std::sort(rig.lips.bound.begin(), rig.lips.bound.end(), [](const fm::LipBinding& a, const fm::LipBinding& b) { return a.vertex < b.vertex; });
+  std::sort(rig.lips.bound.begin(), rig.lips.bound.end(),
+            [](const fm::LipBinding& a, const fm::LipBinding& b) { return a.vertex < b.vertex; });
   for (const auto& b : rig.lips.bound) {
     ++rep.lip_bound;
     if (b.weight >= 1.0) ++rep.lip_full;
   }
   // Eye-hole surfaces: a head that closes its eye openings with a surface of its own (no separate
-  // eyeballs, like the MakeHuman head's sockets) has vertices inside the generic's eye opening (seen
-  // from the front). They stand in for the eyeball: no lid weights, turned by gaze.
-  // The generic's eye opening per eye: its rim (skin vertices sharing a triangle with the socket cap)
+  // eyeballs, like the MakeHuman head's sockets) has vertices inside the generic's eye opening
+  // (seen from the front). They stand in for the eyeball: no lid weights, turned by gaze. The
+  // generic's eye opening per eye: its rim (skin vertices sharing a triangle with the socket cap)
   // as a polygon in x/y (registered positions), shrunk to 85 % about its centroid.
   std::array<std::vector<Eigen::Vector2d>, 2> hole_outline;
   std::array<Eigen::Vector2d, 2> hole_centre{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
@@ -640,7 +723,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       const Eigen::Vector3d sp = source.mesh.vertices.row(sock);
       const int e = (sp - srig.eyes[0].centre).norm() <= (sp - srig.eyes[1].centre).norm() ? 0 : 1;
       for (int k = 0; k < 3; ++k)
-        if (!socket[static_cast<std::size_t>(gsurf.faces(f, k))]) rim[static_cast<std::size_t>(e)].insert(gsurf.faces(f, k));
+        if (!socket[static_cast<std::size_t>(gsurf.faces(f, k))])
+          rim[static_cast<std::size_t>(e)].insert(gsurf.faces(f, k));
     }
     for (int e = 0; e < 2; ++e) {
       auto& out_e = hole_outline[static_cast<std::size_t>(e)];
@@ -648,10 +732,13 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       Eigen::Vector2d c = Eigen::Vector2d::Zero();
       for (int v : rim[static_cast<std::size_t>(e)]) c += G.row(v).head<2>().transpose();
       c /= static_cast<double>(rim[static_cast<std::size_t>(e)].size());
-      for (int v : rim[static_cast<std::size_t>(e)]) out_e.push_back(c + 0.85 * (G.row(v).head<2>().transpose() - c));
-      std::sort(out_e.begin(), out_e.end(), [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-        return std::atan2(a.y() - c.y(), a.x() - c.x()) < std::atan2(b.y() - c.y(), b.x() - c.x());
-      });
+      for (int v : rim[static_cast<std::size_t>(e)])
+        out_e.push_back(c + 0.85 * (G.row(v).head<2>().transpose() - c));
+      std::sort(out_e.begin(), out_e.end(),
+                [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+                  return std::atan2(a.y() - c.y(), a.x() - c.x()) <
+                         std::atan2(b.y() - c.y(), b.x() - c.x());
+                });
       hole_centre[static_cast<std::size_t>(e)] = c;
     }
   }
@@ -659,7 +746,9 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     bool in = false;
     for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
       if ((poly[i].y() > q.y()) != (poly[j].y() > q.y()) &&
-          q.x() < (poly[j].x() - poly[i].x()) * (q.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) + poly[i].x())
+          q.x() <
+              (poly[j].x() - poly[i].x()) * (q.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) +
+                  poly[i].x())
         in = !in;
     return in;
   };
@@ -669,12 +758,15 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     for (int e = 0; e < 2; ++e) {
       const auto& poly = hole_outline[static_cast<std::size_t>(e)];
       if (poly.size() < 3 || !inside(poly, T.row(v).head<2>().transpose())) continue;
-      // not the generic's own socket cap (a remeshed copy of the generic), nor far in front of the eye
+      // not the generic's own socket cap (a remeshed copy of the generic), nor far in front of the
+      // eye
       const auto& h = hit[static_cast<std::size_t>(v)];
       bool socket_face = false;
-      for (int k = 0; k < 3 && h.face >= 0; ++k) socket_face = socket_face || socket[static_cast<std::size_t>(gsurf.faces(h.face, k))];
+      for (int k = 0; k < 3 && h.face >= 0; ++k)
+        socket_face = socket_face || socket[static_cast<std::size_t>(gsurf.faces(h.face, k))];
       if (socket_face && h.distance < 0.001 * head_height_rig) continue;
-      const double dz = T(v, 2) - rig.eyes[static_cast<std::size_t>(e)].centre.z(), r = gen.rig.eyes[static_cast<std::size_t>(e)].radius;
+      const double dz = T(v, 2) - rig.eyes[static_cast<std::size_t>(e)].centre.z(),
+                   r = gen.rig.eyes[static_cast<std::size_t>(e)].radius;
       if (dz > 2.0 * r || dz < -2.0 * r) continue;  // the lids' front, the back of the head
       eye_hole[static_cast<std::size_t>(v)] = 1;
       rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices.push_back(v);
@@ -683,13 +775,17 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       jaw_w[static_cast<std::size_t>(v)] = 0.0;
     }
   }
-  for (int e = 0; e < 2; ++e) rep.eye_hole_vertices[static_cast<std::size_t>(e)] = rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices.size();
+  for (int e = 0; e < 2; ++e)
+    rep.eye_hole_vertices[static_cast<std::size_t>(e)] =
+        rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices.size();
   // Eyelids.
   for (int e = 0; e < 2; ++e) {
     auto& te = rig.eyes[static_cast<std::size_t>(e)];
     for (int v : head.vertices) {
       const auto& h = hit[static_cast<std::size_t>(v)];
-      if (h.face < 0 || on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)] || eye_hole[static_cast<std::size_t>(v)]) continue;
+      if (h.face < 0 || on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)] ||
+          eye_hole[static_cast<std::size_t>(v)])
+        continue;
       // socket-cap corners (behind the eyeball, no lid weight of their own) are left out, so the
       // inside of a closed eye socket follows the lid margin instead of tearing from it
       double up = 0.0, lo = 0.0, sum = 0.0;
@@ -716,9 +812,11 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   rep.parts.push_back(head_report);
   rig.parts.push_back({head_report.name, fm::PartKind::Head, -1, head.vertices});
   Eigen::Vector3d mouth_point = Eigen::Vector3d::Zero();  // mean lip control point
-  for (const auto& c : rig.lips.control_points) mouth_point += c / static_cast<double>(rig.lips.control_points.size());
+  for (const auto& c : rig.lips.control_points)
+    mouth_point += c / static_cast<double>(rig.lips.control_points.size());
   const double mouth_y = mouth_point.y();
-  const double mouth_width = (rig.lips.control_points[0] - rig.lips.control_points[fm::LipGrid::kAround / 2]).norm();
+  const double mouth_width =
+      (rig.lips.control_points[0] - rig.lips.control_points[fm::LipGrid::kAround / 2]).norm();
   std::array<bool, 2> eye_fitted{false, false};
   std::array<double, 2> eye_part_size{0.0, 0.0};
   std::vector<int> lid_candidates;
@@ -743,15 +841,19 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     const bool sphere = fit_sphere(T, comp.vertices, sc, sr, srms);
     int side = (sc - rig.eyes[0].centre).norm() <= (sc - rig.eyes[1].centre).norm() ? 0 : 1;
     const double r0 = gen.rig.eyes[static_cast<std::size_t>(side)].radius;
-    const bool eye_like = sphere && srms < options.eyeball_tolerance && sr > 0.5 * r0 && sr < 2.0 * r0 &&
+    const bool eye_like = sphere && srms < options.eyeball_tolerance && sr > 0.5 * r0 &&
+                          sr < 2.0 * r0 &&
                           (sc - rig.eyes[static_cast<std::size_t>(side)].centre).norm() < 2.0 * r0;
     if (kind == fm::PartKind::Eyeball || (kind == fm::PartKind::Head && eye_like)) {
-      if (!eye_like) side = (centroid - rig.eyes[0].centre).norm() <= (centroid - rig.eyes[1].centre).norm() ? 0 : 1;
+      if (!eye_like)
+        side = (centroid - rig.eyes[0].centre).norm() <= (centroid - rig.eyes[1].centre).norm() ? 0
+                                                                                                : 1;
       kind = fm::PartKind::Eyeball;
       if (!named) pr.found_by = "sphere fit";
       auto& te = rig.eyes[static_cast<std::size_t>(side)];
       for (int v : comp.vertices) te.eyeball_vertices.push_back(v);
-      if (eye_like && static_cast<double>(comp.vertices.size()) > eye_part_size[static_cast<std::size_t>(side)]) {
+      if (eye_like && static_cast<double>(comp.vertices.size()) >
+                          eye_part_size[static_cast<std::size_t>(side)]) {
         te.centre = sc;
         te.radius = sr;
         eye_fitted[static_cast<std::size_t>(side)] = true;
@@ -759,27 +861,34 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
       }
       pr.side = side;
       if (sphere) pr.centre = al.inverse(sc), pr.radius = sr / al.scale, pr.rms = srms;
-      for (int v : comp.vertices) rig.materials[static_cast<std::size_t>(v)] = fm::Material::EyeWhite;
+      for (int v : comp.vertices)
+        rig.materials[static_cast<std::size_t>(v)] = fm::Material::EyeWhite;
     } else {
       if (kind == fm::PartKind::Other && is_teeth_name(comp_name[c]))
         kind = centroid.y() < mouth_y ? fm::PartKind::LowerTeeth : fm::PartKind::UpperTeeth;
       if (kind == fm::PartKind::Head) {  // unnamed: by position
         // inside the mouth: within a mouth width of the lips and behind their front
-        const bool in_mouth = (centroid - mouth_point).norm() < mouth_width && centroid.z() < mouth_point.z();
+        const bool in_mouth =
+            (centroid - mouth_point).norm() < mouth_width && centroid.z() < mouth_point.z();
         double lid_d = std::numeric_limits<double>::infinity();
         for (int v : comp.vertices)
           for (int l : lid_candidates) lid_d = std::min(lid_d, (T.row(v) - T.row(l)).norm());
-        if (in_mouth) kind = centroid.y() < mouth_y ? fm::PartKind::LowerTeeth : fm::PartKind::UpperTeeth;
-        else if (lid_d < 0.004 && comp.vertices.size() < head.vertices.size() / 4) kind = fm::PartKind::Lashes;
-        else kind = fm::PartKind::Other, pr.found_by = "none (rigid)";
+        if (in_mouth)
+          kind = centroid.y() < mouth_y ? fm::PartKind::LowerTeeth : fm::PartKind::UpperTeeth;
+        else if (lid_d < 0.004 && comp.vertices.size() < head.vertices.size() / 4)
+          kind = fm::PartKind::Lashes;
+        else
+          kind = fm::PartKind::Other, pr.found_by = "none (rigid)";
       }
       if (kind == fm::PartKind::LowerTeeth || kind == fm::PartKind::Tongue) {
         for (int v : comp.vertices) jaw_w[static_cast<std::size_t>(v)] = 1.0;
       }
       if (kind == fm::PartKind::LowerTeeth || kind == fm::PartKind::UpperTeeth)
-        for (int v : comp.vertices) rig.materials[static_cast<std::size_t>(v)] = fm::Material::Teeth;
+        for (int v : comp.vertices)
+          rig.materials[static_cast<std::size_t>(v)] = fm::Material::Teeth;
       if (kind == fm::PartKind::Tongue)
-        for (int v : comp.vertices) rig.materials[static_cast<std::size_t>(v)] = fm::Material::Tongue;
+        for (int v : comp.vertices)
+          rig.materials[static_cast<std::size_t>(v)] = fm::Material::Tongue;
       if (kind == fm::PartKind::Lashes) {
         // each lash vertex follows the nearest lid vertex with its weight
         for (int v : comp.vertices) {
@@ -806,13 +915,15 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
         }
       }
       if (kind == fm::PartKind::Brows) {
-        // brows sit on the skin: they take the skin's attributes (regions, so the brow muscles move them)
+        // brows sit on the skin: they take the skin's attributes (regions, so the brow muscles move
+        // them)
         for (int v : comp.vertices) {
           const auto h = gindex.closest(T.row(v).transpose());
           if (h.face < 0) continue;
           Eigen::Index arg = 0;
           h.bary.maxCoeff(&arg);
-          rig.regions[static_cast<std::size_t>(v)] = srig.regions[static_cast<std::size_t>(gsurf.faces(h.face, static_cast<int>(arg)))];
+          rig.regions[static_cast<std::size_t>(v)] =
+              srig.regions[static_cast<std::size_t>(gsurf.faces(h.face, static_cast<int>(arg)))];
           rig.materials[static_cast<std::size_t>(v)] = fm::Material::Brow;
         }
       }
@@ -824,20 +935,26 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
   for (int e = 0; e < 2; ++e) {
     auto& te = rig.eyes[static_cast<std::size_t>(e)];
     std::sort(te.eyeball_vertices.begin(), te.eyeball_vertices.end());
-    if (!eye_fitted[static_cast<std::size_t>(e)]) te.radius = gen.rig.eyes[static_cast<std::size_t>(e)].radius;
+    if (!eye_fitted[static_cast<std::size_t>(e)])
+      te.radius = gen.rig.eyes[static_cast<std::size_t>(e)].radius;
     rep.lid_vertices[static_cast<std::size_t>(e)] = te.upper_lid.size() + te.lower_lid.size();
   }
   // Jaw list.
   for (Eigen::Index v = 0; v < nv; ++v)
-    if (jaw_w[static_cast<std::size_t>(v)] > 1e-3) rig.jaw.vertices.push_back(static_cast<int>(v)), rig.jaw.weights.push_back(std::min(1.0, jaw_w[static_cast<std::size_t>(v)]));
+    if (jaw_w[static_cast<std::size_t>(v)] > 1e-3)
+      rig.jaw.vertices.push_back(static_cast<int>(v)),
+          rig.jaw.weights.push_back(std::min(1.0, jaw_w[static_cast<std::size_t>(v)]));
   rep.jaw_vertices = rig.jaw.vertices.size();
   for (int v : head.vertices) rep.mouth_bag += bag[static_cast<std::size_t>(v)];
 
-  // ---- landmarks ----  (the iBUG ids are chosen below; the lid closing angles use them at the end)
+  // ---- landmarks ----  (the iBUG ids are chosen below; the lid closing angles use them at the
+  // end)
   fm::Vertices head_T(static_cast<Eigen::Index>(head.vertices.size()), 3);
-  for (std::size_t k = 0; k < head.vertices.size(); ++k) head_T.row(static_cast<Eigen::Index>(k)) = T.row(head.vertices[k]);
+  for (std::size_t k = 0; k < head.vertices.size(); ++k)
+    head_T.row(static_cast<Eigen::Index>(k)) = T.row(head.vertices[k]);
   const detail::PointIndex head_index(head_T);
-  auto nearest_head = [&](const Eigen::Vector3d& p, double& d) {  // nearest vertex of the head component
+  auto nearest_head = [&](const Eigen::Vector3d& p,
+                          double& d) {  // nearest vertex of the head component
     double d2 = 0.0;
     const int k = head_index.nearest(p, d2);
     d = (T.row(head.vertices[static_cast<std::size_t>(k)]).transpose() - p).norm();
@@ -874,12 +991,13 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     double d = 0.0;
     rig.retarget_landmarks.push_back({l.name, nearest_head(G.row(l.vertex).transpose(), d)});
   }
-  // Lid closing angle per eye: the source's angle scaled by the target's own opening, measured about
-  // the eye's x axis (thesis §2.4.3 rotates the upper lid about the eye centre) between the mean points
-  // of the upper and the lower lid margins (lid vertices of weight ≥ 0.9), so a taller or shorter eye
-  // opening than the built-in one still closes.
+  // Lid closing angle per eye: the source's angle scaled by the target's own opening, measured
+  // about the eye's x axis (thesis §2.4.3 rotates the upper lid about the eye centre) between the
+  // mean points of the upper and the lower lid margins (lid vertices of weight ≥ 0.9), so a taller
+  // or shorter eye opening than the built-in one still closes.
   {
-    auto margin = [](const fm::Vertices& x, const std::vector<int>& ids, const std::vector<double>& w, Eigen::Vector3d& m) {
+    auto margin = [](const fm::Vertices& x, const std::vector<int>& ids,
+                     const std::vector<double>& w, Eigen::Vector3d& m) {
       m.setZero();
       int c = 0;
       for (std::size_t k = 0; k < ids.size(); ++k)
@@ -889,15 +1007,20 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     };
     auto opening = [&](const fm::Vertices& x, const fm::Eye& eye, double& angle) {
       Eigen::Vector3d up, lo;
-      if (!margin(x, eye.upper_lid, eye.upper_lid_weights, up) || !margin(x, eye.lower_lid, eye.lower_lid_weights, lo)) return false;
-      angle = std::atan2(up.y() - eye.centre.y(), up.z() - eye.centre.z()) - std::atan2(lo.y() - eye.centre.y(), lo.z() - eye.centre.z());
+      if (!margin(x, eye.upper_lid, eye.upper_lid_weights, up) ||
+          !margin(x, eye.lower_lid, eye.lower_lid_weights, lo))
+        return false;
+      angle = std::atan2(up.y() - eye.centre.y(), up.z() - eye.centre.z()) -
+              std::atan2(lo.y() - eye.centre.y(), lo.z() - eye.centre.z());
       return true;
     };
     for (int e = 0; e < 2; ++e) {
       double src = 0.0, dst = 0.0;
       auto& te = rig.eyes[static_cast<std::size_t>(e)];
-      if (opening(source.mesh.vertices, srig.eyes[static_cast<std::size_t>(e)], src) && opening(T, te, dst) && src > 1e-3 && dst > 1e-3)
-        te.close_angle = std::min(1.5, srig.eyes[static_cast<std::size_t>(e)].close_angle * dst / src);
+      if (opening(source.mesh.vertices, srig.eyes[static_cast<std::size_t>(e)], src) &&
+          opening(T, te, dst) && src > 1e-3 && dst > 1e-3)
+        te.close_angle =
+            std::min(1.5, srig.eyes[static_cast<std::size_t>(e)].close_angle * dst / src);
     }
   }
 
@@ -907,11 +1030,14 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
     for (int v : head.vertices) {
       const auto& h = hit[static_cast<std::size_t>(v)];
       if (h.face < 0) continue;
-      const std::string name = on_lip[static_cast<std::size_t>(v)] ? "lips" : bag[static_cast<std::size_t>(v)] ? "mouth_bag"
-                                                                          : fm::to_string(rig.regions[static_cast<std::size_t>(v)]);
+      const std::string name = on_lip[static_cast<std::size_t>(v)] ? "lips"
+                               : bag[static_cast<std::size_t>(v)]
+                                   ? "mouth_bag"
+                                   : fm::to_string(rig.regions[static_cast<std::size_t>(v)]);
       by[name].push_back(h.distance / al.scale);
     }
-    for (int r = 0; r < fm::kRegionCount; ++r) by.try_emplace(fm::to_string(static_cast<fm::Region>(r)));
+    for (int r = 0; r < fm::kRegionCount; ++r)
+      by.try_emplace(fm::to_string(static_cast<fm::Region>(r)));
     for (const auto& [name, d] : by) {
       RegionResidual rr;
       rr.region = name;
@@ -922,13 +1048,16 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target, cons
         rr.max = *std::max_element(d.begin(), d.end());
       }
       const double hh = rep.head_height > 0 ? rep.head_height : 1.0;
-      rr.mean_percent = 100.0 * rr.mean / hh, rr.p95_percent = 100.0 * rr.p95 / hh, rr.max_percent = 100.0 * rr.max / hh;
+      rr.mean_percent = 100.0 * rr.mean / hh, rr.p95_percent = 100.0 * rr.p95 / hh,
+      rr.max_percent = 100.0 * rr.max / hh;
       rep.residuals.push_back(rr);
     }
   }
   if (rep.mouth_bag > 0 && (upper_seeds.empty() || lower_seeds.empty()))
-    rep.warnings.push_back("a mouth bag was found but not both lips: the bag's jaw weights are one-sided");
-  if (rig.lips.bound.empty()) rep.warnings.push_back("no lip vertices found on the target: the lips will not move");
+    rep.warnings.push_back(
+        "a mouth bag was found but not both lips: the bag's jaw weights are one-sided");
+  if (rig.lips.bound.empty())
+    rep.warnings.push_back("no lip vertices found on the target: the lips will not move");
   rep.transfer_seconds = since(t0);
   (void)t_start;
   try {
