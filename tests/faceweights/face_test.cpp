@@ -151,8 +151,9 @@ std::vector<double> emotion_params(fuzzyexpr::Emotion e) {
 // (measured ≤ 1e-5: the fit is exact in ARKit space), the identifiable parameters (the muscles with
 // an ARKit shape of their own) within 0.02 (measured 0.012, happiness: the zygomatic minor's column
 // is 0.3·mouthSmile + 0.5·mouthUpperUp, the same as zygomatic major + levator labii superioris),
-// and the deformed faces within 4 mm at every vertex (measured 0.0–3.4 mm, the largest for
-// happiness for the same reason; docs/engines.md).
+// and the deformed faces within 7 mm at every vertex (measured 0.0–5.9 mm on the issue-14 face, whose
+// stronger zygomatic minor makes the happiness gap larger than the 3.4 mm of the earlier face; the
+// largest for happiness for the same reason; docs/engines.md).
 TEST(RoundTrip, SixEmotionsThroughArkit) {
   const auto& names = muscles::parameter_names();
   const Mapper m(builtin_weight_set("arkit"), names);
@@ -186,7 +187,7 @@ TEST(RoundTrip, SixEmotionsThroughArkit) {
                 report.sweeps);
     EXPECT_LT(werr, 1e-3) << fuzzyexpr::to_string(emotion);
     EXPECT_LT(perr, 0.02) << fuzzyexpr::to_string(emotion);
-    EXPECT_LT(verr, 4e-3) << fuzzyexpr::to_string(emotion);
+    EXPECT_LT(verr, 7e-3) << fuzzyexpr::to_string(emotion);
   }
 }
 
