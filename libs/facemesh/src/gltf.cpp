@@ -8,37 +8,13 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/version.hpp"
+#include "gltf_buffers.hpp"
 
 namespace emoface::facemesh {
 namespace {
 
-int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
-  auto& buffer = model.buffers[0].data;
-  while (buffer.size() % 4) buffer.push_back(0);
-  const std::size_t offset = buffer.size();
-  buffer.resize(offset + bytes);
-  std::memcpy(buffer.data() + offset, data, bytes);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = offset;
-  view.byteLength = bytes;
-  if (target) view.target = target;
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
-
-int add_accessor(tinygltf::Model& model, int view, int component, std::size_t count, int type,
-                 std::vector<double> min = {}, std::vector<double> max = {}) {
-  tinygltf::Accessor a;
-  a.bufferView = view;
-  a.componentType = component;
-  a.count = count;
-  a.type = type;
-  a.minValues = std::move(min);
-  a.maxValues = std::move(max);
-  model.accessors.push_back(a);
-  return static_cast<int>(model.accessors.size()) - 1;
-}
+using detail::add_accessor;
+using detail::add_view;
 
 int add_positions(tinygltf::Model& model, const std::vector<float>& xyz) {
   std::vector<double> lo(3, 1e300), hi(3, -1e300);

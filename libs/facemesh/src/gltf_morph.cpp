@@ -10,6 +10,7 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/version.hpp"
+#include "gltf_buffers.hpp"
 
 namespace emoface::facemesh {
 namespace {
@@ -23,30 +24,11 @@ class Builder {
     model.buffers.resize(1);
   }
   int view(const void* data, std::size_t bytes, int target) {
-    auto& buffer = model.buffers[0].data;
-    while (buffer.size() % 4) buffer.push_back(0);
-    const std::size_t offset = buffer.size();
-    buffer.resize(offset + bytes);
-    std::memcpy(buffer.data() + offset, data, bytes);
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = offset;
-    v.byteLength = bytes;
-    if (target) v.target = target;
-    model.bufferViews.push_back(v);
-    return static_cast<int>(model.bufferViews.size()) - 1;
+    return detail::add_view(model, data, bytes, target);
   }
   int accessor(int view, int component, std::size_t count, int type, std::vector<double> min = {},
                std::vector<double> max = {}) {
-    tinygltf::Accessor a;
-    a.bufferView = view;
-    a.componentType = component;
-    a.count = count;
-    a.type = type;
-    a.minValues = std::move(min);
-    a.maxValues = std::move(max);
-    model.accessors.push_back(a);
-    return static_cast<int>(model.accessors.size()) - 1;
+    return detail::add_accessor(model, view, component, count, type, std::move(min), std::move(max));
   }
   static void bounds(const std::vector<float>& xyz, std::vector<double>& lo, std::vector<double>& hi) {
     lo.assign(3, 0.0);
