@@ -227,21 +227,7 @@ int main(int argc, char** argv) {
       }
       fm::write_png((dir / "overlay.png").string(), fm::contact_sheet(overlay, 2));
       fm::write_png((dir / "error_curve.png").string(), rt::plot_series({r.ga.error_curve}));
-      // The six emotions (thesis ch. 6 rules) on the new face.
-      const emoface::muscles::FaceSolver solver(face.mesh, face.rig);
-      const fx::Engine engine;
-      std::vector<fm::Image> tiles;
-      ro.view = fm::View::Front;
-      for (std::size_t e = 0; e < fx::kEmotionCount; ++e) {
-        fx::Esv esv{};
-        esv[e] = 0.9;
-        const auto sides = fx::expand_to_sides(engine.convert(esv));
-        std::map<std::string, double> named;
-        for (std::size_t i = 0; i < sides.size(); ++i) named[std::string(fx::side_parameter_names()[i])] = sides[i];
-        const auto d = solver.deform(named);
-        tiles.push_back(fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, ro));
-      }
-      fm::write_png((dir / "emotions.png").string(), fm::contact_sheet(tiles, 3));
+      fm::write_png((dir / "emotions.png").string(), emotion_sheet(face, tile));  // thesis ch. 6 rules
     }
     std::fprintf(stderr, "retarget: E %.6g -> %.6g (%d generations, %ld evaluations, %.1f s)", r.ga.initial_error,
                  r.ga.best_error, r.ga.generations, r.ga.evaluations, r.ga.seconds);
