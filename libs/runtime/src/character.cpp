@@ -285,13 +285,19 @@ EventResult Character::Impl::parlee_event(parlee::Event e, bool log) {
                        std::string(to_string(config.source)) + ")"};
   e.time = time / config.options.step_seconds;
   parlee::StepRecord rec;
+  std::string refused;
   try {
     rec = agent->step(e);
+    refused = rec.skipped;  // an agent with on_disallowed = skip reports instead of throwing
   } catch (const std::exception& ex) {
-    // the agent may have taken its own turn before refusing: rebuild it from the event log
+    refused = ex.what();
+  }
+  if (!refused.empty()) {
+    // the agent may have taken its own turn before refusing: rebuild it from the event log, so a
+    // refused event leaves the character exactly as if it had never been pushed
     make_agent();
     for (const auto& past : parlee_log) agent->step(past);
-    return {false, std::string("event skipped: ") + ex.what()};
+    return {false, "event skipped: " + refused};
   }
   if (log) parlee_log.push_back(e);
   const double steps = (time - t_last) / config.options.step_seconds;
