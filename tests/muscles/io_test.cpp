@@ -4,6 +4,11 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/muscles/parameters.hpp"
+#include "emoface/muscles/morph_targets.hpp"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
 
 namespace emoface::muscles {
 namespace {
@@ -94,3 +99,38 @@ TEST(ParameterFrames, RejectsBadInput) {
 
 }  // namespace
 }  // namespace emoface::muscles
+
+// A transferred rig's glTF is written in the mesh file's own frame: p_rig = s·R·p_mesh + t, so positions go
+// through to_mesh, deltas by Rᵀ·δ/s, normals by Rᵀ, head rotations by Rᵀ·q·R (hand-computed values).
+TEST(MorphTargets, ExpressInMeshFrame) {
+  emoface::muscles::BakedRig rig;
+  rig.neutral.vertices.resize(1, 3);
+  rig.neutral.vertices << 3.0, 4.0, 5.0;
+  emoface::facemesh::MorphTarget t;
+  t.name = "x";
+  t.position_deltas.resize(1, 3);
+  t.position_deltas << 2.0, 0.0, 0.0;
+  t.normal_deltas.resize(1, 3);
+  t.normal_deltas << 0.0, 1.0, 0.0;
+  rig.targets.push_back(t);
+  rig.head_pivot = Eigen::Vector3d(1.0, 1.0, 1.0);
+  std::vector<emoface::facemesh::WeightAnimation> anims(1);
+  anims[0].head_rotations.push_back(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY())));
+  emoface::facemesh::Frame f;
+  f.scale = 2.0;
+  f.rotation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();  // x → y, y → −x
+  f.translation = Eigen::Vector3d(1.0, 0.0, 0.0);
+  emoface::muscles::express_in_mesh_frame(rig, anims, f);
+  // to_mesh(3,4,5) = Rᵀ·((3,4,5) − (1,0,0)) / 2 = Rᵀ·(2,4,5)/2 = (4, −2, 5)/2
+  EXPECT_NEAR((rig.neutral.vertices.row(0) - Eigen::RowVector3d(2.0, -1.0, 2.5)).norm(), 0.0, 1e-12);
+  // Rᵀ·(2,0,0)/2 = (0,−2,0)/2; Rᵀ·(0,1,0) = (1,0,0)
+  EXPECT_NEAR((rig.targets[0].position_deltas.row(0) - Eigen::RowVector3d(0.0, -1.0, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((rig.targets[0].normal_deltas.row(0) - Eigen::RowVector3d(1.0, 0.0, 0.0)).norm(), 0.0, 1e-12);
+  // a rotation about the rig's y axis is a rotation about Rᵀ·y = (1, 0, 0) in the mesh frame
+  const Eigen::AngleAxisd q(anims[0].head_rotations[0]);
+  EXPECT_NEAR(q.angle(), 0.3, 1e-12);
+  EXPECT_NEAR((q.axis() - Eigen::Vector3d(1.0, 0.0, 0.0)).norm(), 0.0, 1e-12);
+  // identity frame: nothing changes
+  emoface::muscles::express_in_mesh_frame(rig, anims, emoface::facemesh::Frame{});
+  EXPECT_NEAR((rig.neutral.vertices.row(0) - Eigen::RowVector3d(2.0, -1.0, 2.5)).norm(), 0.0, 1e-12);
+}
