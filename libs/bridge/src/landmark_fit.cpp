@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <ceres/ceres.h>
-
+#include "emoface/core/bounded_lm.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/muscles/parameters.hpp"
 
@@ -36,23 +35,27 @@ void check_side(const std::vector<double>& side) {
 
 // Residuals: surrogate landmark displacements minus target (used coordinates only), then the
 // smoothness terms √w·(p_j − anchor_j). Analytic Jacobian: the surrogate is piecewise linear per
-// parameter (slope of the knot segment containing p_j).
-class SurrogateCost : public ceres::CostFunction {
+// parameter (slope of the knot segment containing p_j). The function concept of ceres::TinySolver
+// and core::solve_bounded_lm (Jacobian column-major).
+class SurrogateCost {
  public:
+  using Scalar = double;
+  enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = Eigen::Dynamic };
+
   SurrogateCost(const std::vector<double>& knots, const std::vector<std::vector<Eigen::VectorXd>>& responses,
                 std::vector<int> coords, Eigen::VectorXd target, std::vector<double> anchor, double smooth)
       : knots_(knots), responses_(responses), coords_(std::move(coords)), target_(std::move(target)),
-        anchor_(std::move(anchor)), smooth_(smooth) {
-    set_num_residuals(static_cast<int>(coords_.size() + (smooth > 0.0 ? kParams : 0)));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(kParams));
-  }
+        anchor_(std::move(anchor)), smooth_(smooth),
+        residuals_(static_cast<int>(coords_.size() + (smooth > 0.0 ? kParams : 0))) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const double* p = parameters[0];
+  int NumResiduals() const { return residuals_; }
+  int NumParameters() const { return static_cast<int>(kParams); }
+
+  bool operator()(const double* p, double* residuals, double* J) const {
     const std::size_t nc = coords_.size();
+    const auto m = static_cast<std::size_t>(residuals_);
     for (std::size_t k = 0; k < nc; ++k) residuals[k] = -target_(static_cast<Eigen::Index>(k));
-    double* J = jacobians ? jacobians[0] : nullptr;
-    if (J) std::fill(J, J + num_residuals() * static_cast<int>(kParams), 0.0);
+    if (J) std::fill(J, J + m * kParams, 0.0);
     for (std::size_t j = 0; j < kParams; ++j) {
       const double x = std::clamp(p[j], 0.0, 1.0);
       std::size_t s = 0;  // segment [knots[s], knots[s+1]] containing x
@@ -64,13 +67,13 @@ class SurrogateCost : public ceres::CostFunction {
       for (std::size_t k = 0; k < nc; ++k) {
         const double ra = a(coords_[k]), rb = b(coords_[k]);
         residuals[k] += ra + t * (rb - ra);
-        if (J) J[k * kParams + j] = (rb - ra) * inv;
+        if (J) J[j * m + k] = (rb - ra) * inv;
       }
     }
-    if (static_cast<std::size_t>(num_residuals()) > nc)
+    if (m > nc)
       for (std::size_t j = 0; j < kParams; ++j) {
         residuals[nc + j] = smooth_ * (p[j] - anchor_[j]);
-        if (J) J[(nc + j) * kParams + j] = smooth_;
+        if (J) J[j * m + nc + j] = smooth_;
       }
     return true;
   }
@@ -82,6 +85,7 @@ class SurrogateCost : public ceres::CostFunction {
   Eigen::VectorXd target_;
   std::vector<double> anchor_;
   double smooth_;
+  int residuals_;
 };
 
 }  // namespace
@@ -157,22 +161,16 @@ FitReport LandmarkFitter::fit(const Eigen::MatrixXd& target, std::vector<double>
   }
   if (coords.empty()) throw InvalidInput("bridge: the target has no finite landmark");
   const Eigen::VectorXd t = Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
-  ceres::Problem::Options po;
-  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-  ceres::Problem problem(po);
   std::vector<double> p = side;
-  auto* cost = new SurrogateCost(knots_, responses_, coords, t, side, options_.smoothness);
-  problem.AddResidualBlock(cost, nullptr, p.data());
+  const SurrogateCost cost(knots_, responses_, coords, t, side, options_.smoothness);
   // Initial guess: the bounded minimum of the model linearised at the warm start (projected
-  // Gauss–Seidel on the normal equations), so the trust region starts near the answer.
+  // Gauss–Seidel on the normal equations), so the solver starts near the answer.
   double warm_cost = 0.0;
+  const int m = cost.NumResiduals(), n = static_cast<int>(kParams);
+  Eigen::VectorXd r(m);
+  Eigen::MatrixXd J(m, n);
   for (int outer = 0; outer < 3; ++outer) {  // re-linearised where a parameter crossed a knot
-    const int m = cost->num_residuals(), n = static_cast<int>(kParams);
-    Eigen::VectorXd r(m);
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(m, n);
-    const double* params[] = {p.data()};
-    double* jac[] = {J.data()};
-    cost->Evaluate(params, r.data(), jac);
+    cost(p.data(), r.data(), J.data());
     if (outer == 0) warm_cost = 0.5 * r.squaredNorm();
     const Eigen::MatrixXd A = J.transpose() * J;
     const Eigen::VectorXd g = J.transpose() * r;
@@ -191,26 +189,20 @@ FitReport LandmarkFitter::fit(const Eigen::MatrixXd& target, std::vector<double>
     }
     for (int j = 0; j < n; ++j) p[static_cast<std::size_t>(j)] += delta(j);
   }
-  for (int j = 0; j < static_cast<int>(kParams); ++j) {
-    problem.SetParameterLowerBound(p.data(), j, 0.0);
-    problem.SetParameterUpperBound(p.data(), j, 1.0);
-  }
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-  so.max_num_iterations = options_.max_iterations;
-  so.num_threads = 1;
-  so.trust_region_strategy_type = ceres::DOGLEG;
-  so.function_tolerance = 1e-8;
-  so.gradient_tolerance = 1e-12;
-  so.parameter_tolerance = 1e-8;
-  so.logging_type = ceres::SILENT;
-  so.minimizer_progress_to_stdout = false;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
+  // Bounded Levenberg–Marquardt on [0, 1]^35 (core::solve_bounded_lm), the tolerances used with
+  // Ceres before.
+  core::BoundedLmOptions lm;
+  lm.max_iterations = options_.max_iterations;
+  lm.function_tolerance = 1e-8;
+  lm.gradient_tolerance = 1e-12;
+  lm.parameter_tolerance = 1e-8;
+  Eigen::Map<Eigen::VectorXd> x(p.data(), n);
+  const core::BoundedLmReport summary = core::solve_bounded_lm(
+      cost, x, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Ones(n), lm);
   FitReport rep;
-  rep.converged = summary.termination_type == ceres::CONVERGENCE;
+  rep.converged = summary.converged;
   rep.message = summary.message;
-  rep.iterations = static_cast<int>(summary.iterations.size());
+  rep.iterations = summary.iterations;
   rep.initial_cost = warm_cost;
   rep.final_cost = summary.final_cost;
   for (double& v : p) v = std::clamp(v, 0.0, 1.0);

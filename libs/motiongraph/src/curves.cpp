@@ -4,10 +4,12 @@
 #include <array>
 #include <vector>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
-#include <ceres/ceres.h>
+#include <ceres/jet.h>
 
+#include "emoface/core/bounded_lm.hpp"
 #include "emoface/core/errors.hpp"
 
 namespace emoface::motiongraph {
@@ -33,16 +35,50 @@ void SigmoidFitOptions::validate() const {
 
 namespace {
 
-// Residual of one sample of one coordinate: offset + amplitude·σ(slope·(t − midpoint)) − y.
-struct SigmoidResidual {
-  SigmoidResidual(double t, double y) : t_(t), y_(y) {}
-  template <class T>
-  bool operator()(const T* shape, const T* linear, T* residual) const {
-    const T s = T(1.0) / (T(1.0) + ceres::exp(-shape[0] * (T(t_) - shape[1])));
-    residual[0] = linear[0] + linear[1] * s - T(y_);
+// Residual of one sample of one coordinate: offset + amplitude·σ(slope·(t − midpoint)) − y, for
+// doubles and for Ceres' Jets (automatic derivatives).
+template <class T>
+T sigmoid_residual(const T& slope, const T& midpoint, const T& offset, const T& amplitude, double t,
+                   double y) {
+  using std::exp;
+  const T s = T(1.0) / (T(1.0) + exp(-slope * (T(t) - midpoint)));
+  return offset + amplitude * s - T(y);
+}
+
+// All residuals (column j, time t at j·T + t) over the parameters (slope, midpoint, offset_0,
+// amplitude_0, offset_1, …) in the function concept of ceres::TinySolver / core::solve_bounded_lm.
+// Each residual depends on 4 of them, so its derivatives come from a 4-dimensional Jet and are
+// scattered into the dense Jacobian.
+struct SigmoidFunction {
+  using Scalar = double;
+  enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = Eigen::Dynamic };
+  const Eigen::MatrixXd& y;
+  int NumResiduals() const { return static_cast<int>(y.size()); }
+  int NumParameters() const { return static_cast<int>(2 + 2 * y.cols()); }
+  bool operator()(const double* x, double* residuals, double* jacobian) const {
+    using Jet = ceres::Jet<double, 4>;
+    const Eigen::Index n = y.rows(), rows = y.size();
+    if (jacobian) std::fill(jacobian, jacobian + rows * NumParameters(), 0.0);
+    for (Eigen::Index j = 0; j < y.cols(); ++j) {
+      const Eigen::Index c = 2 + 2 * j;  // offset_j, amplitude_j
+      for (Eigen::Index t = 0; t < n; ++t) {
+        const Eigen::Index i = j * n + t;
+        const double tt = static_cast<double>(t);
+        if (!jacobian) {
+          residuals[i] = sigmoid_residual(x[0], x[1], x[c], x[c + 1], tt, y(t, j));
+          continue;
+        }
+        const Jet r = sigmoid_residual(Jet(x[0], 0), Jet(x[1], 1), Jet(x[c], 2), Jet(x[c + 1], 3),
+                                       tt, y(t, j));
+        residuals[i] = r.a;
+        jacobian[0 * rows + i] = r.v[0];  // column-major
+        jacobian[1 * rows + i] = r.v[1];
+        jacobian[c * rows + i] = r.v[2];
+        jacobian[(c + 1) * rows + i] = r.v[3];
+      }
+    }
     return true;
   }
-  double t_, y_;
 };
 
 }  // namespace
@@ -260,40 +296,32 @@ SigmoidCurve fit_sigmoid(const Eigen::MatrixXd& values, const SigmoidFitOptions&
   std::vector<std::array<double, 2>> linear(m);
   for (Eigen::Index j = 0; j < m; ++j) linear[j] = {values(0, j), values(n - 1, j) - values(0, j)};
 
-  ceres::Problem problem;
-  for (Eigen::Index j = 0; j < m; ++j)
-    for (Eigen::Index t = 0; t < n; ++t)
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<SigmoidResidual, 1, 2, 2>(
-              new SigmoidResidual(static_cast<double>(t), values(t, j))),
-          nullptr, shape, linear[j].data());
-  for (int k = 0; k < 2; ++k) {
-    problem.SetParameterLowerBound(shape, k, lo[k]);
-    problem.SetParameterUpperBound(shape, k, hi[k]);
-  }
-
-  ceres::Solver::Options solver;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = options.function_tolerance;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.logging_type = ceres::SILENT;
-  solver.minimizer_progress_to_stdout = false;
-  solver.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
+  // Levenberg–Marquardt with the two shape parameters boxed (core::solve_bounded_lm, the tolerances
+  // of Ceres' Solver::Options), derivatives from Ceres' Jets.
+  Eigen::VectorXd x(2 + 2 * m), lower(x.size()), upper(x.size());
+  x[0] = shape[0];
+  x[1] = shape[1];
+  lower.setConstant(-std::numeric_limits<double>::infinity());
+  upper.setConstant(std::numeric_limits<double>::infinity());
+  for (int k = 0; k < 2; ++k) lower[k] = lo[k], upper[k] = hi[k];
+  for (Eigen::Index j = 0; j < m; ++j) x[2 + 2 * j] = linear[j][0], x[3 + 2 * j] = linear[j][1];
+  core::BoundedLmOptions lm;
+  lm.max_iterations = options.max_iterations;
+  lm.function_tolerance = options.function_tolerance;
+  const core::BoundedLmReport summary = core::solve_bounded_lm(SigmoidFunction{values}, x, lower, upper, lm);
 
   SigmoidCurve curve;
-  curve.slope = shape[0];
-  curve.midpoint = shape[1];
+  curve.slope = x[0];
+  curve.midpoint = x[1];
   curve.offset.resize(m);
   curve.amplitude.resize(m);
   for (Eigen::Index j = 0; j < m; ++j) {
-    curve.offset[j] = linear[j][0];
-    curve.amplitude[j] = linear[j][1];
+    curve.offset[j] = x[2 + 2 * j];
+    curve.amplitude[j] = x[3 + 2 * j];
   }
   if (report) {
-    report->converged = summary.termination_type == ceres::CONVERGENCE;
-    report->iterations = static_cast<int>(summary.iterations.size());
+    report->converged = summary.converged;
+    report->iterations = summary.iterations;
     report->initial_cost = summary.initial_cost;
     report->final_cost = summary.final_cost;
     report->rms = std::sqrt(2.0 * summary.final_cost / static_cast<double>(n * m));

@@ -1,7 +1,8 @@
 #pragma once
 // The bridge from landmark motion to the 3D muscle face (issue #8 §2): fits the 35 side parameters
 // (muscle contraction levels in [0, 1], masseter = jaw opening) to one frame of iBUG-68 landmark
-// displacements by bounded non-linear least squares (Ceres), warm-started from the previous frame.
+// displacements by bounded non-linear least squares (core::solve_bounded_lm), warm-started from the
+// previous frame.
 // The paper (§7) drove blendshapes directly in Maya; emoface drives its muscle model instead.
 //
 // Model used inside the solver: a separable surrogate of the muscle model, precomputed once per rig —
@@ -33,8 +34,8 @@ struct FitOptions {
 
 struct FitReport {
   bool converged = false;
-  std::string message;           ///< Ceres' termination message
-  int iterations = 0;
+  std::string message;           ///< the solver's termination message (core::BoundedLmReport)
+  int iterations = 0;            ///< LM iterations after the linearised warm start
   double initial_cost = 0.0;     ///< ½‖r‖² at the warm start
   double final_cost = 0.0;
   double rms_surrogate = 0.0;    ///< RMS landmark residual of the surrogate at the result, metres

@@ -21,7 +21,9 @@ struct SigmoidCurve {
 
 /// How fit_sigmoid solves the least-squares problem.
 enum class SigmoidSolver {
-  Ceres,               ///< Ceres Levenberg–Marquardt on all parameters (the paper's cleaning, §4)
+  Ceres,               ///< Levenberg–Marquardt on all parameters, slope and midpoint boxed
+                       ///< (core::solve_bounded_lm, derivatives by Ceres' Jets; the paper's
+                       ///< cleaning, §4). Named "ceres" for files and flags written before.
   VariableProjection,  ///< offsets/amplitudes in closed form, LM on (slope, midpoint) only: same
                        ///< minimum, ~100× faster; used for smoothing synthesized motion (§5 step 4)
 };
