@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "emoface/motiongraph/capture.hpp"
+#include "emoface/motiongraph/curves.hpp"
 #include "emoface/motiongraph/graph.hpp"
 #include "emoface/motiongraph/preprocess.hpp"
 #include "emoface/motiongraph/synthesis.hpp"
@@ -36,9 +37,36 @@ BENCHMARK(BM_GenerateSyntheticDatabase)->Unit(benchmark::kMillisecond);
 static void BM_Preprocess(benchmark::State& state) {
   mg::PreprocessOptions o;
   o.clean = state.range(0) != 0;
-  for (auto _ : state) benchmark::DoNotOptimize(mg::preprocess(database(), mg::default_layout(), o));
+  mg::PreprocessReport rep;
+  for (auto _ : state) benchmark::DoNotOptimize(mg::preprocess(database(), mg::default_layout(), o, &rep));
+  // fit quality of the cleaning, to compare solvers on the same data
+  state.counters["fits"] = static_cast<double>(rep.sigmoid_fits);
+  state.counters["not_converged"] = static_cast<double>(rep.sigmoid_not_converged);
+  state.counters["mean_fit_rms"] = rep.mean_fit_rms;
 }
 BENCHMARK(BM_Preprocess)->Arg(0)->Arg(1)->ArgName("clean")->Unit(benchmark::kMillisecond);
+
+// One cleaning fit (§4) on its own: a noisy 2-column sigmoid of 25 samples, LM on all 6 parameters
+// with slope and midpoint boxed (core::solve_bounded_lm + Ceres Jets; before: ceres::Solve), and the
+// variable-projection solver on the same data for comparison.
+static void BM_FitSigmoid(benchmark::State& state) {
+  mg::SigmoidCurve truth;
+  truth.slope = 0.6;
+  truth.midpoint = 11.0;
+  truth.offset = Eigen::Vector2d(0.0, 5.0);
+  truth.amplitude = Eigen::Vector2d(3.0, -7.0);
+  Eigen::VectorXd t(25);
+  for (int i = 0; i < 25; ++i) t[i] = i;
+  Eigen::MatrixXd y = truth.evaluate(t);
+  for (int i = 0; i < 25; ++i) y(i, 1) += (i % 3 - 1) * 0.4;
+  mg::SigmoidFitOptions o;
+  o.solver = state.range(0) ? mg::SigmoidSolver::VariableProjection : mg::SigmoidSolver::Ceres;
+  mg::SigmoidFitReport rep;
+  for (auto _ : state) benchmark::DoNotOptimize(mg::fit_sigmoid(y, o, &rep).slope);
+  state.counters["iterations"] = rep.iterations;
+  state.counters["final_cost"] = rep.final_cost;
+}
+BENCHMARK(BM_FitSigmoid)->Arg(0)->Arg(1)->ArgName("variable_projection")->Unit(benchmark::kMicrosecond);
 
 // Graph creation (§4.1) from the prepared database; argument = threshold in 1/100 px per landmark.
 static void BM_BuildGraph(benchmark::State& state) {

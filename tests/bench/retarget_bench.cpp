@@ -83,6 +83,23 @@ void BM_Fit(benchmark::State& state) {
 }
 BENCHMARK(BM_Fit)->Arg(1)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
 
+// The optional local refinement after the GA (Levenberg–Marquardt with a central-difference Jacobian,
+// ceres::TinySolver; before: ceres::Solve with DENSE_QR): a 1-generation fit with refine on; the
+// counters give the refinement's own time, iterations and error decrease (compare with BM_Fit/1).
+void BM_FitRefine(benchmark::State& state) {
+  rt::RetargetOptions o;
+  o.ga.generations = 1;
+  o.refine.enabled = true;
+  o.refine.max_iterations = static_cast<int>(state.range(0));
+  rt::RefineReport last;
+  for (auto _ : state) last = rt::retarget_face(face(), target(), o).refine;
+  state.counters["refine_s"] = last.seconds;
+  state.counters["refine_iterations"] = last.iterations;
+  state.counters["E_before"] = last.initial_error;
+  state.counters["E_after"] = last.final_error;
+}
+BENCHMARK(BM_FitRefine)->Arg(15)->Unit(benchmark::kMillisecond)->Iterations(1);
+
 // Issue 13: transfer onto a ~30k-vertex head (the warped built-in face subdivided twice and decimated,
 // so its triangulation is its own) with the default options (40 GA generations), and deformation of the
 // transferred rig vs a dense 52-target blendshape evaluation on the same mesh, same run.
