@@ -7,6 +7,7 @@
 #include <limits>
 
 #include <ceres/tiny_solver.h>
+#include <ceres/tiny_solver_autodiff_function.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
@@ -119,6 +120,43 @@ TEST(BoundedLm, UnboundedMatchesCeresTinySolver) {
   EXPECT_NEAR((x - y).norm(), 0.0, 1e-7);
   EXPECT_NEAR((y - Eigen::Vector2d(1.0, 1.0)).norm(), 0.0, 1e-7);
   EXPECT_LE(rep.final_cost, 1e-14);
+}
+
+// The same box problem with automatic derivatives: Ceres' TinySolverAutoDiffFunction (statically
+// sized, Jets) plugs into the bounded solver unchanged.
+struct RosenbrockFunctor {
+  template <class T>
+  bool operator()(const T* x, T* r) const {
+    r[0] = T(10.0) * (x[1] - x[0] * x[0]);
+    r[1] = T(1.0) - x[0];
+    return true;
+  }
+};
+
+TEST(BoundedLm, AcceptsCeresAutoDiffFunctions) {
+  const RosenbrockFunctor functor;
+  const ceres::TinySolverAutoDiffFunction<RosenbrockFunctor, 2, 2> f(functor);
+  Eigen::VectorXd x = Eigen::Vector2d(-1.2, 1.0);
+  BoundedLmOptions o;
+  o.max_iterations = 200;
+  const BoundedLmReport rep =
+      solve_bounded_lm(f, x, Eigen::Vector2d(-1.5, -1.0), Eigen::Vector2d(0.5, 2.0), o);
+  EXPECT_TRUE(rep.converged) << rep.message;
+  EXPECT_EQ(x[0], 0.5);
+  EXPECT_NEAR(x[1], 0.25, 1e-8);
+}
+
+TEST(BoundedLm, AParameterWithoutInfluenceStaysWhereItStarts) {
+  // r = (x0 − 0.3, 2(x0 − 0.3)); x1 has a zero Jacobian column (JᵀJ singular): the damping keeps the
+  // system solvable, x1 does not move, x0 reaches 0.3.
+  Eigen::MatrixXd a(2, 2);
+  a << 1, 0, 2, 0;
+  Eigen::VectorXd x = Eigen::Vector2d(0.9, 0.7);
+  const BoundedLmReport rep = solve_bounded_lm(linear(a, Eigen::Vector2d(0.3, 0.6)), x,
+                                               Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1));
+  EXPECT_TRUE(rep.converged) << rep.message;
+  EXPECT_NEAR(x[0], 0.3, 1e-6);
+  EXPECT_EQ(x[1], 0.7);
 }
 
 // Independent value: a box-constrained linear least-squares problem solved by enumerating every

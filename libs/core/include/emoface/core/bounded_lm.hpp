@@ -188,6 +188,10 @@ BoundedLmReport solve_bounded_lm(const Function& f, Eigen::Ref<Eigen::VectorXd> 
         a(u, u) += mu * std::clamp(h(i, i) * s2, 1e-6, 1e32) / s2;
       }
       const Vector sol = a.ldlt().solve(rhs);
+      if (!sol.allFinite()) {  // singular system: treated as a rejected step (more damping)
+        step.setConstant(std::numeric_limits<double>::quiet_NaN());
+        break;
+      }
       bool left = false;
       for (int u = 0; u < m; ++u) {
         const int i = free_index[u];
@@ -200,13 +204,13 @@ BoundedLmReport solve_bounded_lm(const Function& f, Eigen::Ref<Eigen::VectorXd> 
       }
       if (!left) break;
     }
-    const Vector candidate = project(xc + step);
-    step = candidate - xc;
     if (!step.allFinite()) {
       mu *= nu;
       nu *= 2.0;
       continue;
     }
+    const Vector candidate = project(xc + step);
+    step = candidate - xc;
     if (step.norm() <= options.parameter_tolerance * (xc.norm() + options.parameter_tolerance))
       return finish(BoundedLmStatus::ParameterTolerance, cost, "step below parameter tolerance");
     // 4. gain ratio
