@@ -12,7 +12,7 @@ PACKAGES=(
   build-essential cmake pkg-config git ca-certificates
   clang libclang-rt-14-dev          # EMOFACE_FUZZ (libFuzzer)
   libeigen3-dev libopenmesh-dev libflann-dev
-  libceres-dev                      # headers only (TinySolver, Jet): libceres/CHOLMOD are never linked
+  libceres-dev                      # headers only (TinySolver, Jet): libceres is never linked
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfuzzylite-dev                  # test-only oracle (GPL): never linked into a library or app

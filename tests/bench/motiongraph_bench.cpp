@@ -38,7 +38,8 @@ static void BM_Preprocess(benchmark::State& state) {
   mg::PreprocessOptions o;
   o.clean = state.range(0) != 0;
   mg::PreprocessReport rep;
-  for (auto _ : state) benchmark::DoNotOptimize(mg::preprocess(database(), mg::default_layout(), o, &rep));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(mg::preprocess(database(), mg::default_layout(), o, &rep));
   // fit quality of the cleaning, to compare solvers on the same data
   state.counters["fits"] = static_cast<double>(rep.sigmoid_fits);
   state.counters["not_converged"] = static_cast<double>(rep.sigmoid_not_converged);
@@ -47,8 +48,8 @@ static void BM_Preprocess(benchmark::State& state) {
 BENCHMARK(BM_Preprocess)->Arg(0)->Arg(1)->ArgName("clean")->Unit(benchmark::kMillisecond);
 
 // One cleaning fit (§4) on its own: a noisy 2-column sigmoid of 25 samples, LM on all 6 parameters
-// with slope and midpoint boxed (core::solve_bounded_lm + Ceres Jets; before: ceres::Solve), and the
-// variable-projection solver on the same data for comparison.
+// with slope and midpoint boxed (core::solve_bounded_lm + Ceres Jets; before: ceres::Solve), and
+// the variable-projection solver on the same data for comparison.
 static void BM_FitSigmoid(benchmark::State& state) {
   mg::SigmoidCurve truth;
   truth.slope = 0.6;
@@ -66,7 +67,11 @@ static void BM_FitSigmoid(benchmark::State& state) {
   state.counters["iterations"] = rep.iterations;
   state.counters["final_cost"] = rep.final_cost;
 }
-BENCHMARK(BM_FitSigmoid)->Arg(0)->Arg(1)->ArgName("variable_projection")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FitSigmoid)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("variable_projection")
+    ->Unit(benchmark::kMicrosecond);
 
 // Graph creation (§4.1) from the prepared database; argument = threshold in 1/100 px per landmark.
 static void BM_BuildGraph(benchmark::State& state) {

@@ -83,9 +83,10 @@ void BM_Fit(benchmark::State& state) {
 }
 BENCHMARK(BM_Fit)->Arg(1)->Arg(40)->Unit(benchmark::kMillisecond)->Iterations(1);
 
-// The optional local refinement after the GA (Levenberg–Marquardt with a central-difference Jacobian,
-// ceres::TinySolver; before: ceres::Solve with DENSE_QR): a 1-generation fit with refine on; the
-// counters give the refinement's own time, iterations and error decrease (compare with BM_Fit/1).
+// The optional local refinement after the GA (Levenberg–Marquardt with a central-difference
+// Jacobian, ceres::TinySolver; before: ceres::Solve with DENSE_QR): a 1-generation fit with refine
+// on; the counters give the refinement's own time, iterations and error decrease (compare with
+// BM_Fit/1).
 void BM_FitRefine(benchmark::State& state) {
   rt::RetargetOptions o;
   o.ga.generations = 1;

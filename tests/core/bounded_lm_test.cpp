@@ -1,13 +1,12 @@
 #include "emoface/core/bounded_lm.hpp"
 
+#include <ceres/tiny_solver.h>
+#include <ceres/tiny_solver_autodiff_function.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
 #include <limits>
-
-#include <ceres/tiny_solver.h>
-#include <ceres/tiny_solver_autodiff_function.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
@@ -22,7 +21,7 @@ struct Fn {
   using Scalar = double;
   enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = Eigen::Dynamic };
   int residuals = 0, parameters = 0;
-  // r (size residuals) and, when j is not null, the Jacobian (residuals by parameters, column-major)
+  // r (size residuals) and, when j is not null, the Jacobian (residuals by parameters, col-major)
   std::function<bool(const double*, double*, double*)> f;
   int NumResiduals() const { return residuals; }
   int NumParameters() const { return parameters; }
@@ -56,9 +55,9 @@ Fn linear(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
 }
 
 TEST(BoundedLm, QuadraticWithAnActiveBound) {
-  // f = ½[(x0 − 2)² + (x1 − x0 + 0.5)²] on [0, 1]²: the unconstrained minimum (2, 1.5) lies outside;
-  // by hand, x0 = 1 on its bound (∂f/∂x0 = −1 < 0 there: pushing outwards), then x1 = x0 − 0.5 = 0.5
-  // inside, cost ½. Clamping the unconstrained minimum would give (1, 1), cost 0.625.
+  // f = ½[(x0 − 2)² + (x1 − x0 + 0.5)²] on [0, 1]²: the unconstrained minimum (2, 1.5) lies
+  // outside; by hand, x0 = 1 on its bound (∂f/∂x0 = −1 < 0 there: pushing outwards), then
+  // x1 = x0 − 0.5 = 0.5 inside, cost ½. Clamping the unconstrained minimum gives (1, 1), cost 0.625.
   Eigen::MatrixXd a(2, 2);
   a << 1, 0, -1, 1;
   const Eigen::Vector2d b(2.0, -0.5);
@@ -89,7 +88,8 @@ TEST(BoundedLm, RosenbrockInABox) {
   // bound is rightly active. Interior stationary points: only (1, 1), outside.
   x = Eigen::Vector2d(-1.2, 0.05);
   o.function_tolerance = 1e-15;  // to check the stationarity to 1e-6
-  rep = solve_bounded_lm(rosenbrock(), x, Eigen::Vector2d(-2.0, -1.0), Eigen::Vector2d(2.0, 0.09), o);
+  rep =
+      solve_bounded_lm(rosenbrock(), x, Eigen::Vector2d(-2.0, -1.0), Eigen::Vector2d(2.0, 0.09), o);
   EXPECT_TRUE(rep.converged) << rep.message;
   EXPECT_EQ(x[1], 0.09);
   EXPECT_NEAR(400.0 * x[0] * x[0] * x[0] - 34.0 * x[0] - 2.0, 0.0, 1e-6);
@@ -105,8 +105,8 @@ TEST(BoundedLm, UnboundedMatchesCeresTinySolver) {
   BoundedLmOptions o;
   o.max_iterations = 200;
   o.function_tolerance = 1e-14;
-  const BoundedLmReport rep =
-      solve_bounded_lm(rosenbrock(), x, Eigen::Vector2d(-kInf, -kInf), Eigen::Vector2d(kInf, kInf), o);
+  const BoundedLmReport rep = solve_bounded_lm(rosenbrock(), x, Eigen::Vector2d(-kInf, -kInf),
+                                               Eigen::Vector2d(kInf, kInf), o);
   EXPECT_TRUE(rep.converged) << rep.message;
   EXPECT_NEAR(x[0], 1.0, 1e-7);
   EXPECT_NEAR(x[1], 1.0, 1e-7);
@@ -147,8 +147,8 @@ TEST(BoundedLm, AcceptsCeresAutoDiffFunctions) {
 }
 
 TEST(BoundedLm, AParameterWithoutInfluenceStaysWhereItStarts) {
-  // r = (x0 − 0.3, 2(x0 − 0.3)); x1 has a zero Jacobian column (JᵀJ singular): the damping keeps the
-  // system solvable, x1 does not move, x0 reaches 0.3.
+  // r = (x0 − 0.3, 2(x0 − 0.3)); x1 has a zero Jacobian column (JᵀJ singular): the damping keeps
+  // the system solvable, x1 does not move, x0 reaches 0.3.
   Eigen::MatrixXd a(2, 2);
   a << 1, 0, 2, 0;
   Eigen::VectorXd x = Eigen::Vector2d(0.9, 0.7);
@@ -172,7 +172,8 @@ TEST(BoundedLm, LinearBoxProblemsMatchExhaustiveFaceEnumeration) {
       for (int j = 0; j < p; ++j) a(i, j) = rng.normal();
       b[i] = 3.0 * rng.normal();
     }
-    const Eigen::VectorXd lo = Eigen::VectorXd::Constant(p, -0.5), hi = Eigen::VectorXd::Constant(p, 1.0);
+    const Eigen::VectorXd lo = Eigen::VectorXd::Constant(p, -0.5),
+                          hi = Eigen::VectorXd::Constant(p, 1.0);
     double best = kInf;
     Eigen::VectorXd best_x;
     for (int code = 0; code < 81; ++code) {
@@ -195,7 +196,8 @@ TEST(BoundedLm, LinearBoxProblemsMatchExhaustiveFaceEnumeration) {
         const Eigen::VectorXd s = af.colPivHouseholderQr().solve(rhs);
         for (std::size_t k = 0; k < free.size(); ++k) xv[free[k]] = s[static_cast<Eigen::Index>(k)];
       }
-      if ((xv.array() < lo.array() - 1e-12).any() || (xv.array() > hi.array() + 1e-12).any()) continue;
+      if ((xv.array() < lo.array() - 1e-12).any() || (xv.array() > hi.array() + 1e-12).any())
+        continue;
       const double c = 0.5 * (a * xv - b).squaredNorm();
       if (c < best) best = c, best_x = xv;
     }
@@ -230,7 +232,8 @@ TEST(BoundedLm, StartOutsideTheBoxIsProjectedAndTheResultNeverCostsMore) {
 
 TEST(BoundedLm, FailedEvaluationsAreRejectedSteps) {
   // The function fails on its 2nd and 3rd calls (the first trial steps): they count as rejected
-  // steps (more damping) and the solve still reaches the minimum; a failure at the start is reported.
+  // steps (more damping) and the solve still reaches the minimum; a failure at the start is
+  // reported.
   int calls = 0;
   Fn base = rosenbrock();
   Fn flaky{2, 2, [&](const double* x, double* r, double* j) {
@@ -284,10 +287,9 @@ TEST(BoundedLm, BadInputAndOptionsThrow) {
   invalid([](BoundedLmOptions& o) { o.initial_damping = 0.0; });
   invalid([](BoundedLmOptions& o) { o.min_relative_decrease = 1.0; });
   EXPECT_NO_THROW(BoundedLmOptions{}.validate());
-  for (BoundedLmStatus s :
-       {BoundedLmStatus::FunctionTolerance, BoundedLmStatus::GradientTolerance,
-        BoundedLmStatus::ParameterTolerance, BoundedLmStatus::MaxIterations,
-        BoundedLmStatus::DampingTooLarge, BoundedLmStatus::Failure})
+  for (BoundedLmStatus s : {BoundedLmStatus::FunctionTolerance, BoundedLmStatus::GradientTolerance,
+                            BoundedLmStatus::ParameterTolerance, BoundedLmStatus::MaxIterations,
+                            BoundedLmStatus::DampingTooLarge, BoundedLmStatus::Failure})
     EXPECT_EQ(bounded_lm_status_from_string(to_string(s)), s);
   EXPECT_THROW(bounded_lm_status_from_string("converged"), InvalidInput);
 }

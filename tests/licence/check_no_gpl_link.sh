@@ -8,17 +8,20 @@
 #    common GPL libraries (readline, GSL, FFTW, x264/x265/xvid, libpostproc, fuzzylite);
 #  - a NEEDED libceres (Debian's Ceres library links CHOLMOD; emoface uses Ceres' header-only
 #    TinySolver and Jets, cmake/EmofaceCeresHeaders.cmake);
-#  - a static archive with undefined references to those libraries' symbols (cholmod_, SuiteSparseQR,
-#    umfpack_, espeak_, …) or to the compiled Ceres library (ceres:: functions that are not inline,
-#    e.g. ceres::Solve), which would pull them in at link time.
+#  - a static archive with undefined references to those libraries' symbols (cholmod_,
+#    SuiteSparseQR, umfpack_, espeak_, …) or to the compiled Ceres library (ceres:: functions that
+#    are not inline, e.g. ceres::Solve), which would pull them in at link time.
 # Test programs and benchmarks (tests/) are not checked: fuzzylite (GPL-3.0) is a test-only oracle.
 # Usage: check_no_gpl_link.sh BUILD_DIR
 set -euo pipefail
 build=${1:?usage: check_no_gpl_link.sh BUILD_DIR}
 # shared-object names (the part before .so) of GPL libraries
-gpl_libs='libespeak-ng|libespeak|libcholmod|libspqr|libumfpack|librbio|libGPUQREngine|libSuiteSparse_GPURuntime|libreadline|libgsl|libfftw3[a-z_]*|libx264|libx265|libxvidcore|libpostproc|libfuzzylite[a-z-]*'
+gpl_libs='libespeak-ng|libespeak|libcholmod|libspqr|libumfpack|librbio|libGPUQREngine'
+gpl_libs+='|libSuiteSparse_GPURuntime|libreadline|libgsl|libfftw3[a-z_]*|libx264|libx265'
+gpl_libs+='|libxvidcore|libpostproc|libfuzzylite[a-z-]*'
 # symbol prefixes of those libraries (undefined references from a static archive)
-gpl_symbols='cholmod_|SuiteSparseQR|spqr_|umfpack_|RBio|espeak_|espeak_ng_|readline$|rl_[a-z_]+$|gsl_|fftw_|x264_|x265_|xvid_|pp_postprocess|fl::'
+gpl_symbols='cholmod_|SuiteSparseQR|spqr_|umfpack_|RBio|espeak_|espeak_ng_|readline$|rl_[a-z_]+$'
+gpl_symbols+='|gsl_|fftw_|x264_|x265_|xvid_|pp_postprocess|fl::'
 checked=0
 bad=0
 have_ldd=0

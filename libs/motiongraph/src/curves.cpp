@@ -308,7 +308,8 @@ SigmoidCurve fit_sigmoid(const Eigen::MatrixXd& values, const SigmoidFitOptions&
   core::BoundedLmOptions lm;
   lm.max_iterations = options.max_iterations;
   lm.function_tolerance = options.function_tolerance;
-  const core::BoundedLmReport summary = core::solve_bounded_lm(SigmoidFunction{values}, x, lower, upper, lm);
+  const core::BoundedLmReport summary =
+      core::solve_bounded_lm(SigmoidFunction{values}, x, lower, upper, lm);
 
   SigmoidCurve curve;
   curve.slope = x[0];

@@ -19,10 +19,10 @@
 //   Eigen::VectorXd x = start, lo = ..., hi = ...;
 //   const BoundedLmReport rep = solve_bounded_lm(function, x, lo, hi);
 //
-// Each iteration (Kanzow, Yamashita & Fukushima 2004, "Levenberg–Marquardt methods with strong local
-// convergence properties for solving nonlinear equations with convex constraints", JCAM 172: a
-// projected LM step; Bertsekas 1982, "Projected Newton methods for optimization problems with simple
-// constraints", SIAM J. Control Optim. 20: the active set):
+// Each iteration (Kanzow, Yamashita & Fukushima 2004, "Levenberg–Marquardt methods with strong
+// local convergence properties for solving nonlinear equations with convex constraints", JCAM 172:
+// a projected LM step; Bertsekas 1982, "Projected Newton methods for optimization problems with
+// simple constraints", SIAM J. Control Optim. 20: the active set):
 //  1. active set: coordinates at a bound whose gradient g = Jᵀr pushes them outwards stay fixed;
 //  2. the LM system (JᵀJ + μ·D)s = −g is solved on the free coordinates, D = Marquardt's diagonal
 //     with Ceres' Jacobi column scaling and clamping (1e-6 … 1e32 in scaled units);
@@ -35,26 +35,25 @@
 //     direction whenever the projected gradient is non-zero.
 // Stopping rules and defaults follow Ceres' Solver::Options (function, gradient, parameter
 // tolerances; max_norm(x − P(x − g)) for the gradient of a bounded problem).
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <type_traits>
 
-#include <Eigen/Dense>
-
 #include "emoface/core/errors.hpp"
 
 namespace emoface::core {
 
 struct BoundedLmOptions {
-  int max_iterations = 50;             ///< LM iterations (accepted or rejected steps), >= 1
-  double function_tolerance = 1e-6;    ///< stop when |Δcost| ≤ this·cost, [0, 1)
-  double gradient_tolerance = 1e-10;   ///< stop when max|x − P(x − g)| ≤ this, >= 0
-  double parameter_tolerance = 1e-8;   ///< stop when ‖step‖ ≤ this·(‖x‖ + this), >= 0
-  double initial_damping = 1e-4;       ///< μ₀ (1 / Ceres' initial trust-region radius), > 0
-  double min_relative_decrease = 1e-3; ///< accept a step when ρ exceeds this, [0, 1)
-  void validate() const;               ///< throws InvalidInput
+  int max_iterations = 50;              ///< LM iterations (accepted or rejected steps), >= 1
+  double function_tolerance = 1e-6;     ///< stop when |Δcost| ≤ this·cost, [0, 1)
+  double gradient_tolerance = 1e-10;    ///< stop when max|x − P(x − g)| ≤ this, >= 0
+  double parameter_tolerance = 1e-8;    ///< stop when ‖step‖ ≤ this·(‖x‖ + this), >= 0
+  double initial_damping = 1e-4;        ///< μ₀ (1 / Ceres' initial trust-region radius), > 0
+  double min_relative_decrease = 1e-3;  ///< accept a step when ρ exceeds this, [0, 1)
+  void validate() const;                ///< throws InvalidInput
 };
 
 enum class BoundedLmStatus {
@@ -62,8 +61,8 @@ enum class BoundedLmStatus {
   GradientTolerance,   ///< converged: projected gradient below gradient_tolerance
   ParameterTolerance,  ///< converged: step below parameter_tolerance
   MaxIterations,       ///< stopped at max_iterations (not converged)
-  DampingTooLarge,     ///< μ exceeded 1e32 (Ceres' minimum trust-region radius): no further decrease
-  Failure,             ///< the function failed or was not finite at the start point
+  DampingTooLarge,  ///< μ exceeded 1e32 (Ceres' minimum trust-region radius): no further decrease
+  Failure,          ///< the function failed or was not finite at the start point
 };
 std::string to_string(BoundedLmStatus status);
 /// "function_tolerance" | "gradient_tolerance" | …; throws InvalidInput otherwise.
@@ -71,14 +70,14 @@ BoundedLmStatus bounded_lm_status_from_string(const std::string& name);
 
 struct BoundedLmReport {
   BoundedLmStatus status = BoundedLmStatus::Failure;
-  bool converged = false;          ///< the tolerances were met (or damping showed no decrease left)
-  std::string message;             ///< one line, for logs
-  int iterations = 0;              ///< LM iterations (accepted + rejected)
-  int accepted = 0;                ///< accepted steps
-  int evaluations = 0;             ///< function calls (with or without Jacobian)
-  double initial_cost = 0.0;       ///< ½‖r‖² at the (projected) start
-  double final_cost = 0.0;         ///< ½‖r‖² at the returned x
-  double projected_gradient = 0.0; ///< max|x − P(x − g)| at the returned x
+  bool converged = false;     ///< the tolerances were met (or damping showed no decrease left)
+  std::string message;        ///< one line, for logs
+  int iterations = 0;         ///< LM iterations (accepted + rejected)
+  int accepted = 0;           ///< accepted steps
+  int evaluations = 0;        ///< function calls (with or without Jacobian)
+  double initial_cost = 0.0;  ///< ½‖r‖² at the (projected) start
+  double final_cost = 0.0;    ///< ½‖r‖² at the returned x
+  double projected_gradient = 0.0;  ///< max|x − P(x − g)| at the returned x
 };
 
 namespace detail {
@@ -216,11 +215,13 @@ BoundedLmReport solve_bounded_lm(const Function& f, Eigen::Ref<Eigen::VectorXd> 
     // 4. gain ratio
     const double predicted = -(g.dot(step) + 0.5 * step.dot(h * step));
     const bool ok = evaluate(candidate, r_new, nullptr);
-    const double new_cost = ok ? 0.5 * r_new.squaredNorm() : std::numeric_limits<double>::infinity();
+    const double new_cost =
+        ok ? 0.5 * r_new.squaredNorm() : std::numeric_limits<double>::infinity();
     const double change = cost - new_cost;
     const bool tiny_change = ok && std::abs(change) <= options.function_tolerance * cost;
     // A point whose Jacobian is not finite is rejected like a failed evaluation.
-    const bool accept = ok && predicted > 0.0 && change > options.min_relative_decrease * predicted &&
+    const bool accept = ok && predicted > 0.0 &&
+                        change > options.min_relative_decrease * predicted &&
                         evaluate(candidate, r_new, &jac_new);
     if (accept) {
       xc = candidate;
@@ -234,7 +235,8 @@ BoundedLmReport solve_bounded_lm(const Function& f, Eigen::Ref<Eigen::VectorXd> 
       if (tiny_change)
         return finish(BoundedLmStatus::FunctionTolerance, cost, "cost change below tolerance");
       if (rep.projected_gradient <= options.gradient_tolerance)
-        return finish(BoundedLmStatus::GradientTolerance, cost, "projected gradient below tolerance");
+        return finish(BoundedLmStatus::GradientTolerance, cost,
+                      "projected gradient below tolerance");
       const double t = 2.0 * change / predicted - 1.0;
       mu *= std::max(1.0 / 3.0, 1.0 - t * t * t);
       mu = std::max(mu, 1e-16);  // Ceres' maximum trust-region radius 1e16
