@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"obj", "ply", "off", "glb", "gltf"}));
   app.add_option("--gltf", gltf,
                  "Also write a glTF 2.0 (.gltf or .glb) for engines: named morph targets per face "
-                 "parameter and per ARKit shape, the frames as weights over time");
+                 "parameter and per ARKit shape, the frames as weights over time, eyes and jaw as "
+                 "nodes; on a rig transferred to a user's glTF, their file with our targets added");
   app.add_option("--fps", fps, "Frame rate for inputs without times")->check(CLI::Range(0.001, 1000.0));
   app.add_option("--delta-c", delta_c, "Contraction step (thesis: 0.2)")->check(CLI::Range(0.001, 1.0));
   app.add_flag("--no-wrinkles", no_wrinkles, "Disable bulges and wrinkles");
@@ -109,16 +110,8 @@ int main(int argc, char** argv) {
           break;
         }
       }
-      const emoface::faceweights::Mapper arkit(emoface::faceweights::builtin_weight_set("arkit"),
-                                               mu::parameter_names());
-      mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&arkit});
-      fm::MorphGltfOptions gopt;
-      gopt.colors = fm::material_colors(face.rig, face.mesh);
-      gopt.head_pivot = rig.head_pivot;
-      std::vector<fm::WeightAnimation> animations{mu::bake_animation(rig, times, gltf_frames)};
-      mu::express_in_mesh_frame(rig, animations, face.rig.frame);  // a user's mesh keeps its own frame
-      gopt.head_pivot = rig.head_pivot;
-      fm::write_morph_gltf(gltf, rig.neutral, rig.targets, animations, gopt);
+      // a user's glTF keeps everything of theirs; otherwise eyes and jaw are nodes (morph_targets.hpp)
+      mu::write_rig_gltf(gltf, face, solver, times, gltf_frames);
     }
     return 0;
   });
