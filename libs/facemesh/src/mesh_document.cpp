@@ -770,6 +770,22 @@ void save_gltf(const MeshDocument::Impl& doc, tinygltf::Model& model, const std:
   }
   // buffers always embedded (data URI in .gltf, the BIN chunk in .glb): the output stands alone
   for (auto& b : model.buffers) b.uri.clear();
+  // a .glb carries embedded images in its BIN chunk (a data URI inside a GLB is discouraged: the
+  // glTF-Validator's DATA_URI_GLB warning); PNG and JPEG recognised by their signature
+  if (binary) {
+    if (model.buffers.empty()) model.buffers.emplace_back();
+    for (auto& image : model.images) {
+      if (!image.uri.empty() || image.bufferView >= 0 || image.image.size() < 4) continue;
+      const auto& b = image.image;
+      std::string mime = image.mimeType;
+      if (mime.empty() && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G') mime = "image/png";
+      if (mime.empty() && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) mime = "image/jpeg";
+      if (mime.empty()) continue;  // unknown kind: stays a data URI
+      image.bufferView = detail::add_view(model, b.data(), b.size(), 0);
+      image.mimeType = mime;
+      image.image.clear();
+    }
+  }
   tinygltf::TinyGLTF writer;
   // a data-URI image goes back as the same data URI; false keeps an image's original uri
   writer.SetImageWriter([](const std::string*, const std::string*, const tinygltf::Image* image, bool, std::string* out_uri,
