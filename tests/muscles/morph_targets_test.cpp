@@ -161,6 +161,38 @@ TEST_F(SplitRigidParts, MeshFrameAndBadInput) {
   EXPECT_TRUE(anims[0].part_rotations[0][0].isApprox(r.conjugate() * q0 * r, 1e-12));
 }
 
+// The ARKit blendshape character (faceanim --blendshapes, the ARKit oracle): a shape alone at weight 1
+// is the muscle model's face for the parameters the mapper fits to that shape; linear in between.
+TEST_F(SplitRigidParts, BlendshapeCharacterPosesTheSetTargets) {
+  const faceweights::Mapper arkit(faceweights::builtin_weight_set("arkit"), parameter_names());
+  const BakedRig rig = bake_rig(*solver_, face_->mesh.faces, {&arkit});
+  const std::size_t n = arkit.target_count();
+  std::size_t jaw = n;
+  for (std::size_t t = 0; t < n; ++t)
+    if (arkit.set().targets[t].name == "jawOpen") jaw = t;
+  ASSERT_LT(jaw, n);
+  std::vector<double> set(n, 0.0);
+  set[jaw] = 1.0;
+  const auto w = set_target_weights(rig, set);
+  ASSERT_EQ(w.size(), rig.targets.size());
+  EXPECT_EQ(w[rig.parameter_target_count + jaw], 1.0);
+  EXPECT_EQ(std::count(w.begin(), w.end(), 0.0), static_cast<long>(w.size()) - 1);
+  std::vector<double> p(kParameterCount, 0.0);
+  arkit.inverse(set, p);
+  EXPECT_GT(p[parameter_index("masseter")], 0.5);  // jawOpen is the jaw's opening
+  const Deformation d = solver_->deform(p);
+  const facemesh::Vertices full = blend_targets(rig, w);
+  EXPECT_LT((full - d.vertices).cwiseAbs().maxCoeff(), 1e-12);
+  set[jaw] = 0.5;
+  const facemesh::Vertices half = blend_targets(rig, set_target_weights(rig, set));
+  EXPECT_LT((half - 0.5 * (rig.neutral.vertices + d.vertices)).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_THROW(set_target_weights(rig, std::vector<double>(n + 1, 0.0)), InvalidInput);
+  EXPECT_THROW(blend_targets(rig, std::vector<double>(3, 0.0)), InvalidInput);
+  auto nan = w;
+  nan[0] = std::nan("");
+  EXPECT_THROW(blend_targets(rig, nan), InvalidInput);
+}
+
 TEST(PartDrive, StringRoundTrip) {
   for (auto d : {PartDrive::EyeRight, PartDrive::EyeLeft, PartDrive::Jaw})
     EXPECT_EQ(part_drive_from_string(to_string(d)), d);

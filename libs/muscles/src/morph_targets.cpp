@@ -153,6 +153,27 @@ std::vector<double> target_weights(const BakedRig& rig, const std::vector<double
   return w;
 }
 
+facemesh::Vertices blend_targets(const BakedRig& rig, const std::vector<double>& weights) {
+  if (weights.size() != rig.targets.size())
+    throw InvalidInput("blend_targets: " + std::to_string(weights.size()) + " weights for " +
+                       std::to_string(rig.targets.size()) + " targets");
+  facemesh::Vertices out = rig.neutral.vertices;
+  for (std::size_t t = 0; t < weights.size(); ++t) {
+    if (!std::isfinite(weights[t])) throw InvalidInput("blend_targets: weight of '" + rig.targets[t].name + "' not finite");
+    if (weights[t] != 0.0) out += weights[t] * rig.targets[t].position_deltas;
+  }
+  return out;
+}
+
+std::vector<double> set_target_weights(const BakedRig& rig, const std::vector<double>& set_weights) {
+  if (rig.parameter_target_count + set_weights.size() != rig.targets.size())
+    throw InvalidInput("set_target_weights: " + std::to_string(set_weights.size()) + " set weights for " +
+                       std::to_string(rig.targets.size() - rig.parameter_target_count) + " set targets");
+  std::vector<double> w(rig.targets.size(), 0.0);
+  std::copy(set_weights.begin(), set_weights.end(), w.begin() + static_cast<std::ptrdiff_t>(rig.parameter_target_count));
+  return w;
+}
+
 Eigen::Quaterniond head_rotation(const std::vector<double>& values) {
   const double hy = values[parameter_index("head_yaw")], hp = values[parameter_index("head_pitch")],
                hr = values[parameter_index("head_roll")];

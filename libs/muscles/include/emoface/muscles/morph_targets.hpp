@@ -81,6 +81,16 @@ void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig,
 /// targets from the values, the weight-set targets 0.
 std::vector<double> target_weights(const BakedRig& rig, const std::vector<double>& values);
 
+/// The baked rig posed as a blendshape character, as an engine poses the glTF: neutral +
+/// Σ weights[t] · targets[t].position_deltas, `weights` one per target (rig.targets order, finite).
+/// #V by 3 (the skin's vertices after split_rigid_parts). Throws InvalidInput on a size mismatch.
+facemesh::Vertices blend_targets(const BakedRig& rig, const std::vector<double>& weights);
+
+/// All-target weights for the weight-set targets of a rig baked with exactly one set (bake_rig's
+/// `sets` = {&mapper}): parameter targets 0, then `set_weights` (the set's order, e.g. one frame of
+/// a faceweights::WeightTrack). Throws InvalidInput when the count does not fit.
+std::vector<double> set_target_weights(const BakedRig& rig, const std::vector<double>& set_weights);
+
 /// The head rotation of a parameter vector, as the muscle model applies it (solver.cpp):
 /// R = Ry(head_yaw) · Rx(−head_pitch) · Rz(head_roll) about the head pivot.
 Eigen::Quaterniond head_rotation(const std::vector<double>& values);
