@@ -34,8 +34,10 @@ int main(int argc, char** argv) {
                  "face parameters by bounded least squares (Live Link Face CSV too)")
       ->check(CLI::IsMember({"arkit", "facs"}));
   app.add_flag("--blendshapes", blendshapes,
-               "With --weights: pose the face as a blendshape character (neutral + sum of weight x the set's\n"
-               "baked targets, as an engine drives the glTF's ARKit targets) instead of fitting parameters;\n"
+               "With --weights: pose the face as a blendshape character (neutral + sum of weight x "
+               "the set's\n"
+               "baked targets, as an engine drives the glTF's ARKit targets) instead of fitting "
+               "parameters;\n"
                "frames only (--out), Live Link angle columns ignored");
   app.add_option("--out", out_dir, "Directory for frame_0000.<format> ...");
   app.add_option("--format", format,
@@ -134,7 +136,8 @@ int main(int argc, char** argv) {
           break;
         }
       }
-      // a user's glTF keeps everything of theirs; otherwise eyes and jaw are nodes (morph_targets.hpp)
+      // a user's glTF keeps everything of theirs; otherwise eyes and jaw are nodes
+      // (morph_targets.hpp)
       mu::write_rig_gltf(gltf, face, solver, times, gltf_frames);
     }
     return 0;

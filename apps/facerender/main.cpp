@@ -41,9 +41,10 @@ int main(int argc, char** argv) {
   app.add_option("--video", video, "Also encode the frames to a video (.mp4/.mov/.mkv/.gif) with the ffmpeg binary");
   app.add_option("--audio", audio, "Audio file (e.g. WAV) muxed into --video");
   app.add_option("--fps", fps, "Video frame rate")->check(CLI::Range(1, 240));
-  app.add_flag("--no-paint", no_paint,
-               "Vertex colours only, without the built-in face's surface paint (brows, hairline): the\n"
-               "colours a glTF written by faceanim --gltf carries (COLOR_0)");
+  app.add_flag(
+      "--no-paint", no_paint,
+      "Vertex colours only, without the built-in face's surface paint (brows, hairline): the\n"
+      "colours a glTF written by faceanim --gltf carries (COLOR_0)");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("facerender", [&]() {
     if (out.empty() && video.empty()) throw emoface::InvalidInput("give --out FILE.png and/or --video FILE.mp4");

@@ -2,9 +2,10 @@
 // default face's baked rig (41 + 52 targets) against copying the baked rig (its baseline: the split
 // works on a copy in write_rig_gltf), and blend_targets (52 ARKit weights) against the dense loop.
 // Muscle deformation vs a dense 35-blendshape baseline, on the default face and on a ~20k-vertex
-// midpoint-subdivided copy (thesis §2.4.1 performance; issue #3 §4). Issue #13: a rig whose lips are
-// driven through LipBinding (samples_in_mesh = false, every lip vertex bound, as a transferred rig)
-// on the ~20k and ~80k subdivisions vs a dense 52-target blendshape evaluation on the same meshes.
+// midpoint-subdivided copy (thesis §2.4.1 performance; issue #3 §4). Issue #13: a rig whose lips
+// are driven through LipBinding (samples_in_mesh = false, every lip vertex bound, as a transferred
+// rig) on the ~20k and ~80k subdivisions vs a dense 52-target blendshape evaluation on the same
+// meshes.
 //   cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DEMOFACE_BUILD_BENCH=ON
 //   cmake --build build-bench --target muscles_bench -j2
 //   build-bench/tests/bench/muscles_bench --benchmark_min_time=1s
@@ -15,8 +16,8 @@
 
 #include "emoface/facemesh/bspline.hpp"
 #include "emoface/facemesh/default_face.hpp"
-#include "emoface/faceweights/mapper.hpp"
 #include "emoface/facemesh/render.hpp"
+#include "emoface/faceweights/mapper.hpp"
 #include "emoface/muscles/morph_targets.hpp"
 #include "emoface/muscles/parameters.hpp"
 #include "emoface/muscles/solver.hpp"

@@ -1,23 +1,23 @@
 #pragma once
-// Test fixture: a user's character as a glTF 2.0 file of their own — a skinned head (two joints with
-// inverse bind matrices, JOINTS_0/WEIGHTS_0), a UV set with a texture under a named PBR material, one
-// morph target of theirs ("user_smile") and an animation of theirs (the jaw joint) — written from
-// any triangle mesh (e.g. the face under test). Used to check that our glTF writers keep everything
-// of theirs (tests/retarget/app_test.cpp, tests/gltf/make_user_gltf.cpp).
+// Test fixture: a user's character as a glTF 2.0 file of their own — a skinned head (two joints
+// with inverse bind matrices, JOINTS_0/WEIGHTS_0), a UV set with a texture under a named PBR
+// material, one morph target of theirs ("user_smile") and an animation of theirs (the jaw joint) —
+// written from any triangle mesh (e.g. the face under test). Used to check that our glTF writers
+// keep everything of theirs (tests/retarget/app_test.cpp, tests/gltf/make_user_gltf.cpp).
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
 #include <vector>
 
-#include <tiny_gltf.h>
-
 #include "emoface/facemesh/mesh.hpp"
 
 namespace emoface::testing {
 
-inline int user_gltf_accessor(tinygltf::Model& m, const void* data, std::size_t bytes, int component,
-                              int type, std::size_t count, int target = 0) {
+inline int user_gltf_accessor(tinygltf::Model& m, const void* data, std::size_t bytes,
+                              int component, int type, std::size_t count, int target = 0) {
   auto& buf = m.buffers[0].data;
   while (buf.size() % 4) buf.push_back(0);
   tinygltf::BufferView v;
@@ -80,19 +80,25 @@ inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh) {
     for (int k = 0; k < 3; ++k) idx.push_back(static_cast<std::uint32_t>(mesh.faces(f, k)));
   tinygltf::Primitive p;
   p.mode = TINYGLTF_MODE_TRIANGLES;
-  p.attributes["POSITION"] = user_gltf_accessor(m, pos.data(), pos.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+  p.attributes["POSITION"] =
+      user_gltf_accessor(m, pos.data(), pos.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                         TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
   user_gltf_bounds(m, p.attributes["POSITION"], pos);
-  p.attributes["NORMAL"] = user_gltf_accessor(m, nrm.data(), nrm.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                              TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
-  p.attributes["TEXCOORD_0"] = user_gltf_accessor(m, uv.data(), uv.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                  TINYGLTF_TYPE_VEC2, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
-  p.attributes["JOINTS_0"] = user_gltf_accessor(m, joints.data(), joints.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                                TINYGLTF_TYPE_VEC4, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
-  p.attributes["WEIGHTS_0"] = user_gltf_accessor(m, weights.data(), weights.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                 TINYGLTF_TYPE_VEC4, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
-  p.indices = user_gltf_accessor(m, idx.data(), idx.size() * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                 TINYGLTF_TYPE_SCALAR, idx.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  p.attributes["NORMAL"] =
+      user_gltf_accessor(m, nrm.data(), nrm.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                         TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+  p.attributes["TEXCOORD_0"] =
+      user_gltf_accessor(m, uv.data(), uv.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                         TINYGLTF_TYPE_VEC2, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+  p.attributes["JOINTS_0"] =
+      user_gltf_accessor(m, joints.data(), joints.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                         TINYGLTF_TYPE_VEC4, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+  p.attributes["WEIGHTS_0"] =
+      user_gltf_accessor(m, weights.data(), weights.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                         TINYGLTF_TYPE_VEC4, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+  p.indices =
+      user_gltf_accessor(m, idx.data(), idx.size() * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                         TINYGLTF_TYPE_SCALAR, idx.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   const int t = user_gltf_accessor(m, smile.data(), smile.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
                                    TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
   user_gltf_bounds(m, t, smile);
@@ -103,14 +109,19 @@ inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh) {
   head.primitives.push_back(p);
   head.weights = {0.0};
   tinygltf::Value::Object extras;
-  extras["targetNames"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(std::string("user_smile"))});
+  extras["targetNames"] =
+      tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(std::string("user_smile"))});
   head.extras = tinygltf::Value(extras);
   m.meshes.push_back(head);
   // a 1×1 PNG (skin tone) as the base colour texture
   tinygltf::Image image;
   image.name = "user_skin_texture";
   image.mimeType = "image/png";
-  image.uri = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==";
+  image.uri =
+      "data:image/"
+      "png;base64,"
+      "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJg"
+      "gg==";
   m.images.push_back(image);
   tinygltf::Texture tex;
   tex.source = 0;
@@ -133,13 +144,14 @@ inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh) {
   jaw.translation = {0.0, 0.04, 0.03};
   m.nodes = {head_node, neck, jaw};
   // inverse bind matrices (column-major): the inverse of each joint's global translation
-  const float ibm[32] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0.1f, 0, 1,
+  const float ibm[32] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0.1f,  0,      1,
                          1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0.06f, -0.03f, 1};
   tinygltf::Skin skin;
   skin.name = "user_rig";
   skin.joints = {1, 2};
   skin.skeleton = 1;
-  skin.inverseBindMatrices = user_gltf_accessor(m, ibm, sizeof ibm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, 2);
+  skin.inverseBindMatrices =
+      user_gltf_accessor(m, ibm, sizeof ibm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, 2);
   m.skins.push_back(skin);
   // their own animation: the jaw joint opens by 0.1 rad about +x over a second
   const float times[2] = {0.0f, 1.0f};
@@ -147,10 +159,12 @@ inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh) {
   tinygltf::Animation anim;
   anim.name = "user_jaw";
   tinygltf::AnimationSampler s;
-  s.input = user_gltf_accessor(m, times, sizeof times, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 2);
+  s.input = user_gltf_accessor(m, times, sizeof times, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                               TINYGLTF_TYPE_SCALAR, 2);
   m.accessors[static_cast<std::size_t>(s.input)].minValues = {0.0};
   m.accessors[static_cast<std::size_t>(s.input)].maxValues = {1.0};
-  s.output = user_gltf_accessor(m, rot, sizeof rot, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, 2);
+  s.output =
+      user_gltf_accessor(m, rot, sizeof rot, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, 2);
   s.interpolation = "LINEAR";
   anim.samplers.push_back(s);
   tinygltf::AnimationChannel c;
@@ -173,12 +187,13 @@ inline bool write_user_gltf(const std::string& path, const facemesh::Mesh& mesh)
   tinygltf::TinyGLTF w;
   const bool glb = path.size() > 4 && path.substr(path.size() - 4) == ".glb";
   // keep the image as its data URI (never decoded/re-encoded)
-  w.SetImageWriter([](const std::string*, const std::string*, const tinygltf::Image* image, bool, std::string* uri,
-                      void*) {
-    *uri = image->uri;
-    return true;
-  },
-                   nullptr);
+  w.SetImageWriter(
+      [](const std::string*, const std::string*, const tinygltf::Image* image, bool,
+         std::string* uri, void*) {
+        *uri = image->uri;
+        return true;
+      },
+      nullptr);
   return w.WriteGltfSceneToFile(&m, path, false, true, !glb, glb);
 }
 

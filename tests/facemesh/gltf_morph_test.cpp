@@ -1,12 +1,11 @@
 #include "emoface/facemesh/gltf_morph.hpp"
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-
-#include <tiny_gltf.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -98,7 +97,8 @@ TEST_F(GltfMorph, RigidPartsAsNodesWithRotationChannels) {
   eye.pivot = Eigen::Vector3d(2.0, 0.5, 0.25);
   Mesh ball = testing::tetrahedron();
   ball.vertices.rowwise() += Eigen::RowVector3d(2.0, 0.0, 0.0);
-  eye.meshes.push_back({"eyeball_r", ball, std::vector<Eigen::Vector3f>(4, Eigen::Vector3f(1, 1, 1))});
+  eye.meshes.push_back(
+      {"eyeball_r", ball, std::vector<Eigen::Vector3f>(4, Eigen::Vector3f(1, 1, 1))});
   o.parts = {eye};
   WeightAnimation a;
   a.times = {0.0, 1.0};

@@ -1,15 +1,14 @@
 #include "emoface/facemesh/mesh_document.hpp"
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <functional>
 #include <limits>
-
-#include <Eigen/Geometry>
-#include <tiny_gltf.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -469,8 +468,10 @@ std::vector<float> vec3_values(const tinygltf::Model& m, int accessor) {
   std::vector<float> out(a.count * 3, 0.0f);
   const auto& iv = m.bufferViews[static_cast<std::size_t>(a.sparse.indices.bufferView)];
   const auto& vv = m.bufferViews[static_cast<std::size_t>(a.sparse.values.bufferView)];
-  const unsigned char* ib = m.buffers[static_cast<std::size_t>(iv.buffer)].data.data() + iv.byteOffset;
-  const unsigned char* vb = m.buffers[static_cast<std::size_t>(vv.buffer)].data.data() + vv.byteOffset;
+  const unsigned char* ib =
+      m.buffers[static_cast<std::size_t>(iv.buffer)].data.data() + iv.byteOffset;
+  const unsigned char* vb =
+      m.buffers[static_cast<std::size_t>(vv.buffer)].data.data() + vv.byteOffset;
   for (int k = 0; k < a.sparse.count; ++k) {
     std::uint32_t i = 0;
     if (a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
@@ -502,7 +503,8 @@ TEST_F(MeshDocumentTest, AddsTargetsAndAnimationToAUsersCharacter) {
   a.name = "ours";
   a.times = {0.0, 2.0};
   a.weights = {{0.0, 1.0}, {1.0, 0.25}};
-  a.head_rotations = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond::Identity()};  // not written
+  a.head_rotations = {Eigen::Quaterniond::Identity(),
+                      Eigen::Quaterniond::Identity()};  // not written
   const auto report = doc.write_gltf_with_targets(path("t.glb"), {lift, blink}, {a});
   EXPECT_EQ(report.names, (std::vector<std::string>{"lift", "blink_emoface"}));
   EXPECT_EQ(report.existing_targets, 1u);
@@ -519,12 +521,14 @@ TEST_F(MeshDocumentTest, AddsTargetsAndAnimationToAUsersCharacter) {
   const auto d = vec3_values(m, head.primitives[0].targets[1].at("POSITION"));
   EXPECT_EQ(d, (std::vector<float>{0, 0, 0, 0, 0.25f, 0, 0, 0, 0, 0, 0, 0}));
   // vertex 5 of triangles() is vertex 1 of the second primitive
-  EXPECT_EQ(vec3_values(m, head.primitives[1].targets[2].at("POSITION")), (std::vector<float>{0, 0, 0, 0, 0, -0.5f, 0, 0, 0}));
+  EXPECT_EQ(vec3_values(m, head.primitives[1].targets[2].at("POSITION")),
+            (std::vector<float>{0, 0, 0, 0, 0, -0.5f, 0, 0, 0}));
   EXPECT_EQ(head.extras.Get("targetNames").Get(2).Get<std::string>(), "blink_emoface");
   EXPECT_EQ(head.weights, (std::vector<double>{0.5, 0.0, 0.0}));
   // theirs: skin, UVs, colours, material, image, nodes, the other mesh
   ASSERT_EQ(m.skins.size(), 1u);
-  EXPECT_EQ(floats(m, m.skins[0].inverseBindMatrices), floats(orig, orig.skins[0].inverseBindMatrices));
+  EXPECT_EQ(floats(m, m.skins[0].inverseBindMatrices),
+            floats(orig, orig.skins[0].inverseBindMatrices));
   EXPECT_EQ(floats(m, head.primitives[0].attributes.at("TEXCOORD_0")),
             floats(orig, orig.meshes[0].primitives[0].attributes.at("TEXCOORD_0")));
   EXPECT_EQ(m.materials[0].name, "skin");
@@ -532,7 +536,8 @@ TEST_F(MeshDocumentTest, AddsTargetsAndAnimationToAUsersCharacter) {
   ASSERT_EQ(m.nodes.size(), 3u);
   EXPECT_EQ(m.nodes[1].skin, 0);
   EXPECT_EQ(m.meshes[1].name, "hat");
-  // the animation: one weights channel on node 1 (the skinned head), 3 weights per key, theirs at 0.5
+  // the animation: one weights channel on node 1 (the skinned head), 3 weights per key, theirs at
+  // 0.5
   ASSERT_EQ(m.animations.size(), 1u);
   const auto& an = m.animations[0];
   EXPECT_EQ(an.name, "ours");
@@ -544,7 +549,8 @@ TEST_F(MeshDocumentTest, AddsTargetsAndAnimationToAUsersCharacter) {
   const auto& ov = m.bufferViews[static_cast<std::size_t>(out.bufferView)];
   float w[6];
   std::memcpy(w, m.buffers[0].data.data() + ov.byteOffset + out.byteOffset, sizeof w);
-  EXPECT_EQ(std::vector<float>(w, w + 6), (std::vector<float>{0.5f, 0.0f, 1.0f, 0.5f, 1.0f, 0.25f}));
+  EXPECT_EQ(std::vector<float>(w, w + 6),
+            (std::vector<float>{0.5f, 0.0f, 1.0f, 0.5f, 1.0f, 0.25f}));
 
   // bad inputs: nothing written
   WeightAnimation bad = a;

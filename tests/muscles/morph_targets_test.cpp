@@ -4,11 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <set>
-
-#include <Eigen/Geometry>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/facemesh/default_face.hpp"
@@ -59,9 +58,11 @@ TEST_F(SplitRigidParts, NodesReproduceTheMuscleModelAndTheSkinIsTheRest) {
   const long nv = face_->mesh.vertices.rows();
   // an eye becomes a node exactly when its eyeball is a separate piece of the mesh
   for (int e = 0; e < 2; ++e) {
-    const bool closed = face_closed(face_->mesh.faces, face_->rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices);
+    const bool closed = face_closed(face_->mesh.faces,
+                                    face_->rig.eyes[static_cast<std::size_t>(e)].eyeball_vertices);
     const auto drive = e == 0 ? PartDrive::EyeRight : PartDrive::EyeLeft;
-    const bool node = std::find(rig.part_drives.begin(), rig.part_drives.end(), drive) != rig.part_drives.end();
+    const bool node =
+        std::find(rig.part_drives.begin(), rig.part_drives.end(), drive) != rig.part_drives.end();
     EXPECT_EQ(node, closed) << "eye " << e;
   }
   ASSERT_EQ(rig.parts.size(), rig.part_drives.size());
@@ -80,15 +81,20 @@ TEST_F(SplitRigidParts, NodesReproduceTheMuscleModelAndTheSkinIsTheRest) {
     const int v = rig.skin_vertices[k];
     EXPECT_EQ(rig.neutral.vertices.row(static_cast<long>(k)), whole_->neutral.vertices.row(v));
     EXPECT_EQ(colors[k], all_colors[static_cast<std::size_t>(v)]);
-    EXPECT_EQ(rig.targets[0].position_deltas.row(static_cast<long>(k)), whole_->targets[0].position_deltas.row(v));
-    EXPECT_EQ(rig.targets.back().position_deltas.row(static_cast<long>(k)), whole_->targets.back().position_deltas.row(v));
+    EXPECT_EQ(rig.targets[0].position_deltas.row(static_cast<long>(k)),
+              whole_->targets[0].position_deltas.row(v));
+    EXPECT_EQ(rig.targets.back().position_deltas.row(static_cast<long>(k)),
+              whole_->targets.back().position_deltas.row(v));
   }
   EXPECT_LE(rig.neutral.faces.maxCoeff(), rig.neutral.vertices.rows() - 1);
   // both eyes as nodes: the gaze halves are gone and the weights follow
-  const bool both_eyes = std::count(rig.part_drives.begin(), rig.part_drives.end(), PartDrive::EyeRight) +
-                             std::count(rig.part_drives.begin(), rig.part_drives.end(), PartDrive::EyeLeft) == 2;
+  const bool both_eyes =
+      std::count(rig.part_drives.begin(), rig.part_drives.end(), PartDrive::EyeRight) +
+          std::count(rig.part_drives.begin(), rig.part_drives.end(), PartDrive::EyeLeft) ==
+      2;
   EXPECT_EQ(rig.gaze_targets, !both_eyes);
-  for (const auto& t : rig.targets) EXPECT_NE(both_eyes ? t.name.find("eye_gaze") : 0, 0u) << t.name;
+  for (const auto& t : rig.targets)
+    EXPECT_NE(both_eyes ? t.name.find("eye_gaze") : 0, 0u) << t.name;
   std::vector<double> values(kParameterCount, 0.0);
   values[parameter_index("eye_gaze_yaw")] = 0.3;
   values[parameter_index("eye_gaze_pitch")] = -0.25;
@@ -97,7 +103,8 @@ TEST_F(SplitRigidParts, NodesReproduceTheMuscleModelAndTheSkinIsTheRest) {
   values[parameter_index("frontalis_medialis_r")] = 0.7;
   EXPECT_EQ(target_weights(rig, values).size(), rig.targets.size());
   // the nodes' rotations about their pivots put every part vertex where the muscle model does
-  const auto anim = bake_animation(rig, {0.0, 1.0}, {std::vector<double>(kParameterCount, 0.0), values});
+  const auto anim =
+      bake_animation(rig, {0.0, 1.0}, {std::vector<double>(kParameterCount, 0.0), values});
   ASSERT_EQ(anim.part_rotations.size(), rig.parts.size());
   const Deformation d = solver_->deform(values);
   for (std::size_t p = 0; p < rig.parts.size(); ++p) {
@@ -156,13 +163,15 @@ TEST_F(SplitRigidParts, MeshFrameAndBadInput) {
   express_in_mesh_frame(rig, anims, frame);
   EXPECT_TRUE(rig.parts[0].pivot.isApprox(frame.to_mesh(before.parts[0].pivot), 1e-12));
   const Eigen::Vector3d x0 = before.parts[0].meshes[0].mesh.vertices.row(0).transpose();
-  EXPECT_TRUE(Eigen::Vector3d(rig.parts[0].meshes[0].mesh.vertices.row(0).transpose()).isApprox(frame.to_mesh(x0), 1e-12));
+  EXPECT_TRUE(Eigen::Vector3d(rig.parts[0].meshes[0].mesh.vertices.row(0).transpose())
+                  .isApprox(frame.to_mesh(x0), 1e-12));
   const Eigen::Quaterniond r(frame.rotation);
   EXPECT_TRUE(anims[0].part_rotations[0][0].isApprox(r.conjugate() * q0 * r, 1e-12));
 }
 
-// The ARKit blendshape character (faceanim --blendshapes, the ARKit oracle): a shape alone at weight 1
-// is the muscle model's face for the parameters the mapper fits to that shape; linear in between.
+// The ARKit blendshape character (faceanim --blendshapes, the ARKit oracle): a shape alone at
+// weight 1 is the muscle model's face for the parameters the mapper fits to that shape; linear in
+// between.
 TEST_F(SplitRigidParts, BlendshapeCharacterPosesTheSetTargets) {
   const faceweights::Mapper arkit(faceweights::builtin_weight_set("arkit"), parameter_names());
   const BakedRig rig = bake_rig(*solver_, face_->mesh.faces, {&arkit});

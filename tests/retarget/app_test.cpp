@@ -1,19 +1,18 @@
 // End-to-end: the retarget CLI writes a loadable rig, mesh, report and pictures; exit codes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <tiny_gltf.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <gtest/gtest.h>
-#include <tiny_gltf.h>
 
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/gltf.hpp"
@@ -216,20 +215,26 @@ TEST(RetargetApp, FaceanimAnimatesTheTransferredMesh) {
   EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-6);
 }
 // A user's own glTF (skin with inverse bind matrices, UVs + texture under their material, a target
-// and an animation of theirs), rigged by the transfer and animated by faceanim --gltf: everything of
-// theirs comes back unchanged, our targets (parameters + the 52 ARKit shapes) and our weights
-// animation are added to their mesh (issue 15). The validator checks the same file in gltf.validator.
+// and an animation of theirs), rigged by the transfer and animated by faceanim --gltf: everything
+// of theirs comes back unchanged, our targets (parameters + the 52 ARKit shapes) and our weights
+// animation are added to their mesh (issue 15). The validator checks the same file in
+// gltf.validator.
 TEST(RetargetApp, FaceanimGltfKeepsTheUsersCharacter) {
   TempDir t;
   const auto face = emoface::facemesh::make_default_face();
   const auto in = t.path / "user.gltf";
   ASSERT_TRUE(emoface::testing::write_user_gltf(in.string(), face.mesh));
   const auto out = t.path / "out";
-  ASSERT_EQ(run("--target " + in.string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
-  std::ofstream(t.path / "p.csv") << "time,masseter,zygomatic_major_l,zygomatic_major_r\n0,0,0,0\n0.5,0.6,1,1\n";
+  ASSERT_EQ(run("--target " + in.string() + " --out " + out.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            0);
+  std::ofstream(t.path / "p.csv")
+      << "time,masseter,zygomatic_major_l,zygomatic_major_r\n0,0,0,0\n0.5,0.6,1,1\n";
   const auto glb = t.path / "anim.glb";
-  const int status = std::system((std::string(FACEANIM_EXE) + " --rig " + (out / "face.rig").string() + " --params " +
-                                  (t.path / "p.csv").string() + " --gltf " + glb.string() + " 2>/dev/null").c_str());
+  const int status = std::system(
+      (std::string(FACEANIM_EXE) + " --rig " + (out / "face.rig").string() + " --params " +
+       (t.path / "p.csv").string() + " --gltf " + glb.string() + " 2>/dev/null")
+          .c_str());
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   tinygltf::Model mine, theirs;
   tinygltf::TinyGLTF loader;
@@ -239,9 +244,11 @@ TEST(RetargetApp, FaceanimGltfKeepsTheUsersCharacter) {
   auto bytes = [](const tinygltf::Model& m, int accessor) {
     const auto& a = m.accessors[static_cast<std::size_t>(accessor)];
     const auto& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
-    const auto* b = m.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
-    const std::size_t size = a.count * static_cast<std::size_t>(tinygltf::GetNumComponentsInType(a.type)) *
-                             static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(a.componentType));
+    const auto* b =
+        m.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
+    const std::size_t size =
+        a.count * static_cast<std::size_t>(tinygltf::GetNumComponentsInType(a.type)) *
+        static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(a.componentType));
     return std::vector<unsigned char>(b, b + size);
   };
   // their nodes, skin, material, texture, image, animation
@@ -254,11 +261,13 @@ TEST(RetargetApp, FaceanimGltfKeepsTheUsersCharacter) {
   ASSERT_EQ(mine.skins.size(), 1u);
   EXPECT_EQ(mine.skins[0].joints, theirs.skins[0].joints);
   EXPECT_EQ(mine.skins[0].skeleton, 1);
-  EXPECT_EQ(bytes(mine, mine.skins[0].inverseBindMatrices), bytes(theirs, theirs.skins[0].inverseBindMatrices));
+  EXPECT_EQ(bytes(mine, mine.skins[0].inverseBindMatrices),
+            bytes(theirs, theirs.skins[0].inverseBindMatrices));
   EXPECT_EQ(mine.nodes[0].skin, 0);
   ASSERT_EQ(mine.materials.size(), 1u);
   EXPECT_EQ(mine.materials[0].name, "user_skin");
-  EXPECT_EQ(mine.materials[0].pbrMetallicRoughness.baseColorFactor, theirs.materials[0].pbrMetallicRoughness.baseColorFactor);
+  EXPECT_EQ(mine.materials[0].pbrMetallicRoughness.baseColorFactor,
+            theirs.materials[0].pbrMetallicRoughness.baseColorFactor);
   EXPECT_EQ(mine.materials[0].pbrMetallicRoughness.baseColorTexture.index, 0);
   ASSERT_EQ(mine.images.size(), 1u);
   ASSERT_EQ(mine.animations.size(), 2u);  // theirs, then ours
@@ -278,11 +287,15 @@ TEST(RetargetApp, FaceanimGltfKeepsTheUsersCharacter) {
   ASSERT_EQ(names.ArrayLen(), p.targets.size());
   EXPECT_EQ(names.Get(0).Get<std::string>(), "user_smile");
   std::vector<std::string> ours;
-  for (std::size_t i = 1; i < names.ArrayLen(); ++i) ours.push_back(names.Get(static_cast<int>(i)).Get<std::string>());
-  for (const char* n : {"zygomatic_major_l", "masseter", "jawOpen", "mouthSmile_L", "eyeBlink_R", "tongueOut"})
+  for (std::size_t i = 1; i < names.ArrayLen(); ++i)
+    ours.push_back(names.Get(static_cast<int>(i)).Get<std::string>());
+  for (const char* n :
+       {"zygomatic_major_l", "masseter", "jawOpen", "mouthSmile_L", "eyeBlink_R", "tongueOut"})
     EXPECT_NE(std::find(ours.begin(), ours.end(), n), ours.end()) << n;
   // our zygomatic target moves the left mouth corner (+x) up and out, by millimetres
-  const auto zyg = static_cast<std::size_t>(std::find(ours.begin(), ours.end(), "zygomatic_major_l") - ours.begin()) + 1;
+  const auto zyg = static_cast<std::size_t>(
+                       std::find(ours.begin(), ours.end(), "zygomatic_major_l") - ours.begin()) +
+                   1;
   const auto& acc = mine.accessors[static_cast<std::size_t>(p.targets[zyg].at("POSITION"))];
   EXPECT_GT(acc.maxValues[1], 0.001);
   EXPECT_LT(acc.maxValues[1], 0.03);
@@ -296,8 +309,9 @@ TEST(RetargetApp, FaceanimGltfKeepsTheUsersCharacter) {
   std::vector<float> weights(w.count);
   std::memcpy(weights.data(), bytes(mine, an.samplers[0].output).data(), w.count * 4);
   const std::size_t nt = p.targets.size();
-  EXPECT_EQ(weights[nt + 0], 0.0f);                                         // user_smile
-  EXPECT_FLOAT_EQ(weights[nt + zyg], 1.0f);                                 // zygomatic_major_l at t = 0.5
-  EXPECT_EQ(*std::max_element(weights.begin(), weights.begin() + static_cast<long>(nt)), 0.0f);  // t = 0: neutral
+  EXPECT_EQ(weights[nt + 0], 0.0f);          // user_smile
+  EXPECT_FLOAT_EQ(weights[nt + zyg], 1.0f);  // zygomatic_major_l at t = 0.5
+  EXPECT_EQ(*std::max_element(weights.begin(), weights.begin() + static_cast<long>(nt)),
+            0.0f);  // t = 0: neutral
 }
 #endif

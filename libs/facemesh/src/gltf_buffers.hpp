@@ -1,14 +1,14 @@
 #pragma once
 // Private: appending buffer views and accessors to a tinygltf model (one buffer, 4-byte aligned
 // views); shared by the glTF writers (gltf.cpp, gltf_morph.cpp).
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <vector>
-
-#include <tiny_gltf.h>
 
 namespace emoface::facemesh::detail {
 
@@ -41,7 +41,8 @@ inline int add_accessor(tinygltf::Model& model, int view, int component, std::si
 }
 
 /// Per-component bounds of packed xyz floats (lo/hi get 3 values).
-inline void vec3_bounds(const std::vector<float>& xyz, std::vector<double>& lo, std::vector<double>& hi) {
+inline void vec3_bounds(const std::vector<float>& xyz, std::vector<double>& lo,
+                        std::vector<double>& hi) {
   lo.assign(3, 1e300);
   hi.assign(3, -1e300);
   for (std::size_t i = 0; i < xyz.size(); ++i) {
@@ -56,8 +57,8 @@ inline int add_vec3(tinygltf::Model& model, const std::vector<float>& xyz, bool 
   std::vector<double> lo, hi;
   if (with_bounds) vec3_bounds(xyz, lo, hi);
   const int v = add_view(model, xyz.data(), xyz.size() * sizeof(float), target);
-  return add_accessor(model, v, TINYGLTF_COMPONENT_TYPE_FLOAT, xyz.size() / 3, TINYGLTF_TYPE_VEC3, lo,
-                      hi);
+  return add_accessor(model, v, TINYGLTF_COMPONENT_TYPE_FLOAT, xyz.size() / 3, TINYGLTF_TYPE_VEC3,
+                      lo, hi);
 }
 
 /// A morph-target delta (packed xyz floats, one row per vertex): a sparse accessor (indices and
@@ -99,7 +100,8 @@ inline int add_delta(tinygltf::Model& model, const std::vector<float>& xyz, doub
     iv = add_view(model, idx.data(), idx.size() * 4, 0);
   }
   const int vv = add_view(model, vals.data(), vals.size() * 4, 0);
-  const int a = add_accessor(model, -1, TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3, lo, hi);
+  const int a =
+      add_accessor(model, -1, TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3, lo, hi);
   auto& acc = model.accessors[static_cast<std::size_t>(a)];
   acc.sparse.isSparse = true;
   acc.sparse.count = static_cast<int>(idx.size());

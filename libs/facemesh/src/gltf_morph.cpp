@@ -83,30 +83,40 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
   std::set<std::string> node_names{"head", options.name};
   for (const auto& part : options.parts) {
     if (part.name.empty() || !node_names.insert(part.name).second)
-      throw InvalidInput("write_morph_gltf: part node names must be unique and not 'head' or the mesh name ('" + part.name + "')");
-    if (!part.pivot.allFinite()) throw InvalidInput("write_morph_gltf: part '" + part.name + "': pivot not finite");
-    if (part.meshes.empty()) throw InvalidInput("write_morph_gltf: part '" + part.name + "' has no mesh");
+      throw InvalidInput(
+          "write_morph_gltf: part node names must be unique and not 'head' or the mesh name ('" +
+          part.name + "')");
+    if (!part.pivot.allFinite())
+      throw InvalidInput("write_morph_gltf: part '" + part.name + "': pivot not finite");
+    if (part.meshes.empty())
+      throw InvalidInput("write_morph_gltf: part '" + part.name + "' has no mesh");
     for (const auto& pm : part.meshes) {
       const std::string who = "write_morph_gltf: part mesh '" + pm.name + "'";
-      if (pm.name.empty() || !node_names.insert(pm.name).second) throw InvalidInput(who + ": names must be unique and non-empty");
+      if (pm.name.empty() || !node_names.insert(pm.name).second)
+        throw InvalidInput(who + ": names must be unique and non-empty");
       const long n = pm.mesh.vertices.rows();
       if (n == 0 || pm.mesh.faces.rows() == 0) throw InvalidInput(who + ": empty mesh");
       if (!pm.mesh.vertices.allFinite()) throw InvalidInput(who + ": vertices not finite");
-      if (pm.mesh.faces.size() > 0 && (pm.mesh.faces.minCoeff() < 0 || pm.mesh.faces.maxCoeff() >= n))
+      if (pm.mesh.faces.size() > 0 &&
+          (pm.mesh.faces.minCoeff() < 0 || pm.mesh.faces.maxCoeff() >= n))
         throw InvalidInput(who + ": face index out of range");
-      if (!pm.colors.empty() && pm.colors.size() != static_cast<std::size_t>(n)) throw InvalidInput(who + ": one colour per vertex");
+      if (!pm.colors.empty() && pm.colors.size() != static_cast<std::size_t>(n))
+        throw InvalidInput(who + ": one colour per vertex");
     }
   }
   for (const auto& a : animations) {
     if (!a.part_rotations.empty()) {
       if (a.part_rotations.size() != options.parts.size())
-        throw InvalidInput("write_morph_gltf: animation '" + a.name + "': one rotation list per part");
+        throw InvalidInput("write_morph_gltf: animation '" + a.name +
+                           "': one rotation list per part");
       for (const auto& r : a.part_rotations) {
         if (!r.empty() && r.size() != a.times.size())
-          throw InvalidInput("write_morph_gltf: animation '" + a.name + "': a part needs one rotation per key");
+          throw InvalidInput("write_morph_gltf: animation '" + a.name +
+                             "': a part needs one rotation per key");
         for (const auto& q : r) {
           if (!q.coeffs().allFinite() || q.norm() < 1e-12)
-            throw InvalidInput("write_morph_gltf: animation '" + a.name + "': part rotation not a finite rotation");
+            throw InvalidInput("write_morph_gltf: animation '" + a.name +
+                               "': part rotation not a finite rotation");
         }
       }
     }
@@ -208,7 +218,8 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
       local.rowwise() -= part.pivot.transpose();
       pp.attributes["POSITION"] = b.vec3(to_floats(local), true);
       if (options.normals)
-        pp.attributes["NORMAL"] = b.vec3(to_floats(vertex_normals(pm.mesh.vertices, pm.mesh.faces)), false);
+        pp.attributes["NORMAL"] =
+            b.vec3(to_floats(vertex_normals(pm.mesh.vertices, pm.mesh.faces)), false);
       if (!pm.colors.empty()) {
         std::vector<float> rgb;
         for (const auto& c : pm.colors) {
@@ -221,7 +232,8 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
         for (int k = 0; k < 3; ++k) pidx.push_back(static_cast<std::uint32_t>(pm.mesh.faces(f, k)));
       }
       const int piv = b.view(pidx.data(), pidx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-      pp.indices = b.accessor(piv, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, pidx.size(), TINYGLTF_TYPE_SCALAR);
+      pp.indices =
+          b.accessor(piv, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, pidx.size(), TINYGLTF_TYPE_SCALAR);
       pp.material = 0;
       tinygltf::Mesh m;
       m.name = pm.name;
@@ -230,7 +242,8 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
       tinygltf::Node mn;
       mn.name = pm.name;
       mn.mesh = static_cast<int>(b.model.meshes.size()) - 1;
-      b.model.nodes[static_cast<std::size_t>(pi)].children.push_back(static_cast<int>(b.model.nodes.size()));
+      b.model.nodes[static_cast<std::size_t>(pi)].children.push_back(
+          static_cast<int>(b.model.nodes.size()));
       b.model.nodes.push_back(mn);
     }
   }
@@ -295,7 +308,8 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
       const int qv = b.view(q.data(), q.size() * 4, 0);
       tinygltf::AnimationSampler s;
       s.input = ta;
-      s.output = b.accessor(qv, TINYGLTF_COMPONENT_TYPE_FLOAT, a.part_rotations[p].size(), TINYGLTF_TYPE_VEC4);
+      s.output = b.accessor(qv, TINYGLTF_COMPONENT_TYPE_FLOAT, a.part_rotations[p].size(),
+                            TINYGLTF_TYPE_VEC4);
       s.interpolation = "LINEAR";
       anim.samplers.push_back(s);
       tinygltf::AnimationChannel c;

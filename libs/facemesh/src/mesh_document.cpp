@@ -2,6 +2,9 @@
 // glTF 2.0 through tinygltf (positions and normals rewritten in place), PLY/OFF through mesh_io.
 #include "emoface/facemesh/mesh_document.hpp"
 
+#include <tiny_gltf.h>
+
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -14,9 +17,6 @@
 #include <string_view>
 #include <tuple>
 #include <unordered_map>
-
-#include <Eigen/Geometry>
-#include <tiny_gltf.h>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -778,7 +778,8 @@ void save_gltf(const MeshDocument::Impl& doc, tinygltf::Model& model, const std:
       if (!image.uri.empty() || image.bufferView >= 0 || image.image.size() < 4) continue;
       const auto& b = image.image;
       std::string mime = image.mimeType;
-      if (mime.empty() && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G') mime = "image/png";
+      if (mime.empty() && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G')
+        mime = "image/png";
       if (mime.empty() && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) mime = "image/jpeg";
       if (mime.empty()) continue;  // unknown kind: stays a data URI
       image.bufferView = detail::add_view(model, b.data(), b.size(), 0);
@@ -849,7 +850,8 @@ void DocumentTargetsOptions::validate() const {
 
 void MeshDocument::write_gltf_with_targets(const std::string& path, const std::vector<std::string>& names,
                                            const std::vector<Vertices>& deltas) const {
-  if (names.size() != deltas.size()) throw InvalidInput("write_gltf_with_targets: one name per target needed");
+  if (names.size() != deltas.size())
+    throw InvalidInput("write_gltf_with_targets: one name per target needed");
   std::vector<MorphTarget> targets;
   for (std::size_t t = 0; t < names.size(); ++t) targets.push_back({names[t], deltas[t], {}});
   DocumentTargetsOptions options;
@@ -862,32 +864,36 @@ namespace {
 std::vector<float> packed(const Vertices& v, int first, int count) {
   std::vector<float> out(static_cast<std::size_t>(count) * 3);
   for (int i = 0; i < count; ++i) {
-    for (int k = 0; k < 3; ++k) out[static_cast<std::size_t>(3 * i + k)] = static_cast<float>(v(first + i, k));
+    for (int k = 0; k < 3; ++k)
+      out[static_cast<std::size_t>(3 * i + k)] = static_cast<float>(v(first + i, k));
   }
   return out;
 }
 
 void check_animation(const WeightAnimation& a, std::size_t targets) {
   const std::string who = "write_gltf_with_targets: animation '" + a.name + "'";
-  if (a.times.empty() || a.weights.size() != a.times.size()) throw InvalidInput(who + " needs one weight vector per key");
+  if (a.times.empty() || a.weights.size() != a.times.size())
+    throw InvalidInput(who + " needs one weight vector per key");
   for (std::size_t i = 0; i < a.times.size(); ++i) {
     if (!std::isfinite(a.times[i]) || a.times[i] < 0.0 || (i > 0 && !(a.times[i] > a.times[i - 1])))
-      throw InvalidInput(who + ": times must be finite, >= 0 and increasing (key " + std::to_string(i) + ")");
+      throw InvalidInput(who + ": times must be finite, >= 0 and increasing (key " +
+                         std::to_string(i) + ")");
     if (a.weights[i].size() != targets)
-      throw InvalidInput(who + ": key " + std::to_string(i) + " has " + std::to_string(a.weights[i].size()) +
-                         " weights for " + std::to_string(targets) + " added targets");
+      throw InvalidInput(who + ": key " + std::to_string(i) + " has " +
+                         std::to_string(a.weights[i].size()) + " weights for " +
+                         std::to_string(targets) + " added targets");
     for (double w : a.weights[i]) {
-      if (!std::isfinite(w)) throw InvalidInput(who + ": key " + std::to_string(i) + ": weight not finite");
+      if (!std::isfinite(w))
+        throw InvalidInput(who + ": key " + std::to_string(i) + ": weight not finite");
     }
   }
 }
 
 }  // namespace
 
-DocumentTargetsReport MeshDocument::write_gltf_with_targets(const std::string& path,
-                                                            const std::vector<MorphTarget>& targets,
-                                                            const std::vector<WeightAnimation>& animations,
-                                                            const DocumentTargetsOptions& options) const {
+DocumentTargetsReport MeshDocument::write_gltf_with_targets(
+    const std::string& path, const std::vector<MorphTarget>& targets,
+    const std::vector<WeightAnimation>& animations, const DocumentTargetsOptions& options) const {
   const Impl& doc = *impl_;
   options.validate();
   if (doc.format != MeshFormat::Gltf && doc.format != MeshFormat::Glb) {
@@ -896,7 +902,8 @@ DocumentTargetsReport MeshDocument::write_gltf_with_targets(const std::string& p
   for (const auto& t : targets) {
     if (t.name.empty()) throw InvalidInput("write_gltf_with_targets: empty target name");
     check_positions(doc, t.position_deltas, "write_gltf_with_targets");
-    if (t.normal_deltas.rows() != 0) check_positions(doc, t.normal_deltas, "write_gltf_with_targets (normals)");
+    if (t.normal_deltas.rows() != 0)
+      check_positions(doc, t.normal_deltas, "write_gltf_with_targets (normals)");
   }
   for (const auto& a : animations) check_animation(a, targets.size());
   tinygltf::Model model = doc.model;
@@ -906,8 +913,9 @@ DocumentTargetsReport MeshDocument::write_gltf_with_targets(const std::string& p
   report.existing_targets = existing;
   if (model.buffers.empty()) model.buffers.emplace_back();
   // extras.targetNames: existing names (or placeholders for unnamed targets), then the new ones
-  tinygltf::Value::Object extras =
-      mesh.extras.IsObject() ? mesh.extras.Get<tinygltf::Value::Object>() : tinygltf::Value::Object();
+  tinygltf::Value::Object extras = mesh.extras.IsObject()
+                                       ? mesh.extras.Get<tinygltf::Value::Object>()
+                                       : tinygltf::Value::Object();
   tinygltf::Value::Array target_names;
   if (extras.count("targetNames") && extras["targetNames"].IsArray())
     target_names = extras["targetNames"].Get<tinygltf::Value::Array>();
@@ -922,7 +930,8 @@ DocumentTargetsReport MeshDocument::write_gltf_with_targets(const std::string& p
     std::string name = t.name;
     if (used.count(name)) {
       name = t.name + options.clash_suffix;
-      for (int k = 2; used.count(name); ++k) name = t.name + options.clash_suffix + std::to_string(k);
+      for (int k = 2; used.count(name); ++k)
+        name = t.name + options.clash_suffix + std::to_string(k);
     }
     used.insert(name);
     report.names.push_back(name);
@@ -936,12 +945,14 @@ DocumentTargetsReport MeshDocument::write_gltf_with_targets(const std::string& p
     for (const auto& t : targets) {
       std::map<std::string, int> attrs;
       bool sparse = false;
-      attrs["POSITION"] = detail::add_delta(model, packed(t.position_deltas, prim.vertex_offset, prim.vertex_count),
-                                            options.sparse_epsilon, true, options.sparse, sparse);
+      attrs["POSITION"] =
+          detail::add_delta(model, packed(t.position_deltas, prim.vertex_offset, prim.vertex_count),
+                            options.sparse_epsilon, true, options.sparse, sparse);
       ++(sparse ? report.sparse_accessors : report.dense_accessors);
       if (normals && t.normal_deltas.rows() != 0) {
-        attrs["NORMAL"] = detail::add_delta(model, packed(t.normal_deltas, prim.vertex_offset, prim.vertex_count),
-                                            options.sparse_epsilon, false, options.sparse, sparse);
+        attrs["NORMAL"] =
+            detail::add_delta(model, packed(t.normal_deltas, prim.vertex_offset, prim.vertex_count),
+                              options.sparse_epsilon, false, options.sparse, sparse);
         ++(sparse ? report.sparse_accessors : report.dense_accessors);
       }
       p.targets.push_back(attrs);
@@ -958,15 +969,17 @@ DocumentTargetsReport MeshDocument::write_gltf_with_targets(const std::string& p
     if (model.nodes[n].mesh == 0) nodes.push_back(static_cast<int>(n));
   }
   if (!animations.empty() && nodes.empty())
-    throw InvalidInput("write_gltf_with_targets: '" + doc.path + "': no node holds the first mesh, nothing to animate");
+    throw InvalidInput("write_gltf_with_targets: '" + doc.path +
+                       "': no node holds the first mesh, nothing to animate");
   report.animated_nodes = animations.empty() ? 0 : nodes.size();
   for (const auto& a : animations) {
     tinygltf::Animation anim;
     anim.name = a.name;
     std::vector<float> t(a.times.begin(), a.times.end());
     const int tv = detail::add_view(model, t.data(), t.size() * 4, 0);
-    const int ta = detail::add_accessor(model, tv, TINYGLTF_COMPONENT_TYPE_FLOAT, t.size(), TINYGLTF_TYPE_SCALAR,
-                                        {static_cast<double>(t.front())}, {static_cast<double>(t.back())});
+    const int ta = detail::add_accessor(model, tv, TINYGLTF_COMPONENT_TYPE_FLOAT, t.size(),
+                                        TINYGLTF_TYPE_SCALAR, {static_cast<double>(t.front())},
+                                        {static_cast<double>(t.back())});
     std::vector<float> w;
     w.reserve(a.times.size() * (existing + targets.size()));
     for (const auto& key : a.weights) {
@@ -976,7 +989,8 @@ DocumentTargetsReport MeshDocument::write_gltf_with_targets(const std::string& p
     const int wv = detail::add_view(model, w.data(), w.size() * 4, 0);
     tinygltf::AnimationSampler s;
     s.input = ta;
-    s.output = detail::add_accessor(model, wv, TINYGLTF_COMPONENT_TYPE_FLOAT, w.size(), TINYGLTF_TYPE_SCALAR);
+    s.output = detail::add_accessor(model, wv, TINYGLTF_COMPONENT_TYPE_FLOAT, w.size(),
+                                    TINYGLTF_TYPE_SCALAR);
     s.interpolation = "LINEAR";
     anim.samplers.push_back(s);
     for (int node : nodes) {

@@ -26,7 +26,8 @@ facemesh::MorphTarget delta_target(const std::string& name, const facemesh::Vert
 
 int find_root(std::vector<int>& parent, int v) {
   while (parent[static_cast<std::size_t>(v)] != v) {
-    parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+    parent[static_cast<std::size_t>(v)] =
+        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
     v = parent[static_cast<std::size_t>(v)];
   }
   return v;
@@ -63,9 +64,12 @@ Eigen::Vector3d rotated_x(const Eigen::Vector3d& p, const Eigen::Vector3d& pivot
 
 std::string to_string(PartDrive drive) {
   switch (drive) {
-    case PartDrive::EyeRight: return "eye_right";
-    case PartDrive::EyeLeft: return "eye_left";
-    case PartDrive::Jaw: return "jaw";
+    case PartDrive::EyeRight:
+      return "eye_right";
+    case PartDrive::EyeLeft:
+      return "eye_left";
+    case PartDrive::Jaw:
+      return "jaw";
   }
   return "jaw";
 }
@@ -90,7 +94,8 @@ BakedRig bake_rig(const FaceSolver& solver, const facemesh::Faces& faces,
   rig.head_pivot = r.head_pivot;
   rig.gaze_yaw_limit = r.eyes[0].yaw_limit;
   rig.gaze_pitch_limit = r.eyes[0].pitch_limit;
-  for (std::size_t e = 0; e < 2; ++e) rig.eye_limits[e] = {r.eyes[e].yaw_limit, r.eyes[e].pitch_limit};
+  for (std::size_t e = 0; e < 2; ++e)
+    rig.eye_limits[e] = {r.eyes[e].yaw_limit, r.eyes[e].pitch_limit};
   rig.jaw_max_angle = r.jaw.max_angle;
   std::vector<double> zero(kParameterCount, 0.0);
   const Deformation d0 = solver.deform(zero);
@@ -159,18 +164,22 @@ facemesh::Vertices blend_targets(const BakedRig& rig, const std::vector<double>&
                        std::to_string(rig.targets.size()) + " targets");
   facemesh::Vertices out = rig.neutral.vertices;
   for (std::size_t t = 0; t < weights.size(); ++t) {
-    if (!std::isfinite(weights[t])) throw InvalidInput("blend_targets: weight of '" + rig.targets[t].name + "' not finite");
+    if (!std::isfinite(weights[t]))
+      throw InvalidInput("blend_targets: weight of '" + rig.targets[t].name + "' not finite");
     if (weights[t] != 0.0) out += weights[t] * rig.targets[t].position_deltas;
   }
   return out;
 }
 
-std::vector<double> set_target_weights(const BakedRig& rig, const std::vector<double>& set_weights) {
+std::vector<double> set_target_weights(const BakedRig& rig,
+                                       const std::vector<double>& set_weights) {
   if (rig.parameter_target_count + set_weights.size() != rig.targets.size())
-    throw InvalidInput("set_target_weights: " + std::to_string(set_weights.size()) + " set weights for " +
-                       std::to_string(rig.targets.size() - rig.parameter_target_count) + " set targets");
+    throw InvalidInput(
+        "set_target_weights: " + std::to_string(set_weights.size()) + " set weights for " +
+        std::to_string(rig.targets.size() - rig.parameter_target_count) + " set targets");
   std::vector<double> w(rig.targets.size(), 0.0);
-  std::copy(set_weights.begin(), set_weights.end(), w.begin() + static_cast<std::ptrdiff_t>(rig.parameter_target_count));
+  std::copy(set_weights.begin(), set_weights.end(),
+            w.begin() + static_cast<std::ptrdiff_t>(rig.parameter_target_count));
   return w;
 }
 
@@ -197,9 +206,11 @@ facemesh::WeightAnimation bake_animation(const BakedRig& rig, const std::vector<
     any_head = any_head || !a.head_rotations.back().isApprox(Eigen::Quaterniond::Identity(), 1e-12);
   }
   if (!any_head) a.head_rotations.clear();
-  if (rig.parts.size() != rig.part_drives.size()) throw InvalidInput("bake_animation: one drive per part");
+  if (rig.parts.size() != rig.part_drives.size())
+    throw InvalidInput("bake_animation: one drive per part");
   if (!rig.parts.empty()) a.part_rotations.resize(rig.parts.size());
-  const std::size_t yaw = parameter_index("eye_gaze_yaw"), pitch = parameter_index("eye_gaze_pitch");
+  const std::size_t yaw = parameter_index("eye_gaze_yaw"),
+                    pitch = parameter_index("eye_gaze_pitch");
   const std::size_t masseter = parameter_index("masseter");
   for (std::size_t p = 0; p < rig.parts.size(); ++p) {
     bool moves = false;
@@ -212,7 +223,8 @@ facemesh::WeightAnimation bake_animation(const BakedRig& rig, const std::vector<
       } else {
         const auto& lim = rig.eye_limits[rig.part_drives[p] == PartDrive::EyeRight ? 0 : 1];
         const Eigen::Vector2d g = limit_gaze(f[yaw], f[pitch], lim.x(), lim.y());
-        q = Eigen::AngleAxisd(g.x(), Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(-g.y(), Eigen::Vector3d::UnitX());
+        q = Eigen::AngleAxisd(g.x(), Eigen::Vector3d::UnitY()) *
+            Eigen::AngleAxisd(-g.y(), Eigen::Vector3d::UnitX());
       }
       moves = moves || !q.isApprox(Eigen::Quaterniond::Identity(), 1e-12);
       out.push_back(q);
@@ -222,16 +234,20 @@ facemesh::WeightAnimation bake_animation(const BakedRig& rig, const std::vector<
   return a;
 }
 
-void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig, std::vector<Eigen::Vector3f>& colors,
-                       const SplitOptions& options) {
+void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig,
+                       std::vector<Eigen::Vector3f>& colors, const SplitOptions& options) {
   options.validate();
-  if (!rig.parts.empty() || !rig.skin_vertices.empty()) throw InvalidInput("split_rigid_parts: the rig is already split");
+  if (!rig.parts.empty() || !rig.skin_vertices.empty())
+    throw InvalidInput("split_rigid_parts: the rig is already split");
   const long nv = rig.neutral.vertices.rows();
   const auto unv = static_cast<std::size_t>(nv);
-  if (!colors.empty() && colors.size() != unv) throw InvalidInput("split_rigid_parts: one colour per vertex");
-  if (face_rig.materials.size() != unv || face_rig.jaw.vertices.size() != face_rig.jaw.weights.size())
+  if (!colors.empty() && colors.size() != unv)
+    throw InvalidInput("split_rigid_parts: one colour per vertex");
+  if (face_rig.materials.size() != unv ||
+      face_rig.jaw.vertices.size() != face_rig.jaw.weights.size())
     throw InvalidInput("split_rigid_parts: the rig does not fit the baked mesh");
-  if (!rig.gaze_targets || rig.parameter_target_count < 4) throw InvalidInput("split_rigid_parts: not a bake_rig result");
+  if (!rig.gaze_targets || rig.parameter_target_count < 4)
+    throw InvalidInput("split_rigid_parts: not a bake_rig result");
   const std::size_t level_count = rig.parameter_target_count - 4;  // then the four gaze halves
   std::size_t masseter_target = rig.targets.size();
   for (std::size_t t = 0; t < level_count; ++t) {
@@ -240,7 +256,9 @@ void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig, std::vector
   const std::vector<int> comp = components(nv, rig.neutral.faces);
   const int ncomp = comp.empty() ? 0 : *std::max_element(comp.begin(), comp.end()) + 1;
   std::vector<std::vector<int>> members(static_cast<std::size_t>(ncomp));
-  for (long v = 0; v < nv; ++v) members[static_cast<std::size_t>(comp[static_cast<std::size_t>(v)])].push_back(static_cast<int>(v));
+  for (long v = 0; v < nv; ++v)
+    members[static_cast<std::size_t>(comp[static_cast<std::size_t>(v)])].push_back(
+        static_cast<int>(v));
   const double tol = options.tolerance;
   auto moved = [&](const std::vector<int>& vs, std::size_t t) {
     for (int v : vs) {
@@ -254,7 +272,8 @@ void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig, std::vector
     }
     return true;
   };
-  // whole components only: returns the vertices of the components `vs` touches if it covers them all
+  // whole components only: returns the vertices of the components `vs` touches if it covers them
+  // all
   auto closed = [&](std::vector<int> vs) {
     std::sort(vs.begin(), vs.end());
     vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
@@ -289,10 +308,12 @@ void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig, std::vector
     for (long f = 0; f < rig.neutral.faces.rows(); ++f) {
       const auto it = local.find(rig.neutral.faces(f, 0));
       if (it == local.end()) continue;
-      faces.emplace_back(it->second, local.at(rig.neutral.faces(f, 1)), local.at(rig.neutral.faces(f, 2)));
+      faces.emplace_back(it->second, local.at(rig.neutral.faces(f, 1)),
+                         local.at(rig.neutral.faces(f, 2)));
     }
     pm.mesh.faces.resize(static_cast<long>(faces.size()), 3);
-    for (std::size_t f = 0; f < faces.size(); ++f) pm.mesh.faces.row(static_cast<long>(f)) = faces[f].transpose();
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      pm.mesh.faces.row(static_cast<long>(f)) = faces[f].transpose();
     return pm;
   };
   int eyes_split = 0;
@@ -324,7 +345,8 @@ void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig, std::vector
     std::map<std::string, std::vector<int>> by_name;
     for (const auto& vs : members) {
       bool ok = !vs.empty();
-      for (int v : vs) ok = ok && full[static_cast<std::size_t>(v)] && owner[static_cast<std::size_t>(v)] < 0;
+      for (int v : vs)
+        ok = ok && full[static_cast<std::size_t>(v)] && owner[static_cast<std::size_t>(v)] < 0;
       if (!ok || !still_but(vs, masseter_target)) continue;
       // masseter moves it exactly as the jaw rotation (solver.cpp, thesis §2.4.4)
       for (int v : vs) {
@@ -335,9 +357,13 @@ void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig, std::vector
       }
       if (!ok) continue;
       std::array<int, facemesh::kMaterialCount> votes{};
-      for (int v : vs) ++votes[static_cast<std::size_t>(face_rig.materials[static_cast<std::size_t>(v)])];
-      const auto m = static_cast<facemesh::Material>(std::max_element(votes.begin(), votes.end()) - votes.begin());
-      const std::string name = m == facemesh::Material::Teeth ? "lower_teeth" : m == facemesh::Material::Tongue ? "tongue" : "jaw_rigid";
+      for (int v : vs)
+        ++votes[static_cast<std::size_t>(face_rig.materials[static_cast<std::size_t>(v)])];
+      const auto m = static_cast<facemesh::Material>(std::max_element(votes.begin(), votes.end()) -
+                                                     votes.begin());
+      const std::string name = m == facemesh::Material::Teeth    ? "lower_teeth"
+                               : m == facemesh::Material::Tongue ? "tongue"
+                                                                 : "jaw_rigid";
       auto& list = by_name[name];
       list.insert(list.end(), vs.begin(), vs.end());
     }
@@ -369,7 +395,8 @@ void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig, std::vector
   auto restrict_rows = [&](const facemesh::Vertices& m) {
     if (m.rows() == 0) return m;
     facemesh::Vertices out(ns, 3);
-    for (long i = 0; i < ns; ++i) out.row(i) = m.row(rig.skin_vertices[static_cast<std::size_t>(i)]);
+    for (long i = 0; i < ns; ++i)
+      out.row(i) = m.row(rig.skin_vertices[static_cast<std::size_t>(i)]);
     return out;
   };
   std::vector<Eigen::Vector3i> faces;
@@ -381,7 +408,8 @@ void split_rigid_parts(BakedRig& rig, const facemesh::Rig& face_rig, std::vector
   }
   rig.neutral.vertices = restrict_rows(rig.neutral.vertices);
   rig.neutral.faces.resize(static_cast<long>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) rig.neutral.faces.row(static_cast<long>(f)) = faces[f].transpose();
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    rig.neutral.faces.row(static_cast<long>(f)) = faces[f].transpose();
   for (auto& t : rig.targets) {
     t.position_deltas = restrict_rows(t.position_deltas);
     t.normal_deltas = restrict_rows(t.normal_deltas);
@@ -431,8 +459,9 @@ void express_in_mesh_frame(BakedRig& rig, std::vector<facemesh::WeightAnimation>
   }
 }
 
-RigGltfReport write_rig_gltf(const std::string& path, const facemesh::Face& face, const FaceSolver& solver,
-                             const std::vector<double>& times, const std::vector<std::vector<double>>& frames,
+RigGltfReport write_rig_gltf(const std::string& path, const facemesh::Face& face,
+                             const FaceSolver& solver, const std::vector<double>& times,
+                             const std::vector<std::vector<double>>& frames,
                              const RigGltfOptions& options) {
   const faceweights::Mapper arkit(faceweights::builtin_weight_set("arkit"), parameter_names());
   BakedRig rig = bake_rig(solver, face.mesh.faces, {&arkit});
@@ -444,7 +473,8 @@ RigGltfReport write_rig_gltf(const std::string& path, const facemesh::Face& face
     colors = facemesh::material_colors(face.rig, face.mesh);
     if (options.split_parts) split_rigid_parts(rig, face.rig, colors, options.split);
   }
-  std::vector<facemesh::WeightAnimation> animations{bake_animation(rig, times, frames, options.animation_name)};
+  std::vector<facemesh::WeightAnimation> animations{
+      bake_animation(rig, times, frames, options.animation_name)};
   express_in_mesh_frame(rig, animations, face.rig.frame);  // a user's mesh keeps its own frame
   report.targets = rig.targets.size();
   if (report.user_document) {

@@ -30,13 +30,13 @@ struct PartMesh {
   std::vector<Eigen::Vector3f> colors;  ///< per vertex linear RGB in [0, 1] → COLOR_0; empty = none
 };
 
-/// A rigid part written as its own node (child of "head") at `pivot`, rotated by the animation about
-/// the pivot (eyeballs about the eye centre, the lower teeth and tongue about the jaw axis); its
-/// meshes are child nodes holding the vertices relative to the pivot.
+/// A rigid part written as its own node (child of "head") at `pivot`, rotated by the animation
+/// about the pivot (eyeballs about the eye centre, the lower teeth and tongue about the jaw axis);
+/// its meshes are child nodes holding the vertices relative to the pivot.
 struct NodePart {
-  std::string name;              ///< transform node name, unique in the file ("eye_r", "jaw")
+  std::string name;  ///< transform node name, unique in the file ("eye_r", "jaw")
   Eigen::Vector3d pivot = Eigen::Vector3d::Zero();  ///< metres, the neutral mesh's frame
-  std::vector<PartMesh> meshes;  ///< ≥ 1
+  std::vector<PartMesh> meshes;                     ///< ≥ 1
 };
 
 struct WeightAnimation {

@@ -10,17 +10,16 @@
 //   * optionally one target per target of a weight set (e.g. the 52 ARKit shapes, named as in the
 //     set): the parameters Mapper::inverse fits to that target alone at weight 1, deformed.
 // Head pose is not a morph target: it is the rotation of the glTF head node (head_rotation()).
-// split_rigid_parts() then takes the eyeballs and the parts only the jaw moves (lower teeth, tongue)
-// out of the skin into nodes rotated about their pivots (eye centre, jaw axis), so engines get eyes
-// and a jaw to turn; the skin keeps its morph targets.
-// A weighted sum of targets is the linear (blendshape) approximation of the muscle model, whose
-// muscles interact (parallel contraction); docs/engines.md reports the difference.
+// split_rigid_parts() then takes the eyeballs and the parts only the jaw moves (lower teeth,
+// tongue) out of the skin into nodes rotated about their pivots (eye centre, jaw axis), so engines
+// get eyes and a jaw to turn; the skin keeps its morph targets. A weighted sum of targets is the
+// linear (blendshape) approximation of the muscle model, whose muscles interact (parallel
+// contraction); docs/engines.md reports the difference.
+#include <Eigen/Geometry>
 #include <array>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "emoface/facemesh/gltf_morph.hpp"
 #include "emoface/facemesh/io.hpp"
@@ -46,9 +45,9 @@ struct BakedRig {
   std::vector<facemesh::NodePart> parts;
   std::vector<PartDrive> part_drives;
   std::vector<int> skin_vertices;
-  bool gaze_targets = true;        ///< false once both eyes are nodes (the four gaze halves dropped)
+  bool gaze_targets = true;  ///< false once both eyes are nodes (the four gaze halves dropped)
   std::array<Eigen::Vector2d, 2> eye_limits{};  ///< per eye (right, left): yaw, pitch limits, rad
-  double jaw_max_angle = 0.0;      ///< jaw rotation at masseter = 1, rad (about +x)
+  double jaw_max_angle = 0.0;                   ///< jaw rotation at masseter = 1, rad (about +x)
 };
 
 /// Bakes the rig of `solver` (with `faces` for normals, usually face.mesh.faces). `sets` adds
@@ -58,8 +57,8 @@ BakedRig bake_rig(const FaceSolver& solver, const facemesh::Faces& faces,
 
 /// Options of split_rigid_parts.
 struct SplitOptions {
-  bool eyes = true;   ///< eyeballs as nodes "eye_r"/"eye_l" (meshes "eyeball_r"/"eyeball_l")
-  bool jaw = true;    ///< node "jaw" with meshes "lower_teeth", "tongue", "jaw_rigid" (other parts)
+  bool eyes = true;  ///< eyeballs as nodes "eye_r"/"eye_l" (meshes "eyeball_r"/"eyeball_l")
+  bool jaw = true;   ///< node "jaw" with meshes "lower_teeth", "tongue", "jaw_rigid" (other parts)
   /// A candidate part's vertices count as unmoved by a target when every delta component is below
   /// this (metres), and as rigidly rotated by the jaw when within it of the rotation. > 0.
   double tolerance = 1e-9;
@@ -111,8 +110,8 @@ void express_in_mesh_frame(BakedRig& rig, std::vector<facemesh::WeightAnimation>
 
 struct RigGltfOptions {
   std::string animation_name = "expression";
-  SplitOptions split;        ///< eyes and jaw as nodes (not for a user's glTF document)
-  bool split_parts = true;   ///< false: everything stays in the skin's morph targets
+  SplitOptions split;       ///< eyes and jaw as nodes (not for a user's glTF document)
+  bool split_parts = true;  ///< false: everything stays in the skin's morph targets
 };
 
 struct RigGltfReport {
@@ -123,8 +122,8 @@ struct RigGltfReport {
 };
 
 /// The face's rig baked (parameter targets + the 52 ARKit shapes) and written as glTF 2.0 with
-/// `frames` (parameter_names() order, one per time, times increasing) as the animation. A face whose
-/// mesh is a glTF document (a user's .glb/.gltf transferred by `retarget`) is written through
+/// `frames` (parameter_names() order, one per time, times increasing) as the animation. A face
+/// whose mesh is a glTF document (a user's .glb/.gltf transferred by `retarget`) is written through
 /// MeshDocument::write_gltf_with_targets: their nodes, skins, materials, UVs and targets kept, ours
 /// added (in their file's frame); otherwise write_morph_gltf with the head node and, after
 /// split_rigid_parts, eye and jaw nodes.
