@@ -6,23 +6,32 @@
 # Installs Node/npm from Debian if missing and the pinned npm packages with `npm ci`
 # (tests/oracle/package-lock.json, ≈ 130 MB in tests/oracle/node_modules, once); nothing is
 # downloaded when it runs.
-# Usage: scripts/oracle.sh [--no-build]      Env: BUILD_DIR (build), OUT_DIR (out/oracle), MIN (6),
+# --arkit (issue 15, the ARKit check): the same emotions through `emo2muscle --weights arkit` (the 52
+# ARKit weights per emotion) driving an ARKit character built from our own face — its 52 ARKit morph
+# targets baked by muscles::bake_rig, posed as an engine poses them (neutral + Σ weight · target,
+# `faceanim --weights arkit --blendshapes`) — rendered and named the same way (OUT_DIR out/oracle_arkit).
+# Usage: scripts/oracle.sh [--no-build] [--arkit]   Env: BUILD_DIR (build), OUT_DIR (out/oracle), MIN (6),
 #        JOBS (2), EMOTIONS (tests/oracle/emotions.csv)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR=${BUILD_DIR:-build}
-OUT_DIR=${OUT_DIR:-out/oracle}
+OUT_DIR=${OUT_DIR:-}
 MIN=${MIN:-6}
 JOBS=${JOBS:-2}
 EMOTIONS=${EMOTIONS:-tests/oracle/emotions.csv}
 build=1
+arkit=0
 for a in "$@"; do
   case "$a" in
     --no-build) build=0 ;;
+    --arkit) arkit=1 ;;
     *) echo "oracle.sh: unknown argument $a" >&2; exit 2 ;;
   esac
 done
 
+if [ -z "$OUT_DIR" ]; then
+  if [ "$arkit" = 1 ]; then OUT_DIR=out/oracle_arkit; else OUT_DIR=out/oracle; fi
+fi
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   SUDO=""
   if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
@@ -43,8 +52,14 @@ fi
 bin="$BUILD_DIR"/apps
 rm -rf "$OUT_DIR"
 mkdir -p "$OUT_DIR"
-"$bin"/emo2muscle/emo2muscle "$EMOTIONS" --sides -o "$OUT_DIR"/muscles.csv
-"$bin"/faceanim/faceanim --params "$OUT_DIR"/muscles.csv --out "$OUT_DIR"/frames
+if [ "$arkit" = 1 ]; then
+  "$bin"/emo2muscle/emo2muscle "$EMOTIONS" --weights arkit -o "$OUT_DIR"/arkit.csv
+  "$bin"/faceanim/faceanim --weights arkit --blendshapes --ignore-unknown-columns --params "$OUT_DIR"/arkit.csv \
+    --out "$OUT_DIR"/frames
+else
+  "$bin"/emo2muscle/emo2muscle "$EMOTIONS" --sides -o "$OUT_DIR"/muscles.csv
+  "$bin"/faceanim/faceanim --params "$OUT_DIR"/muscles.csv --out "$OUT_DIR"/frames
+fi
 "$bin"/facerender/facerender "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
   --out "$OUT_DIR"/face.png
 args=()

@@ -26,13 +26,19 @@ int main(int argc, char** argv) {
                "         faceanim --write-default-face data/face   (regenerates the built-in face files)"};
   std::string rig_path, params, out_dir, format, gltf, default_dir, shard_text, weights;
   double fps = 25.0, delta_c = 0.2;
-  bool no_wrinkles = false, ignore_unknown = false;
+  bool no_wrinkles = false, ignore_unknown = false, blendshapes = false;
   app.add_option("--rig", rig_path, "Rig file (emoface.rig JSON); default: the built-in face");
   app.add_option("--params", params, "Parameter frames: .csv, .ndjson/.jsonl or .json");
   app.add_option("--weights", weights,
                  "arkit|facs: --params is a CSV of ARKit blend-shape (or FACS) weights, fitted to the "
                  "face parameters by bounded least squares (Live Link Face CSV too)")
       ->check(CLI::IsMember({"arkit", "facs"}));
+  app.add_flag("--blendshapes", blendshapes,
+               "With --weights: pose the face as a blendshape character (neutral + sum of weight x "
+               "the set's\n"
+               "baked targets, as an engine drives the glTF's ARKit targets) instead of fitting "
+               "parameters;\n"
+               "frames only (--out), Live Link angle columns ignored");
   app.add_option("--out", out_dir, "Directory for frame_0000.<format> ...");
   app.add_option("--format", format,
                  "Mesh format of the frames (default: the rig's mesh kind, obj or glb). Frames are in the mesh\n"
@@ -40,7 +46,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"obj", "ply", "off", "glb", "gltf"}));
   app.add_option("--gltf", gltf,
                  "Also write a glTF 2.0 (.gltf or .glb) for engines: named morph targets per face "
-                 "parameter and per ARKit shape, the frames as weights over time");
+                 "parameter and per ARKit shape, the frames as weights over time, eyes and jaw as "
+                 "nodes; on a rig transferred to a user's glTF, their file with our targets added");
   app.add_option("--fps", fps, "Frame rate for inputs without times")->check(CLI::Range(0.001, 1000.0));
   app.add_option("--delta-c", delta_c, "Contraction step (thesis: 0.2)")->check(CLI::Range(0.001, 1.0));
   app.add_flag("--no-wrinkles", no_wrinkles, "Disable bulges and wrinkles");
@@ -69,6 +76,26 @@ int main(int argc, char** argv) {
     mu::FrameReadOptions read;
     read.fps = fps;
     read.ignore_unknown_columns = ignore_unknown;
+    if (blendshapes) {
+      if (weights.empty() || out_dir.empty() || !gltf.empty())
+        throw emoface::cli::UsageError("--blendshapes needs --weights and --out (and no --gltf)");
+      namespace fw = emoface::faceweights;
+      const fw::Mapper mapper(fw::builtin_weight_set(weights), mu::parameter_names());
+      fw::WeightTrackReadOptions wopt;
+      wopt.fps = fps;
+      wopt.ignore_unknown_columns = ignore_unknown;
+      const fw::WeightTrack track = fw::read_weight_track(params, mapper.set(), wopt);
+      const mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&mapper});
+      std::filesystem::create_directories(out_dir);
+      for (std::size_t i = 0; i < track.weights.size(); ++i) {
+        if (!shard.owns(i)) continue;
+        char name[64];
+        std::snprintf(name, sizeof name, "frame_%04zu.%s", i, format.c_str());
+        fm::write_face_mesh((std::filesystem::path(out_dir) / name).string(), face,
+                            mu::blend_targets(rig, mu::set_target_weights(rig, track.weights[i])));
+      }
+      return 0;
+    }
     std::vector<mu::ParameterFrame> frames;
     if (weights.empty()) {
       frames = mu::read_parameter_frames(params, read);
@@ -109,16 +136,9 @@ int main(int argc, char** argv) {
           break;
         }
       }
-      const emoface::faceweights::Mapper arkit(emoface::faceweights::builtin_weight_set("arkit"),
-                                               mu::parameter_names());
-      mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&arkit});
-      fm::MorphGltfOptions gopt;
-      gopt.colors = fm::material_colors(face.rig, face.mesh);
-      gopt.head_pivot = rig.head_pivot;
-      std::vector<fm::WeightAnimation> animations{mu::bake_animation(rig, times, gltf_frames)};
-      mu::express_in_mesh_frame(rig, animations, face.rig.frame);  // a user's mesh keeps its own frame
-      gopt.head_pivot = rig.head_pivot;
-      fm::write_morph_gltf(gltf, rig.neutral, rig.targets, animations, gopt);
+      // a user's glTF keeps everything of theirs; otherwise eyes and jaw are nodes
+      // (morph_targets.hpp)
+      mu::write_rig_gltf(gltf, face, solver, times, gltf_frames);
     }
     return 0;
   });

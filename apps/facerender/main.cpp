@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   int sheet = 0, width = 480, height = 560, fps = 25;
   double yaw = 0.0;
   std::string camera = "auto";
+  bool no_paint = false;
   app.add_option("meshes", meshes, "Mesh files (OBJ/PLY/OFF/glTF/GLB)")->required();
   app.add_option("--camera", camera,
                  "auto: keep the face framing when the meshes fill it, else fit the camera to their bounding\n"
@@ -40,6 +41,10 @@ int main(int argc, char** argv) {
   app.add_option("--video", video, "Also encode the frames to a video (.mp4/.mov/.mkv/.gif) with the ffmpeg binary");
   app.add_option("--audio", audio, "Audio file (e.g. WAV) muxed into --video");
   app.add_option("--fps", fps, "Video frame rate")->check(CLI::Range(1, 240));
+  app.add_flag(
+      "--no-paint", no_paint,
+      "Vertex colours only, without the built-in face's surface paint (brows, hairline): the\n"
+      "colours a glTF written by faceanim --gltf carries (COLOR_0)");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("facerender", [&]() {
     if (out.empty() && video.empty()) throw emoface::InvalidInput("give --out FILE.png and/or --video FILE.mp4");
@@ -56,7 +61,7 @@ int main(int argc, char** argv) {
       std::vector<Eigen::Vector3f> colors;
       const fm::Paint* paint = nullptr;  // brows and hairline of the built-in face
     };
-    const fm::Paint* paint = fm::paint_for(rig);
+    const fm::Paint* paint = no_paint ? nullptr : fm::paint_for(rig);
     std::vector<Input> inputs;
     fm::Vertices box(2, 3);  // bounding box of all meshes (rows: min, max)
     for (const auto& path : meshes) {

@@ -224,14 +224,9 @@ int main(int argc, char** argv) {
           keys.push_back(std::move(v));
         }
         const mu::FaceSolver solver(face.mesh, face.rig);
-        const emoface::faceweights::Mapper arkit(emoface::faceweights::builtin_weight_set("arkit"),
-                                                 mu::parameter_names());
-        const mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&arkit});
-        emoface::facemesh::MorphGltfOptions gopt;
-        gopt.colors = emoface::facemesh::material_colors(face.rig, face.mesh);
-        gopt.head_pivot = rig.head_pivot;
-        emoface::facemesh::write_morph_gltf(file("face.glb"), rig.neutral, rig.targets,
-                                            {mu::bake_animation(rig, r.gltf_times, keys, "match")}, gopt);
+        mu::RigGltfOptions gopt;
+        gopt.animation_name = "match";
+        mu::write_rig_gltf(file("face.glb"), face, solver, r.gltf_times, keys, gopt);
       });
     timed("charts + key moments", [&] {
       emoface::core::write_file_atomic(file("charts.png"), emoface::parlee::encode_png(ob::emotion_chart(r)));

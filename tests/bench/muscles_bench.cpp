@@ -1,7 +1,11 @@
+// Issue 15 (eyes and jaw as glTF nodes, the ARKit blendshape character): split_rigid_parts on the
+// default face's baked rig (41 + 52 targets) against copying the baked rig (its baseline: the split
+// works on a copy in write_rig_gltf), and blend_targets (52 ARKit weights) against the dense loop.
 // Muscle deformation vs a dense 35-blendshape baseline, on the default face and on a ~20k-vertex
-// midpoint-subdivided copy (thesis §2.4.1 performance; issue #3 §4). Issue #13: a rig whose lips are
-// driven through LipBinding (samples_in_mesh = false, every lip vertex bound, as a transferred rig)
-// on the ~20k and ~80k subdivisions vs a dense 52-target blendshape evaluation on the same meshes.
+// midpoint-subdivided copy (thesis §2.4.1 performance; issue #3 §4). Issue #13: a rig whose lips
+// are driven through LipBinding (samples_in_mesh = false, every lip vertex bound, as a transferred
+// rig) on the ~20k and ~80k subdivisions vs a dense 52-target blendshape evaluation on the same
+// meshes.
 //   cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DEMOFACE_BUILD_BENCH=ON
 //   cmake --build build-bench --target muscles_bench -j2
 //   build-bench/tests/bench/muscles_bench --benchmark_min_time=1s
@@ -12,6 +16,10 @@
 
 #include "emoface/facemesh/bspline.hpp"
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/render.hpp"
+#include "emoface/faceweights/mapper.hpp"
+#include "emoface/muscles/morph_targets.hpp"
+#include "emoface/muscles/parameters.hpp"
 #include "emoface/muscles/solver.hpp"
 
 namespace {
@@ -202,6 +210,55 @@ void BM_Blendshape52(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(f.mesh.vertex_count());
 }
 
+const mu::BakedRig& arkit_rig() {
+  static const mu::BakedRig rig = [] {
+    const auto face = fm::make_default_face();
+    const mu::FaceSolver solver(face.mesh, face.rig);
+    const emoface::faceweights::Mapper arkit(emoface::faceweights::builtin_weight_set("arkit"),
+                                             mu::parameter_names());
+    return mu::bake_rig(solver, face.mesh.faces, {&arkit});
+  }();
+  return rig;
+}
+
+void BM_SplitRigidParts(benchmark::State& state) {
+  const auto face = fm::make_default_face();
+  const auto colors = fm::material_colors(face.rig, face.mesh);
+  for (auto _ : state) {
+    mu::BakedRig rig = arkit_rig();
+    auto c = colors;
+    mu::split_rigid_parts(rig, face.rig, c);
+    benchmark::DoNotOptimize(rig.neutral.vertices.data());
+  }
+  state.counters["parts"] = 3;
+}
+
+void BM_SplitBaselineCopy(benchmark::State& state) {
+  const auto face = fm::make_default_face();
+  const auto colors = fm::material_colors(face.rig, face.mesh);
+  for (auto _ : state) {
+    mu::BakedRig rig = arkit_rig();
+    auto c = colors;
+    benchmark::DoNotOptimize(rig.neutral.vertices.data());
+    benchmark::DoNotOptimize(c.data());
+  }
+}
+
+void BM_BlendTargetsArkit(benchmark::State& state) {
+  const auto& rig = arkit_rig();
+  std::vector<double> set(52);
+  for (std::size_t i = 0; i < set.size(); ++i) set[i] = 0.5 + 0.01 * static_cast<double>(i);
+  const auto w = mu::set_target_weights(rig, set);
+  for (auto _ : state) {
+    auto x = mu::blend_targets(rig, w);
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["vertices"] = static_cast<double>(rig.neutral.vertices.rows());
+}
+
+BENCHMARK(BM_SplitRigidParts)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SplitBaselineCopy)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BlendTargetsArkit)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MuscleDeformation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BoundLipsDeformation)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Blendshape52)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);

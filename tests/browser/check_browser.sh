@@ -26,7 +26,8 @@ ln -s "$SRC/tests/browser/node_modules" "$WORK/node_modules"
 printf 'time,zygomatic_major_l,zygomatic_major_r,masseter,eye_gaze_yaw,frontalis_medialis_l,frontalis_medialis_r,triangularis_l,triangularis_r,head_yaw\n0,0,0,0,0,0,0,0,0,0\n1,1,1,0.5,0.3,0,0,0,0,0\n2,0,0,0,0,1,1,0.8,0.8,0.2\n' >"$WORK/p.csv"
 "$BUILD/apps/faceanim/faceanim" --params "$WORK/p.csv" --out "$WORK/frames" --gltf "$WORK/face.glb"
 for k in 0 1 2; do
-  "$BUILD/apps/facerender/facerender" "$WORK/frames/frame_000$k.obj" --width 240 --height 280 --out "$WORK/ref$k.png"
+  "$BUILD/apps/facerender/facerender" "$WORK/frames/frame_000$k.obj" --width 240 --height 280 --no-paint \
+    --out "$WORK/ref$k.png"
 done
 PORT=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 python3 -m http.server "$PORT" --bind 127.0.0.1 --directory "$WORK" >"$WORK/server.log" 2>&1 &

@@ -28,14 +28,20 @@ try {
   camera.lookAt(0, -0.01, 0);
 
   const gltf = await new GLTFLoader().loadAsync(q.get('glb'));
+  // every mesh (the skin "face", the eyeballs under "eye_r"/"eye_l", the lower teeth under "jaw")
+  // shaded like facerender: Lambert on the vertex colours, a flat dark colour on back faces
   const face = gltf.scene.getObjectByName('face');
   const mesh = face.isMesh ? face : face.children.find((c) => c.isMesh);
-  mesh.material = new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.FrontSide });
-  const back = new THREE.Mesh(mesh.geometry, new THREE.MeshBasicMaterial({
-    color: new THREE.Color().setRGB(0.18, 0.07, 0.07, THREE.LinearSRGBColorSpace), side: THREE.BackSide }));
-  back.morphTargetInfluences = mesh.morphTargetInfluences;
-  back.morphTargetDictionary = mesh.morphTargetDictionary;
-  mesh.add(back);  // a child: it inherits the node transform (the offset from the head pivot)
+  const meshes = [];
+  gltf.scene.traverse((o) => { if (o.isMesh) meshes.push(o); });
+  for (const m of meshes) {
+    m.material = new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.FrontSide });
+    const back = new THREE.Mesh(m.geometry, new THREE.MeshBasicMaterial({
+      color: new THREE.Color().setRGB(0.18, 0.07, 0.07, THREE.LinearSRGBColorSpace), side: THREE.BackSide }));
+    back.morphTargetInfluences = m.morphTargetInfluences;
+    back.morphTargetDictionary = m.morphTargetDictionary;
+    m.add(back);  // a child: it inherits the node transform (pivot offsets, eye and jaw rotations)
+  }
   scene.add(gltf.scene);
   const mixer = new THREE.AnimationMixer(gltf.scene);
   const action = mixer.clipAction(gltf.animations[0]);
@@ -66,7 +72,7 @@ try {
     }
   }
   const names = Object.keys(mesh.morphTargetDictionary).length;
-  out.textContent = `MAD ${(sum / (W * H * 3)).toFixed(3)} targets ${names} foreground ${fg}`;
+  out.textContent = `MAD ${(sum / (W * H * 3)).toFixed(3)} targets ${names} foreground ${fg} meshes ${meshes.length}`;
 } catch (e) {
   out.textContent = `ERROR ${e}`;
 }

@@ -1,11 +1,11 @@
 #include "emoface/facemesh/gltf_morph.hpp"
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <cmath>
 #include <cstring>
-
-#include <tiny_gltf.h>
+#include <filesystem>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -84,6 +84,90 @@ TEST_F(GltfMorph, NamedSparseTargetsAndWeightAnimation) {
   EXPECT_NEAR(quat[3], std::cos(0.15), 1e-6);
   write_morph_gltf(path("m.glb"), m, two_targets(m), {a}, o);
   EXPECT_EQ(core::read_file(path("m.glb")).substr(0, 4), "glTF");
+}
+
+// Rigid parts: a transform node at the pivot under "head", mesh nodes below it holding the vertices
+// relative to the pivot (so the node's rotation turns them about the pivot), a rotation channel.
+TEST_F(GltfMorph, RigidPartsAsNodesWithRotationChannels) {
+  const Mesh m = testing::tetrahedron();
+  MorphGltfOptions o;
+  o.head_pivot = Eigen::Vector3d(0.0, -0.1, 0.0);
+  NodePart eye;
+  eye.name = "eye_r";
+  eye.pivot = Eigen::Vector3d(2.0, 0.5, 0.25);
+  Mesh ball = testing::tetrahedron();
+  ball.vertices.rowwise() += Eigen::RowVector3d(2.0, 0.0, 0.0);
+  eye.meshes.push_back(
+      {"eyeball_r", ball, std::vector<Eigen::Vector3f>(4, Eigen::Vector3f(1, 1, 1))});
+  o.parts = {eye};
+  WeightAnimation a;
+  a.times = {0.0, 1.0};
+  a.weights = {{0.0, 0.0}, {1.0, 0.0}};
+  a.part_rotations = {{Eigen::Quaterniond::Identity(),
+                       Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitY()))}};
+  write_morph_gltf(path("p.gltf"), m, two_targets(m), {a}, o);
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadASCIIFromFile(&model, &err, &warn, path("p.gltf"))) << err;
+  ASSERT_EQ(model.nodes.size(), 4u);  // head, face, eye_r, eyeball_r
+  EXPECT_EQ(model.nodes[0].children, (std::vector<int>{1, 2}));
+  EXPECT_EQ(model.nodes[2].name, "eye_r");
+  EXPECT_EQ(model.nodes[2].children, (std::vector<int>{3}));
+  // pivot − head pivot = (2, 0.6, 0.25)
+  EXPECT_EQ(model.nodes[2].translation, (std::vector<double>{2.0, 0.6, 0.25}));
+  EXPECT_EQ(model.nodes[3].name, "eyeball_r");
+  ASSERT_EQ(model.nodes[3].mesh, 1);
+  const auto& prim = model.meshes[1].primitives[0];
+  EXPECT_TRUE(prim.targets.empty());
+  EXPECT_TRUE(prim.attributes.count("COLOR_0"));
+  const auto& pa = model.accessors[static_cast<std::size_t>(prim.attributes.at("POSITION"))];
+  // vertex 3 of the ball (2, 0, 1) relative to the pivot (2, 0.5, 0.25): (0, −0.5, 0.75)
+  const auto& pv = model.bufferViews[static_cast<std::size_t>(pa.bufferView)];
+  float p3[3];
+  std::memcpy(p3, model.buffers[0].data.data() + pv.byteOffset + pa.byteOffset + 36, 12);
+  EXPECT_EQ(p3[0], 0.0f);
+  EXPECT_EQ(p3[1], -0.5f);
+  EXPECT_EQ(p3[2], 0.75f);
+  EXPECT_EQ(pa.minValues, (std::vector<double>{0, -0.5, -0.25}));
+  const auto& an = model.animations[0];
+  ASSERT_EQ(an.channels.size(), 2u);  // weights + the eye (no head rotation given)
+  EXPECT_EQ(an.channels[1].target_node, 2);
+  EXPECT_EQ(an.channels[1].target_path, "rotation");
+  const auto& q = model.accessors[static_cast<std::size_t>(an.samplers[1].output)];
+  const auto& qv = model.bufferViews[static_cast<std::size_t>(q.bufferView)];
+  float quat[4];
+  std::memcpy(quat, model.buffers[0].data.data() + qv.byteOffset + 16, 16);
+  EXPECT_NEAR(quat[1], std::sin(0.2), 1e-6);
+  EXPECT_NEAR(quat[3], std::cos(0.2), 1e-6);
+
+  // bad parts: a name clash, no mesh, a bad face index, the wrong number of rotations
+  auto bad = o;
+  bad.parts[0].name = "head";
+  EXPECT_THROW(write_morph_gltf(path("x.gltf"), m, two_targets(m), {a}, bad), InvalidInput);
+  bad = o;
+  bad.parts[0].meshes[0].name = "face";
+  EXPECT_THROW(write_morph_gltf(path("x.gltf"), m, two_targets(m), {a}, bad), InvalidInput);
+  bad = o;
+  bad.parts[0].meshes.clear();
+  EXPECT_THROW(write_morph_gltf(path("x.gltf"), m, two_targets(m), {a}, bad), InvalidInput);
+  bad = o;
+  bad.parts[0].meshes[0].mesh.faces(0, 0) = 4;
+  EXPECT_THROW(write_morph_gltf(path("x.gltf"), m, two_targets(m), {a}, bad), InvalidInput);
+  bad = o;
+  bad.parts[0].pivot.x() = std::nan("");
+  EXPECT_THROW(write_morph_gltf(path("x.gltf"), m, two_targets(m), {a}, bad), InvalidInput);
+  auto b = a;
+  b.part_rotations[0].pop_back();
+  EXPECT_THROW(write_morph_gltf(path("x.gltf"), m, two_targets(m), {b}, o), InvalidInput);
+  b = a;
+  b.part_rotations.clear();
+  b.part_rotations.resize(2);
+  EXPECT_THROW(write_morph_gltf(path("x.gltf"), m, two_targets(m), {b}, o), InvalidInput);
+  b = a;
+  b.part_rotations[0][1] = Eigen::Quaterniond(std::nan(""), 0, 0, 0);
+  EXPECT_THROW(write_morph_gltf(path("x.gltf"), m, two_targets(m), {b}, o), InvalidInput);
+  EXPECT_FALSE(std::filesystem::exists(path("x.gltf")));
 }
 
 TEST_F(GltfMorph, BadInputs) {

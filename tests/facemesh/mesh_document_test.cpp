@@ -1,14 +1,14 @@
 #include "emoface/facemesh/mesh_document.hpp"
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <functional>
-
-#include <Eigen/Geometry>
-#include <tiny_gltf.h>
+#include <limits>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -459,6 +459,126 @@ TEST_F(MeshDocumentTest, AddsNamedMorphTargets) {
   EXPECT_EQ(m.skins.size(), 1u);
   EXPECT_THROW(doc.write_gltf_with_targets(path("x.glb"), {"a", "b"}, {smile}), InvalidInput);
   EXPECT_THROW(doc.write_gltf_with_targets(path("x.glb"), {"a"}, {Vertices::Zero(3, 3)}), InvalidInput);
+}
+
+// A VEC3 float accessor read back whole: dense, or sparse over implicit zeros (no bufferView).
+std::vector<float> vec3_values(const tinygltf::Model& m, int accessor) {
+  const auto& a = m.accessors[static_cast<std::size_t>(accessor)];
+  if (!a.sparse.isSparse) return floats(m, accessor);
+  std::vector<float> out(a.count * 3, 0.0f);
+  const auto& iv = m.bufferViews[static_cast<std::size_t>(a.sparse.indices.bufferView)];
+  const auto& vv = m.bufferViews[static_cast<std::size_t>(a.sparse.values.bufferView)];
+  const unsigned char* ib =
+      m.buffers[static_cast<std::size_t>(iv.buffer)].data.data() + iv.byteOffset;
+  const unsigned char* vb =
+      m.buffers[static_cast<std::size_t>(vv.buffer)].data.data() + vv.byteOffset;
+  for (int k = 0; k < a.sparse.count; ++k) {
+    std::uint32_t i = 0;
+    if (a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+      std::uint16_t s = 0;
+      std::memcpy(&s, ib + 2 * k, 2);
+      i = s;
+    } else {
+      std::memcpy(&i, ib + 4 * k, 4);
+    }
+    std::memcpy(out.data() + 3 * i, vb + 12 * k, 12);
+  }
+  return out;
+}
+
+// Our targets and a weights animation on a user's character: everything of theirs kept, a clashing
+// name renamed, NORMAL deltas only where their targets have them, sparse where smaller, the channel
+// on the node holding their (skinned) mesh with their target at its default weight.
+TEST_F(MeshDocumentTest, AddsTargetsAndAnimationToAUsersCharacter) {
+  tinygltf::Model c = character();
+  c.meshes[0].weights = {0.5};
+  save(c, path("c.gltf"), false);
+  const MeshDocument doc = read_mesh_document(path("c.gltf"));
+  MorphTarget lift{"lift", Vertices::Zero(7, 3), Vertices::Zero(7, 3)};
+  lift.position_deltas(1, 1) = 0.25;
+  lift.normal_deltas(1, 2) = -0.5;
+  MorphTarget blink{"blink", Vertices::Zero(7, 3), {}};  // clashes with theirs
+  blink.position_deltas(5, 2) = -0.5;
+  WeightAnimation a;
+  a.name = "ours";
+  a.times = {0.0, 2.0};
+  a.weights = {{0.0, 1.0}, {1.0, 0.25}};
+  a.head_rotations = {Eigen::Quaterniond::Identity(),
+                      Eigen::Quaterniond::Identity()};  // not written
+  const auto report = doc.write_gltf_with_targets(path("t.glb"), {lift, blink}, {a});
+  EXPECT_EQ(report.names, (std::vector<std::string>{"lift", "blink_emoface"}));
+  EXPECT_EQ(report.existing_targets, 1u);
+  EXPECT_EQ(report.animated_nodes, 1u);
+  const tinygltf::Model m = load(path("t.glb"));
+  const tinygltf::Model orig = character();
+  const auto& head = m.meshes[0];
+  ASSERT_EQ(head.primitives[0].targets.size(), 3u);
+  ASSERT_EQ(head.primitives[1].targets.size(), 3u);
+  // their target: untouched; theirs has no NORMAL delta, so ours have none either
+  EXPECT_EQ(floats(m, head.primitives[0].targets[0].at("POSITION")),
+            floats(orig, orig.meshes[0].primitives[0].targets[0].at("POSITION")));
+  EXPECT_EQ(head.primitives[0].targets[1].count("NORMAL"), 0u);
+  const auto d = vec3_values(m, head.primitives[0].targets[1].at("POSITION"));
+  EXPECT_EQ(d, (std::vector<float>{0, 0, 0, 0, 0.25f, 0, 0, 0, 0, 0, 0, 0}));
+  // vertex 5 of triangles() is vertex 1 of the second primitive
+  EXPECT_EQ(vec3_values(m, head.primitives[1].targets[2].at("POSITION")),
+            (std::vector<float>{0, 0, 0, 0, 0, -0.5f, 0, 0, 0}));
+  EXPECT_EQ(head.extras.Get("targetNames").Get(2).Get<std::string>(), "blink_emoface");
+  EXPECT_EQ(head.weights, (std::vector<double>{0.5, 0.0, 0.0}));
+  // theirs: skin, UVs, colours, material, image, nodes, the other mesh
+  ASSERT_EQ(m.skins.size(), 1u);
+  EXPECT_EQ(floats(m, m.skins[0].inverseBindMatrices),
+            floats(orig, orig.skins[0].inverseBindMatrices));
+  EXPECT_EQ(floats(m, head.primitives[0].attributes.at("TEXCOORD_0")),
+            floats(orig, orig.meshes[0].primitives[0].attributes.at("TEXCOORD_0")));
+  EXPECT_EQ(m.materials[0].name, "skin");
+  EXPECT_EQ(m.images.size(), 1u);
+  ASSERT_EQ(m.nodes.size(), 3u);
+  EXPECT_EQ(m.nodes[1].skin, 0);
+  EXPECT_EQ(m.meshes[1].name, "hat");
+  // the animation: one weights channel on node 1 (the skinned head), 3 weights per key, theirs at
+  // 0.5
+  ASSERT_EQ(m.animations.size(), 1u);
+  const auto& an = m.animations[0];
+  EXPECT_EQ(an.name, "ours");
+  ASSERT_EQ(an.channels.size(), 1u);
+  EXPECT_EQ(an.channels[0].target_node, 1);
+  EXPECT_EQ(an.channels[0].target_path, "weights");
+  const auto& out = m.accessors[static_cast<std::size_t>(an.samplers[0].output)];
+  ASSERT_EQ(out.count, 6u);
+  const auto& ov = m.bufferViews[static_cast<std::size_t>(out.bufferView)];
+  float w[6];
+  std::memcpy(w, m.buffers[0].data.data() + ov.byteOffset + out.byteOffset, sizeof w);
+  EXPECT_EQ(std::vector<float>(w, w + 6),
+            (std::vector<float>{0.5f, 0.0f, 1.0f, 0.5f, 1.0f, 0.25f}));
+
+  // bad inputs: nothing written
+  WeightAnimation bad = a;
+  bad.weights[1] = {1.0};
+  EXPECT_THROW(doc.write_gltf_with_targets(path("x.glb"), {lift, blink}, {bad}), InvalidInput);
+  bad = a;
+  bad.times = {0.0, 0.0};
+  EXPECT_THROW(doc.write_gltf_with_targets(path("x.glb"), {lift, blink}, {bad}), InvalidInput);
+  bad = a;
+  bad.weights[0][0] = std::nan("");
+  EXPECT_THROW(doc.write_gltf_with_targets(path("x.glb"), {lift, blink}, {bad}), InvalidInput);
+  MorphTarget nan_target = lift;
+  nan_target.position_deltas(0, 0) = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(doc.write_gltf_with_targets(path("x.glb"), {nan_target}, {}), InvalidInput);
+  MorphTarget short_normals = lift;
+  short_normals.normal_deltas = Vertices::Zero(3, 3);
+  EXPECT_THROW(doc.write_gltf_with_targets(path("x.glb"), {short_normals}, {}), InvalidInput);
+  DocumentTargetsOptions o;
+  o.sparse_epsilon = -1.0;
+  EXPECT_THROW(doc.write_gltf_with_targets(path("x.glb"), {lift}, {}, o), InvalidInput);
+  EXPECT_FALSE(std::filesystem::exists(path("x.glb")));
+  // a mesh on no node cannot be animated
+  tinygltf::Model orphan = character();
+  orphan.nodes[1].mesh = 1;
+  save(orphan, path("orphan.gltf"), false);
+  const MeshDocument od = read_mesh_document(path("orphan.gltf"));
+  EXPECT_THROW(od.write_gltf_with_targets(path("x.glb"), {lift, blink}, {a}), InvalidInput);
+  EXPECT_NO_THROW(od.write_gltf_with_targets(path("y.glb"), {lift, blink}, {}));
 }
 
 TEST_F(MeshDocumentTest, RoundTripsOurOwnAnimatedGltf) {

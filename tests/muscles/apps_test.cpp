@@ -1,12 +1,12 @@
 // faceanim and facerender end to end.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <cmath>
 #include <string>
 #include <vector>
-#include <sys/wait.h>
 
 #include "emoface/core/io.hpp"
 #include "emoface/facemesh/default_face.hpp"
@@ -15,6 +15,7 @@
 #include "emoface/facemesh/mesh_document.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 #include "emoface/facemesh/render.hpp"
+#include "emoface/muscles/morph_targets.hpp"
 #include "emoface/muscles/solver.hpp"
 
 namespace {
@@ -185,9 +186,21 @@ TEST_F(Apps, FaceanimWritesFramesThroughTheUsersObjInItsOwnFrame) {
   const auto d = emoface::muscles::deform_face(face.mesh, face.rig, {{"masseter", 0.3}, {"zygomatic_major_l", 1.0}});
   EXPECT_LT((smile.triangles().vertices - 10.0 * d.vertices).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_GT((smile.triangles().vertices - fm::read_mesh_document(p("head.obj")).triangles().vertices).cwiseAbs().maxCoeff(), 0.01);
-  // the animation is in the mesh frame too
+  // the animation is in the mesh frame too; its first mesh is the skin (eyes and jaw pieces are
+  // nodes: muscles::split_rigid_parts), i.e. the user's vertices but those of the parts
   const fm::MeshDocument anim = fm::read_mesh_document(p("a.glb"));
-  EXPECT_LT((anim.triangles().vertices - fm::read_mesh_document(p("head.obj")).triangles().vertices).cwiseAbs().maxCoeff(), 1e-5);
+  const emoface::muscles::FaceSolver solver(face.mesh, face.rig);
+  emoface::muscles::BakedRig baked = emoface::muscles::bake_rig(solver, face.mesh.faces);
+  std::vector<Eigen::Vector3f> no_colors;
+  emoface::muscles::split_rigid_parts(baked, face.rig, no_colors);
+  const fm::Vertices user = fm::read_mesh_document(p("head.obj")).triangles().vertices;
+  fm::Vertices skin(
+      static_cast<long>(baked.skin_vertices.empty() ? user.rows() : baked.skin_vertices.size()), 3);
+  for (long k = 0; k < skin.rows(); ++k)
+    skin.row(k) = user.row(
+        baked.skin_vertices.empty() ? k : baked.skin_vertices[static_cast<std::size_t>(k)]);
+  ASSERT_EQ(anim.triangles().vertices.rows(), skin.rows());
+  EXPECT_LT((anim.triangles().vertices - skin).cwiseAbs().maxCoeff(), 1e-5);
   // ply frames: mesh frame, no document
   ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --rig " + rig + " --params " + p("p.csv") + " --out " + p("ply") + " --format ply"), 0);
   EXPECT_LT((fm::read_mesh(p("ply/frame_0001.ply")).vertices - 10.0 * d.vertices).cwiseAbs().maxCoeff(), 1e-5);

@@ -1,22 +1,24 @@
 // End-to-end: the retarget CLI writes a loadable rig, mesh, report and pictures; exit codes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <tiny_gltf.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <gtest/gtest.h>
-
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/gltf.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
+#include "user_gltf.hpp"
 
 namespace fs = std::filesystem;
 
@@ -211,5 +213,105 @@ TEST(RetargetApp, FaceanimAnimatesTheTransferredMesh) {
   const auto a = emoface::facemesh::read_mesh((in / "head.obj").string()), b = emoface::facemesh::read_mesh((frames / "frame_0000.obj").string());
   ASSERT_EQ(a.vertices.rows(), b.vertices.rows());
   EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-6);
+}
+// A user's own glTF (skin with inverse bind matrices, UVs + texture under their material, a target
+// and an animation of theirs), rigged by the transfer and animated by faceanim --gltf: everything
+// of theirs comes back unchanged, our targets (parameters + the 52 ARKit shapes) and our weights
+// animation are added to their mesh (issue 15). The validator checks the same file in
+// gltf.validator.
+TEST(RetargetApp, FaceanimGltfKeepsTheUsersCharacter) {
+  TempDir t;
+  const auto face = emoface::facemesh::make_default_face();
+  const auto in = t.path / "user.gltf";
+  ASSERT_TRUE(emoface::testing::write_user_gltf(in.string(), face.mesh));
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + in.string() + " --out " + out.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            0);
+  std::ofstream(t.path / "p.csv")
+      << "time,masseter,zygomatic_major_l,zygomatic_major_r\n0,0,0,0\n0.5,0.6,1,1\n";
+  const auto glb = t.path / "anim.glb";
+  const int status = std::system(
+      (std::string(FACEANIM_EXE) + " --rig " + (out / "face.rig").string() + " --params " +
+       (t.path / "p.csv").string() + " --gltf " + glb.string() + " 2>/dev/null")
+          .c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  tinygltf::Model mine, theirs;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&mine, &err, &warn, glb.string())) << err;
+  theirs = emoface::testing::user_gltf_model(face.mesh);
+  auto bytes = [](const tinygltf::Model& m, int accessor) {
+    const auto& a = m.accessors[static_cast<std::size_t>(accessor)];
+    const auto& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    const auto* b =
+        m.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
+    const std::size_t size =
+        a.count * static_cast<std::size_t>(tinygltf::GetNumComponentsInType(a.type)) *
+        static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(a.componentType));
+    return std::vector<unsigned char>(b, b + size);
+  };
+  // their nodes, skin, material, texture, image, animation
+  ASSERT_EQ(mine.nodes.size(), theirs.nodes.size());
+  for (std::size_t n = 0; n < theirs.nodes.size(); ++n) {
+    EXPECT_EQ(mine.nodes[n].name, theirs.nodes[n].name);
+    EXPECT_EQ(mine.nodes[n].translation, theirs.nodes[n].translation);
+    EXPECT_EQ(mine.nodes[n].children, theirs.nodes[n].children);
+  }
+  ASSERT_EQ(mine.skins.size(), 1u);
+  EXPECT_EQ(mine.skins[0].joints, theirs.skins[0].joints);
+  EXPECT_EQ(mine.skins[0].skeleton, 1);
+  EXPECT_EQ(bytes(mine, mine.skins[0].inverseBindMatrices),
+            bytes(theirs, theirs.skins[0].inverseBindMatrices));
+  EXPECT_EQ(mine.nodes[0].skin, 0);
+  ASSERT_EQ(mine.materials.size(), 1u);
+  EXPECT_EQ(mine.materials[0].name, "user_skin");
+  EXPECT_EQ(mine.materials[0].pbrMetallicRoughness.baseColorFactor,
+            theirs.materials[0].pbrMetallicRoughness.baseColorFactor);
+  EXPECT_EQ(mine.materials[0].pbrMetallicRoughness.baseColorTexture.index, 0);
+  ASSERT_EQ(mine.images.size(), 1u);
+  ASSERT_EQ(mine.animations.size(), 2u);  // theirs, then ours
+  EXPECT_EQ(mine.animations[0].name, "user_jaw");
+  EXPECT_EQ(mine.animations[0].channels[0].target_node, 2);
+  // their attributes byte for byte (the positions: float32 through the rig frame and back)
+  const auto& p = mine.meshes[0].primitives[0];
+  const auto& q = theirs.meshes[0].primitives[0];
+  for (const char* attr : {"TEXCOORD_0", "JOINTS_0", "WEIGHTS_0"})
+    EXPECT_EQ(bytes(mine, p.attributes.at(attr)), bytes(theirs, q.attributes.at(attr))) << attr;
+  EXPECT_EQ(bytes(mine, p.indices), bytes(theirs, q.indices));
+  EXPECT_EQ(p.material, 0);
+  // their target first and unchanged; ours after it
+  ASSERT_GT(p.targets.size(), 1u + 52u);
+  EXPECT_EQ(bytes(mine, p.targets[0].at("POSITION")), bytes(theirs, q.targets[0].at("POSITION")));
+  const auto& names = mine.meshes[0].extras.Get("targetNames");
+  ASSERT_EQ(names.ArrayLen(), p.targets.size());
+  EXPECT_EQ(names.Get(0).Get<std::string>(), "user_smile");
+  std::vector<std::string> ours;
+  for (std::size_t i = 1; i < names.ArrayLen(); ++i)
+    ours.push_back(names.Get(static_cast<int>(i)).Get<std::string>());
+  for (const char* n :
+       {"zygomatic_major_l", "masseter", "jawOpen", "mouthSmile_L", "eyeBlink_R", "tongueOut"})
+    EXPECT_NE(std::find(ours.begin(), ours.end(), n), ours.end()) << n;
+  // our zygomatic target moves the left mouth corner (+x) up and out, by millimetres
+  const auto zyg = static_cast<std::size_t>(
+                       std::find(ours.begin(), ours.end(), "zygomatic_major_l") - ours.begin()) +
+                   1;
+  const auto& acc = mine.accessors[static_cast<std::size_t>(p.targets[zyg].at("POSITION"))];
+  EXPECT_GT(acc.maxValues[1], 0.001);
+  EXPECT_LT(acc.maxValues[1], 0.03);
+  // our animation: one weights channel on their skinned node, their target at its default weight 0
+  const auto& an = mine.animations[1];
+  ASSERT_EQ(an.channels.size(), 1u);
+  EXPECT_EQ(an.channels[0].target_node, 0);
+  EXPECT_EQ(an.channels[0].target_path, "weights");
+  const auto& w = mine.accessors[static_cast<std::size_t>(an.samplers[0].output)];
+  EXPECT_EQ(w.count, 2 * p.targets.size());
+  std::vector<float> weights(w.count);
+  std::memcpy(weights.data(), bytes(mine, an.samplers[0].output).data(), w.count * 4);
+  const std::size_t nt = p.targets.size();
+  EXPECT_EQ(weights[nt + 0], 0.0f);          // user_smile
+  EXPECT_FLOAT_EQ(weights[nt + zyg], 1.0f);  // zygomatic_major_l at t = 0.5
+  EXPECT_EQ(*std::max_element(weights.begin(), weights.begin() + static_cast<long>(nt)),
+            0.0f);  // t = 0: neutral
 }
 #endif

@@ -30,73 +30,14 @@ class Builder {
                std::vector<double> max = {}) {
     return detail::add_accessor(model, view, component, count, type, std::move(min), std::move(max));
   }
-  static void bounds(const std::vector<float>& xyz, std::vector<double>& lo, std::vector<double>& hi) {
-    lo.assign(3, 0.0);
-    hi.assign(3, 0.0);
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = 1e300;
-      hi[k] = -1e300;
-    }
-    for (std::size_t i = 0; i < xyz.size(); ++i) {
-      lo[i % 3] = std::min(lo[i % 3], static_cast<double>(xyz[i]));
-      hi[i % 3] = std::max(hi[i % 3], static_cast<double>(xyz[i]));
-    }
-  }
   int vec3(const std::vector<float>& xyz, bool with_bounds) {
-    std::vector<double> lo, hi;
-    if (with_bounds) bounds(xyz, lo, hi);
-    const int v = view(xyz.data(), xyz.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
-    return accessor(v, TINYGLTF_COMPONENT_TYPE_FLOAT, xyz.size() / 3, TINYGLTF_TYPE_VEC3, lo, hi);
+    return detail::add_vec3(model, xyz, with_bounds);
   }
   // A morph-target delta: sparse (indices + values of the non-zero rows) when that is smaller.
   int delta(const std::vector<float>& xyz, double eps, bool with_bounds, MorphGltfReport& report) {
-    const std::size_t n = xyz.size() / 3;
-    std::vector<std::uint32_t> idx;
-    std::vector<float> vals;
-    for (std::size_t v = 0; v < n; ++v) {
-      const float* p = &xyz[v * 3];
-      if (std::fabs(p[0]) > eps || std::fabs(p[1]) > eps || std::fabs(p[2]) > eps) {
-        idx.push_back(static_cast<std::uint32_t>(v));
-        vals.insert(vals.end(), p, p + 3);
-      }
-    }
-    // glTF: a sparse accessor needs count ≥ 1; an all-zero delta stores one zero row
-    if (idx.empty()) {
-      idx.push_back(0);
-      vals.assign(3, 0.0f);
-    }
-    const bool u16 = n <= 65535;
-    const std::size_t sparse_bytes = idx.size() * (u16 ? 2 : 4) + vals.size() * 4 + 8;
-    if (sparse_bytes >= xyz.size() * 4) {
-      ++report.dense_accessors;
-      return vec3(xyz, with_bounds);
-    }
-    ++report.sparse_accessors;
-    std::vector<double> lo, hi;
-    if (with_bounds) {
-      // bounds over all n rows: the implicit zeros count too
-      std::vector<float> with_zero = vals;
-      if (idx.size() < n) with_zero.insert(with_zero.end(), {0.0f, 0.0f, 0.0f});
-      bounds(with_zero, lo, hi);
-    }
-    int iv;
-    if (u16) {
-      std::vector<std::uint16_t> i16(idx.begin(), idx.end());
-      iv = view(i16.data(), i16.size() * 2, 0);
-    } else {
-      iv = view(idx.data(), idx.size() * 4, 0);
-    }
-    const int vv = view(vals.data(), vals.size() * 4, 0);
-    const int a = accessor(-1, TINYGLTF_COMPONENT_TYPE_FLOAT, n, TINYGLTF_TYPE_VEC3, lo, hi);
-    auto& acc = model.accessors[static_cast<std::size_t>(a)];
-    acc.sparse.isSparse = true;
-    acc.sparse.count = static_cast<int>(idx.size());
-    acc.sparse.indices.bufferView = iv;
-    acc.sparse.indices.byteOffset = 0;
-    acc.sparse.indices.componentType =
-        u16 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    acc.sparse.values.bufferView = vv;
-    acc.sparse.values.byteOffset = 0;
+    bool sparse = false;
+    const int a = detail::add_delta(model, xyz, eps, with_bounds, true, sparse);
+    ++(sparse ? report.sparse_accessors : report.dense_accessors);
     return a;
   }
 };
@@ -139,7 +80,46 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
     if (!t.position_deltas.allFinite() || !t.normal_deltas.allFinite())
       throw InvalidInput("write_morph_gltf: target '" + t.name + "' is not finite");
   }
+  std::set<std::string> node_names{"head", options.name};
+  for (const auto& part : options.parts) {
+    if (part.name.empty() || !node_names.insert(part.name).second)
+      throw InvalidInput(
+          "write_morph_gltf: part node names must be unique and not 'head' or the mesh name ('" +
+          part.name + "')");
+    if (!part.pivot.allFinite())
+      throw InvalidInput("write_morph_gltf: part '" + part.name + "': pivot not finite");
+    if (part.meshes.empty())
+      throw InvalidInput("write_morph_gltf: part '" + part.name + "' has no mesh");
+    for (const auto& pm : part.meshes) {
+      const std::string who = "write_morph_gltf: part mesh '" + pm.name + "'";
+      if (pm.name.empty() || !node_names.insert(pm.name).second)
+        throw InvalidInput(who + ": names must be unique and non-empty");
+      const long n = pm.mesh.vertices.rows();
+      if (n == 0 || pm.mesh.faces.rows() == 0) throw InvalidInput(who + ": empty mesh");
+      if (!pm.mesh.vertices.allFinite()) throw InvalidInput(who + ": vertices not finite");
+      if (pm.mesh.faces.size() > 0 &&
+          (pm.mesh.faces.minCoeff() < 0 || pm.mesh.faces.maxCoeff() >= n))
+        throw InvalidInput(who + ": face index out of range");
+      if (!pm.colors.empty() && pm.colors.size() != static_cast<std::size_t>(n))
+        throw InvalidInput(who + ": one colour per vertex");
+    }
+  }
   for (const auto& a : animations) {
+    if (!a.part_rotations.empty()) {
+      if (a.part_rotations.size() != options.parts.size())
+        throw InvalidInput("write_morph_gltf: animation '" + a.name +
+                           "': one rotation list per part");
+      for (const auto& r : a.part_rotations) {
+        if (!r.empty() && r.size() != a.times.size())
+          throw InvalidInput("write_morph_gltf: animation '" + a.name +
+                             "': a part needs one rotation per key");
+        for (const auto& q : r) {
+          if (!q.coeffs().allFinite() || q.norm() < 1e-12)
+            throw InvalidInput("write_morph_gltf: animation '" + a.name +
+                               "': part rotation not a finite rotation");
+        }
+      }
+    }
     if (a.times.empty() || a.weights.size() != a.times.size())
       throw InvalidInput("write_morph_gltf: animation '" + a.name + "' needs one weight vector per key");
     if (!a.head_rotations.empty() && a.head_rotations.size() != a.times.size())
@@ -153,7 +133,9 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
         if (!std::isfinite(w)) throw InvalidInput("write_morph_gltf: animation '" + a.name + "': weight not finite");
       }
     }
-    if (targets.empty() && a.head_rotations.empty())
+    bool parts_move = false;
+    for (const auto& r : a.part_rotations) parts_move = parts_move || !r.empty();
+    if (targets.empty() && a.head_rotations.empty() && !parts_move)
       throw InvalidInput("write_morph_gltf: animation '" + a.name + "' animates nothing");
   }
 
@@ -218,6 +200,53 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
   face.mesh = 0;
   face.translation = {-options.head_pivot.x(), -options.head_pivot.y(), -options.head_pivot.z()};
   b.model.nodes = {head, face};
+  // rigid parts: a transform node at the pivot (relative to the head pivot), mesh nodes below it
+  std::vector<int> part_nodes;
+  for (const auto& part : options.parts) {
+    tinygltf::Node pn;
+    pn.name = part.name;
+    const Eigen::Vector3d at = part.pivot - options.head_pivot;
+    pn.translation = {at.x(), at.y(), at.z()};
+    const int pi = static_cast<int>(b.model.nodes.size());
+    b.model.nodes.push_back(pn);
+    part_nodes.push_back(pi);
+    b.model.nodes[0].children.push_back(pi);
+    for (const auto& pm : part.meshes) {
+      tinygltf::Primitive pp;
+      pp.mode = TINYGLTF_MODE_TRIANGLES;
+      Vertices local = pm.mesh.vertices;
+      local.rowwise() -= part.pivot.transpose();
+      pp.attributes["POSITION"] = b.vec3(to_floats(local), true);
+      if (options.normals)
+        pp.attributes["NORMAL"] =
+            b.vec3(to_floats(vertex_normals(pm.mesh.vertices, pm.mesh.faces)), false);
+      if (!pm.colors.empty()) {
+        std::vector<float> rgb;
+        for (const auto& c : pm.colors) {
+          for (int k = 0; k < 3; ++k) rgb.push_back(std::clamp(c[k], 0.0f, 1.0f));
+        }
+        pp.attributes["COLOR_0"] = b.vec3(rgb, false);
+      }
+      std::vector<std::uint32_t> pidx;
+      for (long f = 0; f < pm.mesh.faces.rows(); ++f) {
+        for (int k = 0; k < 3; ++k) pidx.push_back(static_cast<std::uint32_t>(pm.mesh.faces(f, k)));
+      }
+      const int piv = b.view(pidx.data(), pidx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+      pp.indices =
+          b.accessor(piv, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, pidx.size(), TINYGLTF_TYPE_SCALAR);
+      pp.material = 0;
+      tinygltf::Mesh m;
+      m.name = pm.name;
+      m.primitives.push_back(pp);
+      b.model.meshes.push_back(m);
+      tinygltf::Node mn;
+      mn.name = pm.name;
+      mn.mesh = static_cast<int>(b.model.meshes.size()) - 1;
+      b.model.nodes[static_cast<std::size_t>(pi)].children.push_back(
+          static_cast<int>(b.model.nodes.size()));
+      b.model.nodes.push_back(mn);
+    }
+  }
   tinygltf::Scene scene;
   scene.name = "scene";
   scene.nodes = {0};
@@ -265,6 +294,27 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
       tinygltf::AnimationChannel c;
       c.sampler = static_cast<int>(anim.samplers.size()) - 1;
       c.target_node = 0;
+      c.target_path = "rotation";
+      anim.channels.push_back(c);
+    }
+    for (std::size_t p = 0; p < a.part_rotations.size(); ++p) {
+      if (a.part_rotations[p].empty()) continue;
+      std::vector<float> q;
+      for (const auto& r : a.part_rotations[p]) {
+        const Eigen::Quaterniond n = r.normalized();
+        q.insert(q.end(), {static_cast<float>(n.x()), static_cast<float>(n.y()),
+                           static_cast<float>(n.z()), static_cast<float>(n.w())});
+      }
+      const int qv = b.view(q.data(), q.size() * 4, 0);
+      tinygltf::AnimationSampler s;
+      s.input = ta;
+      s.output = b.accessor(qv, TINYGLTF_COMPONENT_TYPE_FLOAT, a.part_rotations[p].size(),
+                            TINYGLTF_TYPE_VEC4);
+      s.interpolation = "LINEAR";
+      anim.samplers.push_back(s);
+      tinygltf::AnimationChannel c;
+      c.sampler = static_cast<int>(anim.samplers.size()) - 1;
+      c.target_node = part_nodes[p];
       c.target_path = "rotation";
       anim.channels.push_back(c);
     }

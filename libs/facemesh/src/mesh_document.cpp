@@ -2,6 +2,9 @@
 // glTF 2.0 through tinygltf (positions and normals rewritten in place), PLY/OFF through mesh_io.
 #include "emoface/facemesh/mesh_document.hpp"
 
+#include <tiny_gltf.h>
+
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -10,16 +13,15 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <set>
 #include <string_view>
 #include <tuple>
 #include <unordered_map>
 
-#include <Eigen/Geometry>
-#include <tiny_gltf.h>
-
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
+#include "gltf_buffers.hpp"
 
 namespace emoface::facemesh {
 
@@ -768,6 +770,23 @@ void save_gltf(const MeshDocument::Impl& doc, tinygltf::Model& model, const std:
   }
   // buffers always embedded (data URI in .gltf, the BIN chunk in .glb): the output stands alone
   for (auto& b : model.buffers) b.uri.clear();
+  // a .glb carries embedded images in its BIN chunk (a data URI inside a GLB is discouraged: the
+  // glTF-Validator's DATA_URI_GLB warning); PNG and JPEG recognised by their signature
+  if (binary) {
+    if (model.buffers.empty()) model.buffers.emplace_back();
+    for (auto& image : model.images) {
+      if (!image.uri.empty() || image.bufferView >= 0 || image.image.size() < 4) continue;
+      const auto& b = image.image;
+      std::string mime = image.mimeType;
+      if (mime.empty() && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G')
+        mime = "image/png";
+      if (mime.empty() && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) mime = "image/jpeg";
+      if (mime.empty()) continue;  // unknown kind: stays a data URI
+      image.bufferView = detail::add_view(model, b.data(), b.size(), 0);
+      image.mimeType = mime;
+      image.image.clear();
+    }
+  }
   tinygltf::TinyGLTF writer;
   // a data-URI image goes back as the same data URI; false keeps an image's original uri
   writer.SetImageWriter([](const std::string*, const std::string*, const tinygltf::Image* image, bool, std::string* out_uri,
@@ -823,64 +842,168 @@ void MeshDocument::write(const std::string& path, const Vertices& positions, boo
   }
 }
 
+void DocumentTargetsOptions::validate() const {
+  if (!(sparse_epsilon >= 0.0) || !std::isfinite(sparse_epsilon))
+    throw InvalidInput("DocumentTargetsOptions: sparse_epsilon must be finite and >= 0");
+  if (clash_suffix.empty()) throw InvalidInput("DocumentTargetsOptions: empty clash_suffix");
+}
+
 void MeshDocument::write_gltf_with_targets(const std::string& path, const std::vector<std::string>& names,
                                            const std::vector<Vertices>& deltas) const {
+  if (names.size() != deltas.size())
+    throw InvalidInput("write_gltf_with_targets: one name per target needed");
+  std::vector<MorphTarget> targets;
+  for (std::size_t t = 0; t < names.size(); ++t) targets.push_back({names[t], deltas[t], {}});
+  DocumentTargetsOptions options;
+  options.sparse = false;
+  write_gltf_with_targets(path, targets, {}, options);
+}
+
+namespace {
+
+std::vector<float> packed(const Vertices& v, int first, int count) {
+  std::vector<float> out(static_cast<std::size_t>(count) * 3);
+  for (int i = 0; i < count; ++i) {
+    for (int k = 0; k < 3; ++k)
+      out[static_cast<std::size_t>(3 * i + k)] = static_cast<float>(v(first + i, k));
+  }
+  return out;
+}
+
+void check_animation(const WeightAnimation& a, std::size_t targets) {
+  const std::string who = "write_gltf_with_targets: animation '" + a.name + "'";
+  if (a.times.empty() || a.weights.size() != a.times.size())
+    throw InvalidInput(who + " needs one weight vector per key");
+  for (std::size_t i = 0; i < a.times.size(); ++i) {
+    if (!std::isfinite(a.times[i]) || a.times[i] < 0.0 || (i > 0 && !(a.times[i] > a.times[i - 1])))
+      throw InvalidInput(who + ": times must be finite, >= 0 and increasing (key " +
+                         std::to_string(i) + ")");
+    if (a.weights[i].size() != targets)
+      throw InvalidInput(who + ": key " + std::to_string(i) + " has " +
+                         std::to_string(a.weights[i].size()) + " weights for " +
+                         std::to_string(targets) + " added targets");
+    for (double w : a.weights[i]) {
+      if (!std::isfinite(w))
+        throw InvalidInput(who + ": key " + std::to_string(i) + ": weight not finite");
+    }
+  }
+}
+
+}  // namespace
+
+DocumentTargetsReport MeshDocument::write_gltf_with_targets(
+    const std::string& path, const std::vector<MorphTarget>& targets,
+    const std::vector<WeightAnimation>& animations, const DocumentTargetsOptions& options) const {
   const Impl& doc = *impl_;
+  options.validate();
   if (doc.format != MeshFormat::Gltf && doc.format != MeshFormat::Glb) {
     throw InvalidInput("write_gltf_with_targets: '" + doc.path + "' is not a glTF document");
   }
-  if (names.size() != deltas.size()) throw InvalidInput("write_gltf_with_targets: one name per target needed");
-  for (std::size_t t = 0; t < deltas.size(); ++t) {
-    if (names[t].empty()) throw InvalidInput("write_gltf_with_targets: empty target name");
-    check_positions(doc, deltas[t], "write_gltf_with_targets");
+  for (const auto& t : targets) {
+    if (t.name.empty()) throw InvalidInput("write_gltf_with_targets: empty target name");
+    check_positions(doc, t.position_deltas, "write_gltf_with_targets");
+    if (t.normal_deltas.rows() != 0)
+      check_positions(doc, t.normal_deltas, "write_gltf_with_targets (normals)");
   }
+  for (const auto& a : animations) check_animation(a, targets.size());
   tinygltf::Model model = doc.model;
   auto& mesh = model.meshes[0];
+  DocumentTargetsReport report;
   const std::size_t existing = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+  report.existing_targets = existing;
   if (model.buffers.empty()) model.buffers.emplace_back();
-  for (std::size_t t = 0; t < deltas.size(); ++t) {
-    for (const auto& prim : doc.primitives) {
-      std::vector<float> d(static_cast<std::size_t>(prim.vertex_count) * 3);
-      std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
-      for (int i = 0; i < prim.vertex_count; ++i) {
-        for (int k = 0; k < 3; ++k) {
-          const float x = static_cast<float>(deltas[t](prim.vertex_offset + i, k));
-          d[static_cast<std::size_t>(3 * i + k)] = x;
-          lo[static_cast<std::size_t>(k)] = std::min(lo[static_cast<std::size_t>(k)], static_cast<double>(x));
-          hi[static_cast<std::size_t>(k)] = std::max(hi[static_cast<std::size_t>(k)], static_cast<double>(x));
-        }
+  // extras.targetNames: existing names (or placeholders for unnamed targets), then the new ones
+  tinygltf::Value::Object extras = mesh.extras.IsObject()
+                                       ? mesh.extras.Get<tinygltf::Value::Object>()
+                                       : tinygltf::Value::Object();
+  tinygltf::Value::Array target_names;
+  if (extras.count("targetNames") && extras["targetNames"].IsArray())
+    target_names = extras["targetNames"].Get<tinygltf::Value::Array>();
+  while (target_names.size() < existing)
+    target_names.emplace_back(std::string("target_") + std::to_string(target_names.size()));
+  target_names.resize(existing);
+  std::set<std::string> used;
+  for (const auto& n : target_names) {
+    if (n.IsString()) used.insert(n.Get<std::string>());
+  }
+  for (const auto& t : targets) {
+    std::string name = t.name;
+    if (used.count(name)) {
+      name = t.name + options.clash_suffix;
+      for (int k = 2; used.count(name); ++k)
+        name = t.name + options.clash_suffix + std::to_string(k);
+    }
+    used.insert(name);
+    report.names.push_back(name);
+    target_names.emplace_back(name);
+  }
+  // NORMAL deltas only where the primitive has NORMAL and its own targets carry NORMAL too
+  for (const auto& prim : doc.primitives) {
+    auto& p = mesh.primitives[static_cast<std::size_t>(prim.index)];
+    bool normals = p.attributes.count("NORMAL") > 0;
+    for (const auto& own : p.targets) normals = normals && own.count("NORMAL") > 0;
+    for (const auto& t : targets) {
+      std::map<std::string, int> attrs;
+      bool sparse = false;
+      attrs["POSITION"] =
+          detail::add_delta(model, packed(t.position_deltas, prim.vertex_offset, prim.vertex_count),
+                            options.sparse_epsilon, true, options.sparse, sparse);
+      ++(sparse ? report.sparse_accessors : report.dense_accessors);
+      if (normals && t.normal_deltas.rows() != 0) {
+        attrs["NORMAL"] =
+            detail::add_delta(model, packed(t.normal_deltas, prim.vertex_offset, prim.vertex_count),
+                              options.sparse_epsilon, false, options.sparse, sparse);
+        ++(sparse ? report.sparse_accessors : report.dense_accessors);
       }
-      auto& buffer = model.buffers[0].data;
-      while (buffer.size() % 4) buffer.push_back(0);
-      tinygltf::BufferView view;
-      view.buffer = 0;
-      view.byteOffset = buffer.size();
-      view.byteLength = d.size() * sizeof(float);
-      view.target = TINYGLTF_TARGET_ARRAY_BUFFER;
-      buffer.resize(buffer.size() + view.byteLength);
-      if (!d.empty()) std::memcpy(buffer.data() + view.byteOffset, d.data(), view.byteLength);
-      model.bufferViews.push_back(view);
-      tinygltf::Accessor a;
-      a.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
-      a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-      a.type = TINYGLTF_TYPE_VEC3;
-      a.count = static_cast<std::size_t>(prim.vertex_count);
-      if (prim.vertex_count > 0) a.minValues = lo, a.maxValues = hi;
-      model.accessors.push_back(a);
-      mesh.primitives[static_cast<std::size_t>(prim.index)].targets.push_back({{"POSITION", static_cast<int>(model.accessors.size()) - 1}});
+      p.targets.push_back(attrs);
     }
   }
-  if (!mesh.weights.empty() || existing == 0) mesh.weights.resize(existing + deltas.size(), 0.0);
-  // extras.targetNames: existing names (or placeholders for unnamed targets), then the new ones
-  tinygltf::Value::Object extras = mesh.extras.IsObject() ? mesh.extras.Get<tinygltf::Value::Object>() : tinygltf::Value::Object();
-  tinygltf::Value::Array target_names;
-  if (extras.count("targetNames") && extras["targetNames"].IsArray()) target_names = extras["targetNames"].Get<tinygltf::Value::Array>();
-  while (target_names.size() < existing) target_names.emplace_back(std::string("target_") + std::to_string(target_names.size()));
-  target_names.resize(existing);
-  for (const auto& n : names) target_names.emplace_back(n);
+  std::vector<double> defaults = mesh.weights;
+  defaults.resize(existing, 0.0);
+  if (!mesh.weights.empty() || existing == 0) mesh.weights.resize(existing + targets.size(), 0.0);
   extras["targetNames"] = tinygltf::Value(target_names);
   mesh.extras = tinygltf::Value(extras);
+  // animations: one weights channel per node holding the first mesh (a skinned node too)
+  std::vector<int> nodes;
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    if (model.nodes[n].mesh == 0) nodes.push_back(static_cast<int>(n));
+  }
+  if (!animations.empty() && nodes.empty())
+    throw InvalidInput("write_gltf_with_targets: '" + doc.path +
+                       "': no node holds the first mesh, nothing to animate");
+  report.animated_nodes = animations.empty() ? 0 : nodes.size();
+  for (const auto& a : animations) {
+    tinygltf::Animation anim;
+    anim.name = a.name;
+    std::vector<float> t(a.times.begin(), a.times.end());
+    const int tv = detail::add_view(model, t.data(), t.size() * 4, 0);
+    const int ta = detail::add_accessor(model, tv, TINYGLTF_COMPONENT_TYPE_FLOAT, t.size(),
+                                        TINYGLTF_TYPE_SCALAR, {static_cast<double>(t.front())},
+                                        {static_cast<double>(t.back())});
+    std::vector<float> w;
+    w.reserve(a.times.size() * (existing + targets.size()));
+    for (const auto& key : a.weights) {
+      for (double x : defaults) w.push_back(static_cast<float>(x));
+      for (double x : key) w.push_back(static_cast<float>(x));
+    }
+    const int wv = detail::add_view(model, w.data(), w.size() * 4, 0);
+    tinygltf::AnimationSampler s;
+    s.input = ta;
+    s.output = detail::add_accessor(model, wv, TINYGLTF_COMPONENT_TYPE_FLOAT, w.size(),
+                                    TINYGLTF_TYPE_SCALAR);
+    s.interpolation = "LINEAR";
+    anim.samplers.push_back(s);
+    for (int node : nodes) {
+      tinygltf::AnimationChannel c;
+      c.sampler = 0;
+      c.target_node = node;
+      c.target_path = "weights";
+      anim.channels.push_back(c);
+    }
+    model.animations.push_back(anim);
+  }
   save_gltf(doc, model, path);
+  return report;
 }
 
 MeshDocument read_mesh_document(const std::string& path) {

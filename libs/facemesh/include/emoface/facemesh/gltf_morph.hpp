@@ -23,6 +23,22 @@ struct MorphTarget {
   Vertices normal_deltas;    ///< #V by 3 (unit-normal differences) or empty for no NORMAL delta
 };
 
+/// One mesh node under a rigid part (e.g. "lower_teeth" under "jaw").
+struct PartMesh {
+  std::string name;                     ///< node and mesh name, unique in the file
+  Mesh mesh;                            ///< vertices in the neutral mesh's frame (not relative), m
+  std::vector<Eigen::Vector3f> colors;  ///< per vertex linear RGB in [0, 1] → COLOR_0; empty = none
+};
+
+/// A rigid part written as its own node (child of "head") at `pivot`, rotated by the animation
+/// about the pivot (eyeballs about the eye centre, the lower teeth and tongue about the jaw axis);
+/// its meshes are child nodes holding the vertices relative to the pivot.
+struct NodePart {
+  std::string name;  ///< transform node name, unique in the file ("eye_r", "jaw")
+  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();  ///< metres, the neutral mesh's frame
+  std::vector<PartMesh> meshes;                     ///< ≥ 1
+};
+
 struct WeightAnimation {
   std::string name = "animation";
   std::vector<double> times;                 ///< seconds, finite, strictly increasing, ≥ 1 key
@@ -30,6 +46,10 @@ struct WeightAnimation {
   /// Optional: per key, the rotation of the head node about MorphGltfOptions::head_pivot
   /// (empty = no rotation channel).
   std::vector<Eigen::Quaterniond> head_rotations;
+  /// Optional: per part of MorphGltfOptions::parts, per key, its rotation about its pivot (in the
+  /// head's frame); empty = no part channels, else one list per part, each empty (not animated) or
+  /// one rotation per key.
+  std::vector<std::vector<Eigen::Quaterniond>> part_rotations;
 };
 
 struct MorphGltfOptions {
@@ -37,6 +57,8 @@ struct MorphGltfOptions {
   std::vector<Eigen::Vector3f> colors;    ///< per vertex linear RGB in [0, 1] → COLOR_0; empty = none
   Eigen::Vector3d head_pivot = Eigen::Vector3d::Zero();  ///< metres; node "head" rotates about it
   bool normals = true;                    ///< write NORMAL (base) and NORMAL deltas
+  /// Rigid parts as nodes under "head" (names must differ from "head", `name` and each other).
+  std::vector<NodePart> parts;
   /// A delta component below this (metres, or unit-normal units) counts as zero for sparse storage;
   /// an accessor is written sparse when that takes fewer bytes than dense. ≥ 0.
   double sparse_epsilon = 1e-7;

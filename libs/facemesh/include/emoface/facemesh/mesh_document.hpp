@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "emoface/facemesh/gltf_morph.hpp"
 #include "emoface/facemesh/mesh.hpp"
 
 namespace emoface::facemesh {
@@ -27,6 +28,23 @@ MeshFormat mesh_format_from_path(const std::string& path);
 
 /// One named group of triangles in the file: an OBJ `o`/`g` name and `usemtl` material, or a glTF
 /// primitive (mesh name + index, material name). Used to recognise parts (eyes, teeth, lashes).
+/// Knobs of MeshDocument::write_gltf_with_targets.
+struct DocumentTargetsOptions {
+  bool sparse = true;            ///< sparse accessors where they take fewer bytes
+  double sparse_epsilon = 1e-7;  ///< a delta component below this counts as zero (sparse), >= 0
+  /// Appended to an added target's name that the document already uses (then "2", "3", ...).
+  std::string clash_suffix = "_emoface";
+  void validate() const;
+};
+
+/// What write_gltf_with_targets wrote.
+struct DocumentTargetsReport {
+  std::vector<std::string> names;    ///< the added targets' names as written (renamed on a clash)
+  std::size_t existing_targets = 0;  ///< the document's own targets, kept first
+  std::size_t animated_nodes = 0;    ///< nodes of the first mesh the weight channels drive
+  std::size_t sparse_accessors = 0, dense_accessors = 0;
+};
+
 struct MeshGroup {
   std::string object;    ///< OBJ `o` (or glTF mesh name), may be empty
   std::string group;     ///< OBJ `g` (or "primitive_<k>"), may be empty
@@ -78,6 +96,22 @@ class MeshDocument {
   /// names in mesh.extras.targetNames after any existing ones), existing targets and skins kept.
   void write_gltf_with_targets(const std::string& path, const std::vector<std::string>& names,
                                const std::vector<Vertices>& deltas) const;
+
+  /// glTF/GLB only (InvalidInput otherwise): the user's file with our named morph targets added to
+  /// every primitive of the first mesh and our weight animations added; everything of theirs
+  /// (nodes, skins, materials, UVs, images, their own targets and animations) kept. `targets`:
+  /// POSITION deltas per vertex of triangles() (#V by 3, the file's frame and units); NORMAL deltas
+  /// (#V by 3) written where the primitive has NORMAL and its own targets (if any) have NORMAL
+  /// deltas too. Target names go to mesh.extras.targetNames after the document's own (placeholders
+  /// "target_<k>" for unnamed ones); a name the document already uses gets options.clash_suffix.
+  /// Each animation has one weight per *added* target per key; the document's own targets keep
+  /// their default weights in the channel, which drives every node that holds the first mesh
+  /// (InvalidInput if none does). WeightAnimation::head_rotations are not written: in a user's file
+  /// the head is theirs (a skeleton's neck joint, a node), not ours to re-parent.
+  DocumentTargetsReport write_gltf_with_targets(const std::string& path,
+                                                const std::vector<MorphTarget>& targets,
+                                                const std::vector<WeightAnimation>& animations = {},
+                                                const DocumentTargetsOptions& options = {}) const;
 
   struct Impl;
 
