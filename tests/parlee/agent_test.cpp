@@ -475,6 +475,7 @@ TEST(Agent, DecaysByEventTimeNotBySteps) {
   const double e40 = record(by_time, 40).emotions[s];
   const StepRecord goal = record(by_time, 40.5);
   ASSERT_GT(e40, 0.3);
+  ASSERT_LT(goal.emotions[s], 1.0);  // not saturated: the decay shows
   const double q = std::pow(0.3, 0.25);
   EXPECT_NEAR(goal.emotions[s], std::min(1.0, e40 * q / (1 + e40 * (1 - q)) + goal.impulse[s]),
               1e-12);

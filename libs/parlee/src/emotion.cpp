@@ -190,10 +190,10 @@ EmotionVector decayed(const EmotionVector& e, const EmotionParams& params,
       out[i] = e0 * fall;
       continue;
     }
-    // (1 − e^(−aΔt))/a in seconds, → Δt as a → 0
-    const double a = -r * ln_phi / params.step_seconds;
-    const double g = r > 0.0 ? -std::expm1(r * ln_phi * steps) / a : dt_seconds;
-    const double b = -(1.0 - r) * ln_phi / params.step_seconds / params.omega[i];
+    // in steps (the result then depends on Δt/step_seconds only): (1 − e^(−aΔt))/a → Δt as a → 0
+    const double a = -r * ln_phi;
+    const double g = r > 0.0 ? -std::expm1(r * ln_phi * steps) / a : steps;
+    const double b = -(1.0 - r) * ln_phi / params.omega[i];
     out[i] = e0 * fall / (1.0 + b * e0 * g);
   }
   return out;
