@@ -117,7 +117,7 @@ void plot_runs(const std::string& dir, const std::vector<std::string>& names,
     }
     ChartOptions o = options;
     o.panel_height = 240;
-    o.title = std::string(emotions[c].name) + " by personality";
+    o.title = std::string(emotions[c].name) + ": one line per agent";
     core::write_file_atomic(dir + "/" + std::string(emotions[c].name) + ".png", render_chart({panel}, o));
   }
 }
