@@ -100,12 +100,8 @@ void plot_runs(const std::string& dir, const std::vector<std::string>& names,
     core::write_file_atomic(dir + "/" + names[k] + ".png", render_chart(per_run.back(), o));
   }
   // per emotion, one line per personality in one panel: Figs. 7.10, 7.11
-  static const std::array<std::array<std::uint8_t, 3>, 6> kPalette{{{40, 40, 40},
-                                                                     {230, 120, 0},
-                                                                     {30, 90, 210},
-                                                                     {200, 40, 40},
-                                                                     {40, 160, 60},
-                                                                     {150, 60, 170}}};
+  static const std::array<std::array<std::uint8_t, 3>, 6> kPalette{
+      {{40, 40, 40}, {230, 120, 0}, {30, 90, 210}, {200, 40, 40}, {40, 160, 60}, {150, 60, 170}}};
   const auto& emotions = chart_emotions();
   for (std::size_t c = 0; c < emotions.size(); ++c) {
     ChartPanel panel{std::string(emotions[c].name), {}, 1.0};
@@ -118,7 +114,8 @@ void plot_runs(const std::string& dir, const std::vector<std::string>& names,
     ChartOptions o = options;
     o.panel_height = 240;
     o.title = std::string(emotions[c].name) + ": one line per agent";
-    core::write_file_atomic(dir + "/" + std::string(emotions[c].name) + ".png", render_chart({panel}, o));
+    core::write_file_atomic(dir + "/" + std::string(emotions[c].name) + ".png",
+                            render_chart({panel}, o));
   }
 }
 

@@ -65,7 +65,7 @@ TEST(Text, VerticalIsAQuarterTurn) {
 
 TEST(Text, ClipsAndRejectsWrongBuffers) {
   Im im(10, 4);
-  draw_text(im.rgb, im.w, im.h, 6, 2, "zzzz", {0, 0, 0}, 3);     // partly outside: clipped
+  draw_text(im.rgb, im.w, im.h, 6, 2, "zzzz", {0, 0, 0}, 3);       // partly outside: clipped
   draw_text(im.rgb, im.w, im.h, -100, -100, "abc", {0, 0, 0}, 2);  // wholly outside
   draw_text_vertical(im.rgb, im.w, im.h, 50, 50, "abc", {0, 0, 0}, 2);
   EXPECT_GT(im.count(), 0);

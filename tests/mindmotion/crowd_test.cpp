@@ -475,7 +475,8 @@ TEST(Crowd, StripsAndCellsCarryLabels) {
   const fm::Image s = mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 40, names);
   EXPECT_EQ(ink(s, 0, 0, 90, 32), 0u);
   for (int i = 0; i < 3; ++i) EXPECT_GT(ink(s, 30 * i, 33, 30 * i + 30, 38), 5u) << i;
-  // bar of 1.0 fills the inside of its frame: 32 − 2·3 − 2 = 24 rows (rows 4…27), 30 − 2·5 − 2 = 18 columns
+  // bar of 1.0 fills the inside of its frame: 32 − 2·3 − 2 = 24 rows (rows 4…27), 30 − 2·5 − 2 = 18
+  // columns
   EXPECT_EQ(count_colour(s, colours[0]), 24u * 18u);
   // without labels, or on a strip under 24 pixels, no text and the old layout
   EXPECT_EQ(ink(mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 40), 0, 0, 90, 40), 0u);

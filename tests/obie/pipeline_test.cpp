@@ -475,7 +475,9 @@ TEST(Pipeline, MatchTimeDecayAndAByteIdenticalTimeline) {
   ASSERT_GT(e, 0.05);
   const double q = std::pow(0.9, 0.25);  // e^(−aΔt) = Φ^(r·Δt/step) = 0.9^(0.5·30/60)
   const double psi = e * q / (1 + e * (1 - q));
-  auto s_of = [&](std::size_t j) { return free_kick.emotions[j] >= 0.1 ? free_kick.emotions[j] : 0.0; };
+  auto s_of = [&](std::size_t j) {
+    return free_kick.emotions[j] >= 0.1 ? free_kick.emotions[j] : 0.0;
+  };
   const double damp = std::min(1.0, 0.3 * s_of(dis) + 0.2 * s_of(fear));
   const double expected = psi + goal.impulse[joy] * (1 - damp);
   ASSERT_LT(expected, 0.99);

@@ -499,8 +499,9 @@ TEST(Agent, DecaysByEventTimeNotBySteps) {
   const std::size_t j = index(Emotion::Distress);
   const StepRecord m42 = record(time1, 42);
   EXPECT_NEAR(record(time1, 42).emotions[j],
-              std::min(1.0, 0.97 * record(time1, 41).emotions[j] + m42.impulse[j] *
-                                (1 - record(time1, 41).emotions[index(Emotion::Joy)] * 0.3)),
+              std::min(1.0, 0.97 * record(time1, 41).emotions[j] +
+                                m42.impulse[j] *
+                                    (1 - record(time1, 41).emotions[index(Emotion::Joy)] * 0.3)),
               1e-12);
 }
 

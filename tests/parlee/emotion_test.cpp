@@ -1,3 +1,5 @@
+#include "emoface/parlee/emotion.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -5,7 +7,6 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
-#include "emoface/parlee/emotion.hpp"
 
 using namespace emoface::parlee;
 using emoface::InvalidInput;
@@ -123,7 +124,7 @@ TEST(Emotion, LowIntensityDecaysSlowerByHand) {
   e[1] = 0.05;
   // r = 1/2, ω = 1, one step: e^(−aΔt) = √0.9, b/a = 1, so E' = E·√d / (1 + E·(1 − √d))
   const EmotionVector one = decayed(e, params, phi, 60.0);
-  EXPECT_NEAR(one[0], 0.7290179989462238, 1e-14);   // 0.8·0.948683/(1 + 0.8·0.051317)
+  EXPECT_NEAR(one[0], 0.7290179989462238, 1e-14);    // 0.8·0.948683/(1 + 0.8·0.051317)
   EXPECT_NEAR(one[1], 0.047312768141469654, 1e-15);  // 0.05·0.948683/(1 + 0.05·0.051317)
   EXPECT_GT(one[1] / e[1], one[0] / e[0]);           // the mood keeps more of itself
   EXPECT_GT(one[0], 0.9 * e[0]);                     // never faster than Φ per step

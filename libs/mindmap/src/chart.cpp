@@ -49,9 +49,9 @@ struct Canvas {
 
 }  // namespace
 
-// Issue 19 item 4: a title (the character), a legend with the emotion names, tick values on both axes
-// and axis labels, all with core::draw_text (the one bitmap font). Charts smaller than 200 × 100
-// pixels keep only the swatches, lines and ticks.
+// Issue 19 item 4: a title (the character), a legend with the emotion names, tick values on both
+// axes and axis labels, all with core::draw_text (the one bitmap font). Charts smaller than 200 ×
+// 100 pixels keep only the swatches, lines and ticks.
 Raster mood_chart(const SimulationResult& result, const MindMap& map, std::size_t c,
                   const ChartOptions& options) {
   options.validate();
@@ -93,7 +93,8 @@ Raster mood_chart(const SimulationResult& result, const MindMap& map, std::size_
     int x = 8, y = legend_y;
     for (std::size_t e = 0; e < n; ++e) {
       if (!text) {
-        cv.rect(left + static_cast<int>(e) * 18, 4, left + static_cast<int>(e) * 18 + 12, 12, emotion_colour(e));
+        cv.rect(left + static_cast<int>(e) * 18, 4, left + static_cast<int>(e) * 18 + 12, 12,
+                emotion_colour(e));
         continue;
       }
       const int w = 12 + 4 + core::text_width(map.emotions[e], sc) + 10;
@@ -116,8 +117,8 @@ Raster mood_chart(const SimulationResult& result, const MindMap& map, std::size_
     for (int q = 0; q <= 2; ++q) {  // y tick values 0, 0.5, 1
       const std::string t = q == 0 ? "0" : q == 1 ? "0.5" : "1";
       const int y = static_cast<int>(std::lround(py(q / 2.0)));
-      label(left - 4 - core::text_width(t, sc), std::clamp(y - core::text_height(sc) / 2, top, bottom),
-            t, ink);
+      label(left - 4 - core::text_width(t, sc),
+            std::clamp(y - core::text_height(sc) / 2, top, bottom), t, ink);
     }
     core::draw_text_vertical(cv.r.rgb, cv.r.width, cv.r.height, 3,
                              (top + bottom + core::text_width("mood", sc)) / 2, "mood", ink, sc);

@@ -13,10 +13,10 @@
 #include <sstream>
 #include <thread>
 
+#include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/text.hpp"
-#include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/mindmap/chart.hpp"
@@ -259,8 +259,8 @@ Crowd animate_crowd(std::vector<mindmap::MindMap> maps, std::vector<mindmap::Eve
   return crowd;
 }
 
-fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::uint32_t>& colours, int width,
-                     int height, const std::vector<std::string>& labels) {
+fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::uint32_t>& colours,
+                     int width, int height, const std::vector<std::string>& labels) {
   if (values.size() != colours.size()) throw InvalidInput("mood_strip: one colour per value is needed");
   if (!labels.empty() && labels.size() != values.size())
     throw InvalidInput("mood_strip: one label per value is needed (or none)");
@@ -283,7 +283,8 @@ fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::u
   // labels (issue 19): a text row of 8 pixels at the bottom of strips of at least 24 pixels
   const bool text = !labels.empty() && height >= 24;
   const int bars_height = text ? height - 8 : height;
-  const int top = std::max(1, bars_height / 10), bottom = bars_height - 1 - std::max(1, bars_height / 10);  // frame rows
+  const int top = std::max(1, bars_height / 10),
+            bottom = bars_height - 1 - std::max(1, bars_height / 10);  // frame rows
   constexpr std::uint32_t kFrame = 0xc8c8c8;
   for (int i = 0; i < n; ++i) {
     const double v = values[static_cast<std::size_t>(i)];
@@ -398,7 +399,8 @@ fm::Image CrowdRenderer::cell(std::size_t c, std::size_t k) const {
     const int w = std::min(out.width, 4 + core::text_width(ch.name, sc));
     const int h = std::min(face_height_, 4 + core::text_height(sc) + 2);
     for (int y = 0; y < h; ++y)
-      std::memset(&out.rgb[static_cast<std::size_t>(y) * out.width * 3], 255, static_cast<std::size_t>(w) * 3);
+      std::memset(&out.rgb[static_cast<std::size_t>(y) * out.width * 3], 255,
+                  static_cast<std::size_t>(w) * 3);
     core::draw_text(out.rgb, out.width, out.height, 3, 3, ch.name, {40, 40, 40}, sc);
   }
   return out;
@@ -460,7 +462,8 @@ fm::Image CrowdRenderer::key_moment_sheet() const {
       std::ostringstream t;
       t << std::fixed << std::setprecision(1) << km.time << " s:";
       for (std::size_t i = 0; i < km.stimuli.size(); ++i) t << (i ? ", " : " ") << km.stimuli[i];
-      core::draw_text(out.rgb, out.width, out.height, options_.gap + 2, y + 4, t.str(), {40, 40, 40}, 2);
+      core::draw_text(out.rgb, out.width, out.height, options_.gap + 2, y + 4, t.str(),
+                      {40, 40, 40}, 2);
     }
     blit(out, compose(km.frames), 0, y + header);
     y += header + height() + kRule;

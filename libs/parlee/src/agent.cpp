@@ -323,7 +323,8 @@ StepRecord Agent::step(const Event& event) {
   const double dt_seconds = config_.decay_clock == DecayClock::Time
                                 ? (event.time - time_) * config_.time_unit_seconds
                                 : config_.emotions.step_seconds;
-  if (!std::isfinite(dt_seconds)) throw InvalidInput("event time " + std::to_string(event.time) + " is too far ahead");
+  if (!std::isfinite(dt_seconds))
+    throw InvalidInput("event time " + std::to_string(event.time) + " is too far ahead");
   time_ = event.time;
   StepRecord rec;
   rec.step = ++steps_;
@@ -388,8 +389,9 @@ StepRecord Agent::step(const Event& event) {
   }
 
   const EmotionVector alpha = motivated_alpha(config_.emotions, config_.motivation, config_.motivation_options);
-  const EmotionVector psi = decayed(emotions_, config_.emotions,
-                                   decay_multipliers(config_.emotions, config_.personality), dt_seconds);
+  const EmotionVector psi =
+      decayed(emotions_, config_.emotions, decay_multipliers(config_.emotions, config_.personality),
+              dt_seconds);
   update_decayed_emotions(emotions_, psi, impulse, config_.emotions, alpha);
   rec.impulse = impulse;
   fill(rec);

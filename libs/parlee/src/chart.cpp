@@ -136,7 +136,8 @@ RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& o
     draw_text(cv, left + 6, y0 + 4, panel.title, ink);
   }
   if (!options.y_label.empty())  // vertical, centred on the panels
-    core::draw_text_vertical(cv.rgb, width, height, 4, top + (plot_bottom - top + text_width(options.y_label)) / 2,
+    core::draw_text_vertical(cv.rgb, width, height, 4,
+                             top + (plot_bottom - top + text_width(options.y_label)) / 2,
                              options.y_label, ink, 2);
   for (double gx = 0; gx <= x_max + 1e-9; gx += 10) {
     const std::string label = std::to_string(static_cast<int>(gx));
@@ -160,7 +161,8 @@ RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& o
         entries.emplace_back(s.name, s.rgb);
   int lx = left;
   for (const auto& [name, rgb] : entries) {
-    for (int dy = 0; dy < 4; ++dy) line(cv, lx, l.legend_y + 3 + dy, lx + 18, l.legend_y + 3 + dy, rgb);
+    for (int dy = 0; dy < 4; ++dy)
+      line(cv, lx, l.legend_y + 3 + dy, lx + 18, l.legend_y + 3 + dy, rgb);
     draw_text(cv, lx + 24, l.legend_y, name, ink);
     lx += 24 + text_width(name) + 20;
   }

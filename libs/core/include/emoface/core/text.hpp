@@ -1,9 +1,10 @@
 #pragma once
 // The one bitmap text routine of emoface's pictures (charts, mood charts, crowd strips, key-moment
-// sheets): a 3×5 pixel font (digits, a–z — upper case drawn as lower case — and ' -_.:'!,/+()%=<>'),
-// each glyph 4 columns wide with the gap, scaled by an integer factor. Drawn straight into 8-bit
-// RGB buffers (row-major, top row first, 3 bytes per pixel); pixels outside the image are clipped.
-// Moved here from libs/parlee (chart.cpp) so that every library draws the same letters (issue 19).
+// sheets): a 3×5 pixel font — digits, a–z (upper case drawn as lower case) and the punctuation
+// ` -_.:'!,/+()%=<>` — each glyph 4 columns wide with the gap, scaled by an integer factor. Drawn
+// straight into 8-bit RGB buffers (row-major, top row first, 3 bytes per pixel); pixels outside the
+// image are clipped. Moved here from libs/parlee (chart.cpp) so that every library draws the same
+// letters (issue 19).
 #include <array>
 #include <cstdint>
 #include <string_view>

@@ -29,7 +29,8 @@ DisallowedEvent disallowed_event_from_string(std::string_view s);  ///< throws I
 /// How much the emotions decay between two events (§5.6.3, issue 17 item 3).
 enum class DecayClock : std::uint8_t {
   Time,  ///< by the time between the events: (Event::time − previous)·time_unit_seconds seconds
-  Step,  ///< one step of EmotionParams::step_seconds per event, whatever the times (before issue 17)
+  Step,  ///< one step of EmotionParams::step_seconds per event, whatever the times (before issue
+         ///< 17)
 };
 std::string_view to_string(DecayClock c);
 DecayClock decay_clock_from_string(std::string_view s);  ///< throws InvalidInput

@@ -115,8 +115,9 @@ EmotionVector decay_rates(const EmotionParams& params, const EmotionVector& deca
 EmotionVector decayed(const EmotionVector& e, const EmotionParams& params,
                       const EmotionVector& decay_multiplier, double dt_seconds);
 
-/// §5.6.4 with the decayed state given: E_{i,t+1} = min(ω_i, Ψ_i + I_i·(1 − Σ_j S_{j,t}/ω_j·M_{j,i}))
-/// with S from `e` (the state before decay, E_t). `decayed` = Ψ(E_t), e.g. from decayed().
+/// §5.6.4 with the decayed state given: E_{i,t+1} = min(ω_i, Ψ_i + I_i·(1 − Σ_j
+/// S_{j,t}/ω_j·M_{j,i})) with S from `e` (the state before decay, E_t). `decayed` = Ψ(E_t), e.g.
+/// from decayed().
 void update_decayed_emotions(EmotionVector& e, const EmotionVector& decayed,
                              const EmotionVector& impulse, const EmotionParams& params,
                              const EmotionVector& alpha);

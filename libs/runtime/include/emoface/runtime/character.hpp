@@ -22,10 +22,10 @@
 // being the length of one thesis step (one match minute in ch. 7 = 1 s of animation by default;
 // it overrides the agent's emotions.step_seconds and time_unit_seconds: agent event times are
 // input-clock seconds / step_seconds); with events step_seconds apart it is exactly the agent's
-// per-minute update (tested). Determinism: the same config (seed), events and update steps give bit-identical
-// outputs; snapshot() captures the whole state as JSON and restore_character() continues
-// bit-identically (tested). Not thread-safe: one thread per Character (different Characters are
-// independent).
+// per-minute update (tested). Determinism: the same config (seed), events and update steps give
+// bit-identical outputs; snapshot() captures the whole state as JSON and restore_character()
+// continues bit-identically (tested). Not thread-safe: one thread per Character (different
+// Characters are independent).
 #include <array>
 #include <cstdint>
 #include <memory>
