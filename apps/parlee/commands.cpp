@@ -74,24 +74,48 @@ int plan_command(const PlanArgs& a, std::ostream& out) {
 
 namespace {
 
+std::string time_axis_label(double unit_seconds) {
+  if (unit_seconds == 60.0) return "time (minutes)";
+  if (unit_seconds == 1.0) return "time (seconds)";
+  std::ostringstream os;
+  os << "time (units of " << unit_seconds << " s)";
+  return os.str();
+}
+
 void plot_runs(const std::string& dir, const std::vector<std::string>& names,
-               const std::vector<std::vector<StepRecord>>& runs) {
+               const std::vector<std::vector<StepRecord>>& runs, double unit_seconds) {
   std::filesystem::create_directories(dir);
   ChartOptions options;  // x_max: every chart of the run shares the longest run's axis
   options.x_max = 10;
   for (const auto& run : runs)
     for (const auto& r : run) options.x_max = std::max(options.x_max, r.time);
   options.x_max = std::ceil(options.x_max / 10) * 10;
+  options.x_label = time_axis_label(unit_seconds);
+  options.y_label = "intensity";
   std::vector<std::vector<ChartPanel>> per_run;
   for (std::size_t k = 0; k < runs.size(); ++k) {  // per personality: Figs. 7.4, 7.5, 7.7, 7.8
     per_run.push_back(emotion_panels(names[k], runs[k]));
-    core::write_file_atomic(dir + "/" + names[k] + ".png", render_chart(per_run.back(), options));
+    ChartOptions o = options;
+    o.title = names[k] + ": felt basic emotions";
+    core::write_file_atomic(dir + "/" + names[k] + ".png", render_chart(per_run.back(), o));
   }
+  // per emotion, one line per personality in one panel: Figs. 7.10, 7.11
+  static const std::array<std::array<std::uint8_t, 3>, 6> kPalette{
+      {{40, 40, 40}, {230, 120, 0}, {30, 90, 210}, {200, 40, 40}, {40, 160, 60}, {150, 60, 170}}};
   const auto& emotions = chart_emotions();
-  for (std::size_t c = 0; c < emotions.size(); ++c) {  // per emotion, one panel per personality: Figs. 7.10, 7.11
-    std::vector<ChartPanel> panels;
-    for (const auto& run_panels : per_run) panels.push_back(run_panels[c]);
-    core::write_file_atomic(dir + "/" + std::string(emotions[c].name) + ".png", render_chart(panels, options));
+  for (std::size_t c = 0; c < emotions.size(); ++c) {
+    ChartPanel panel{std::string(emotions[c].name), {}, 1.0};
+    for (std::size_t k = 0; k < per_run.size(); ++k) {
+      ChartSeries s = per_run[k][c].series.front();
+      s.name = names[k];
+      s.rgb = kPalette[k % kPalette.size()];
+      panel.series.push_back(std::move(s));
+    }
+    ChartOptions o = options;
+    o.panel_height = 240;
+    o.title = std::string(emotions[c].name) + ": one line per agent";
+    core::write_file_atomic(dir + "/" + std::string(emotions[c].name) + ".png",
+                            render_chart({panel}, o));
   }
 }
 
@@ -104,8 +128,10 @@ int run_command(const RunArgs& a) {
   out.write(core::ndjson_header("parlee.timeline", {1, 1}));  // 1.1: skipped, active, shown
   std::vector<std::string> names;
   std::vector<std::vector<StepRecord>> runs;
+  double unit_seconds = 0.0;
   for (const auto& file : a.agents) {
     AgentConfig config = read_agent_file(file);
+    if (unit_seconds == 0.0) unit_seconds = config.time_unit_seconds;
     if (a.horizon >= 0) config.planning.horizon = a.horizon;
     if (a.depth >= -1) config.planning.model_depth = a.depth;
     Agent agent(domain, config);
@@ -128,7 +154,7 @@ int run_command(const RunArgs& a) {
     runs.push_back(std::move(run));
   }
   out.commit();
-  if (!a.plot_dir.empty()) plot_runs(a.plot_dir, names, runs);
+  if (!a.plot_dir.empty()) plot_runs(a.plot_dir, names, runs, unit_seconds);
   return cli::kExitOk;
 }
 

@@ -74,6 +74,22 @@ static void BM_EmotionUpdate10k(benchmark::State& state) {
 }
 BENCHMARK(BM_EmotionUpdate10k)->Unit(benchmark::kMicrosecond);
 
+// Issue 17 item 3: the same update with ParleE's per-second decay over 30 s (half a thesis step):
+// decayed() (exp/expm1 per emotion, slower at low intensity, r = 1/2) + update_decayed_emotions.
+// Baseline: BM_EmotionUpdate10k above (per-step multiply) in the same run.
+static void BM_DecayedUpdate10k(benchmark::State& state) {
+  Crowd crowd(10000);
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < crowd.emotions.size(); ++k) {
+      const EmotionVector psi = decayed(crowd.emotions[k], crowd.params, crowd.decay[k], 30.0);
+      update_decayed_emotions(crowd.emotions[k], psi, crowd.impulses[k], crowd.params, crowd.alpha);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * 10000);
+}
+BENCHMARK(BM_DecayedUpdate10k)->Unit(benchmark::kMicrosecond);
+
 // Appraisal (§5.6.2 with personality) + update for 10,000 agents, two goals each, no planning:
 // comparable to an "appraisal" of GAMYGDALA.
 static void BM_AppraiseAndUpdate10k(benchmark::State& state) {

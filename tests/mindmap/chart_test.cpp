@@ -37,3 +37,31 @@ TEST(Chart, BadArgumentsThrow) {
   three.emotions.push_back("fear");
   EXPECT_THROW(mm::mood_chart(r, three, 0, {100, 100}), emoface::InvalidInput);
 }
+
+// Issue 19 item 4: title, legend names, tick values and axis labels in ink (40, 40, 40); small
+// charts keep no text.
+TEST(Chart, CarriesTitleLegendTicksAndLabels) {
+  mm::Event e;
+  e.time = 1.0;
+  e.target = "alice";
+  e.stimulus = "gift";
+  const auto r = mm::simulate({mm::test::make_alice()}, {e}, {});
+  auto ink_in = [](const mm::Raster& im, int x0, int y0, int x1, int y1) {
+    int k = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const std::size_t i = (static_cast<std::size_t>(y) * im.width + x) * 3;
+        k += im.rgb[i] == 40 && im.rgb[i + 1] == 40 && im.rgb[i + 2] == 40;
+      }
+    return k;
+  };
+  const auto big = mm::mood_chart(r, mm::test::make_alice(), 0, {800, 300});
+  EXPECT_GT(ink_in(big, 300, 3, 500, 13), 40);          // "alice: mood", centred, scale 2
+  EXPECT_GT(ink_in(big, 20, 17, 300, 27), 60);          // legend names after the swatches
+  EXPECT_GT(ink_in(big, 300, 300 - 13, 500, 300), 20);  // "time (s)"
+  EXPECT_GT(ink_in(big, 0, 40, 14, 260), 20);           // "mood", vertical
+  const auto small = mm::mood_chart(r, mm::test::make_alice(), 0, {320, 120});
+  EXPECT_GT(ink_in(small, 0, 0, 320, 120), 100);  // scale 1 text
+  const auto tiny = mm::mood_chart(r, mm::test::make_alice(), 0, {150, 80});
+  EXPECT_EQ(ink_in(tiny, 0, 0, 150, 80), 0);
+}

@@ -462,3 +462,41 @@ TEST(CrowdFaces, RigSpecsAssignFacesPerCharacter) {
 }
 
 }  // namespace
+
+// Issue 19 item 4: labelled strips (emotion names under the bars), names on the faces, key-moment
+// headers; small pictures keep no text.
+TEST(Crowd, StripsAndCellsCarryLabels) {
+  const std::vector<std::uint32_t> colours = {0x1f77b4, 0xff7f0e, 0x2ca02c};
+  const std::vector<std::string> names = {"happiness", "sadness", "anger"};
+  auto ink = [](const fm::Image& im, int x0, int y0, int x1, int y1) {
+    return count_colour(im, 0x3c3c3c, x0, y0, x1, y1);
+  };
+  // 90 × 40, three slots of 30 px: bars in the top 32 rows (frame rows 3 and 28), labels below
+  const fm::Image s = mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 40, names);
+  EXPECT_EQ(ink(s, 0, 0, 90, 32), 0u);
+  for (int i = 0; i < 3; ++i) EXPECT_GT(ink(s, 30 * i, 33, 30 * i + 30, 38), 5u) << i;
+  // bar of 1.0 fills the inside of its frame: 32 − 2·3 − 2 = 24 rows (rows 4…27), 30 − 2·5 − 2 = 18
+  // columns
+  EXPECT_EQ(count_colour(s, colours[0]), 24u * 18u);
+  // without labels, or on a strip under 24 pixels, no text and the old layout
+  EXPECT_EQ(ink(mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 40), 0, 0, 90, 40), 0u);
+  EXPECT_EQ(mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 20, names).rgb,
+            mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 20).rgb);
+  EXPECT_THROW(mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 40, {"a"}), emoface::InvalidInput);
+  // a cell 80 px wide names its character in the top-left corner (scale 1, ink 40,40,40)
+  const mo::Crowd& c = trio_crowd();
+  auto o = tiny();
+  o.face_width = 80;
+  o.strip_height = 30;
+  const mo::CrowdRenderer r(c, rigs(), o);
+  const fm::Image cell = r.cell(0, 3);
+  const int name_w = 4 * static_cast<int>(c.characters[0].name.size());
+  EXPECT_GT(count_colour(cell, 0x282828, 3, 3, 3 + name_w, 8), 3u);
+  EXPECT_EQ(count_colour(cell, 0x282828, 0, 0, 4 + name_w, 10) +
+                count_colour(cell, 0xffffff, 0, 0, 4 + name_w, 10),
+            static_cast<std::size_t>((4 + name_w) * 10));  // ink on its white label
+  EXPECT_GT(count_colour(cell, 0x3c3c3c, 0, cell.height - 8, cell.width, cell.height), 5u);
+  // the tiny renderer (36 px faces, 12 px strips) draws no text
+  const mo::CrowdRenderer t(c, rigs(), tiny());
+  EXPECT_EQ(count_colour(t.cell(0, 3), 0x282828), 0u);
+}

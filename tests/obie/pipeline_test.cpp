@@ -446,3 +446,56 @@ TEST(Pipeline, KeyMomentsOfTheMatchShowTheThesisExpressions) {
 
 }  // namespace
 }  // namespace emoface::obie
+
+namespace emoface::obie {
+namespace {
+
+// Issue 17 item 3: Obie decays by match time. The long free-kick at 40' and the goal at 40.5' are
+// half a minute apart, so surprise (Φ = 0.3 per minute, empty M column, ω = 1, r = 1/2) decays by
+// half a minute between them: ψ = E·0.3^(1/4) / (1 + E·(1 − 0.3^(1/4))), not by two steps. The
+// §7.4 timeline is byte-identical across two runs with one seed.
+TEST(Pipeline, MatchTimeDecayAndAByteIdenticalTimeline) {
+  const std::string file = std::string(EMOFACE_SOURCE_DIR) + "/data/obie/match_7_4.json";
+  const MatchScript match = read_match_file(file);
+  const auto agent = parlee::read_agent_file(kAgent);
+  const auto records = run_match(match, agent, file);
+  auto at = [&](double minute) {
+    for (const auto& r : records)
+      if (r.time == minute) return r;
+    ADD_FAILURE() << "no record at " << minute;
+    return parlee::StepRecord{};
+  };
+  // joy (Φ = 0.9 per minute) is not saturated at 40.5': by hand, with M's joy column (distress
+  // 0.3, fear 0.2; S counts emotions ≥ α = 0.1) damping the goal's impulse
+  const std::size_t joy = parlee::index(parlee::Emotion::Joy);
+  const std::size_t dis = parlee::index(parlee::Emotion::Distress);
+  const std::size_t fear = parlee::index(parlee::Emotion::Fear);
+  const parlee::StepRecord free_kick = at(40), goal = at(40.5);
+  const double e = free_kick.emotions[joy];
+  ASSERT_GT(e, 0.05);
+  const double q = std::pow(0.9, 0.25);  // e^(−aΔt) = Φ^(r·Δt/step) = 0.9^(0.5·30/60)
+  const double psi = e * q / (1 + e * (1 - q));
+  auto s_of = [&](std::size_t j) {
+    return free_kick.emotions[j] >= 0.1 ? free_kick.emotions[j] : 0.0;
+  };
+  const double damp = std::min(1.0, 0.3 * s_of(dis) + 0.2 * s_of(fear));
+  const double expected = psi + goal.impulse[joy] * (1 - damp);
+  ASSERT_LT(expected, 0.99);
+  EXPECT_NEAR(goal.emotions[joy], expected, 1e-12);
+  // a whole step per event (the per-step clock) would have left less: 0.9·e < ψ
+  EXPECT_GT(psi, 0.9 * e + 0.01 * e);
+
+  ObieOptions o = small_options();
+  o.speech = false;
+  o.render_frames = false;
+  o.gltf_fps = 0;
+  o.seed = 11;
+  const ObieResult a = run_obie(match, agent, face(), o, {}, nullptr, file);
+  const ObieResult b = run_obie(match, agent, face(), o, {}, nullptr, file);
+  const std::string ta = format_timeline(a);
+  EXPECT_GT(ta.size(), 10000u);
+  EXPECT_EQ(ta, format_timeline(b));
+}
+
+}  // namespace
+}  // namespace emoface::obie

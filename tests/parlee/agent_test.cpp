@@ -324,7 +324,15 @@ TEST_F(Obie, RealisticDiffersFromNeutral) {
   const auto& n = runs_["neutral"];
   const auto& re = runs_["realistic"];
   EXPECT_GT(at(re, 12, kSad), at(n, 12, kSad) + 0.02);
-  EXPECT_GT(at(re, 80, kSad), at(n, 80, kSad) + 0.02);
+  // at 80' both saturate at ω = 1 (the sadness mood left from 12' persists, §5.6.3): compare
+  // what the goal itself brings, the distress impulse (0.96 vs 0.88)
+  auto impulse_at = [](const std::vector<StepRecord>& run, double t) {
+    for (const auto& r : run)
+      if (r.time == t) return r.impulse[index(Emotion::Distress)];
+    return -1.0;
+  };
+  EXPECT_GT(impulse_at(re, 80), impulse_at(n, 80) + 0.02);
+  EXPECT_GE(at(re, 80, kSad), at(n, 80, kSad));
   EXPECT_GT(at(re, 12, kSurprise), at(n, 12, kSurprise) + 0.1);
   EXPECT_GT(at(re, 30, kHappy), at(n, 30, kHappy));
 }
@@ -436,4 +444,74 @@ TEST(Agent, TwoSupportersFeelForEachOther) {
   EXPECT_GT(fan_for.at(40.5).basic[kHappy], 0.5);
   EXPECT_GT(fan_against.at(40.5).basic[kSad], 0.5);
   EXPECT_GT(fan_against.at(12).basic[kHappy], 0.5);
+}
+
+// Issue 17 item 3: the agent decays by the time between events (§5.6.3 per second, one thesis step
+// = one match minute, §7.4). The long free-kick at 40' and the goal at 40.5' are half a minute
+// apart: surprise (Φ = 0.3 per minute, no M column, ω = 1, r = 1/2) decays by
+//   ψ = E·0.3^(1/4) / (1 + E·(1 − 0.3^(1/4)))   (e^(−aΔt) = Φ^(r·Δt/step) = 0.3^(1/4), b/a = 1)
+// before the goal's impulse adds, not by a whole step. With DecayClock::Step and r = 1 the old
+// per-step law E·Φ + I comes back.
+TEST(Agent, DecaysByEventTimeNotBySteps) {
+  const Domain d(read_domain_files({kData + "football.domain"}));
+  const auto events = read_events_file(kData + "match.ndjson");
+  auto run_with = [&](DecayClock clock, double r) {
+    AgentConfig c = read_agent_file(kData + "agents/neutral.json");
+    c.decay_clock = clock;
+    c.emotions.low_intensity_rate = r;
+    Agent a(d, c);
+    std::vector<StepRecord> out;
+    for (const auto& e : events) out.push_back(a.step(e));
+    return out;
+  };
+  auto record = [](const std::vector<StepRecord>& run, double t) {
+    for (const auto& r : run)
+      if (r.time == t) return r;
+    ADD_FAILURE() << "no record at " << t;
+    return StepRecord{};
+  };
+  const std::size_t s = index(Emotion::Surprise);
+  const auto by_time = run_with(DecayClock::Time, 0.5);
+  const double e40 = record(by_time, 40).emotions[s];
+  const StepRecord goal = record(by_time, 40.5);
+  ASSERT_GT(e40, 0.3);
+  ASSERT_LT(goal.emotions[s], 1.0);  // not saturated: the decay shows
+  const double q = std::pow(0.3, 0.25);
+  EXPECT_NEAR(goal.emotions[s], std::min(1.0, e40 * q / (1 + e40 * (1 - q)) + goal.impulse[s]),
+              1e-12);
+  // per step (one minute per event, whatever the times): more surprise lost between 40' and 40.5'
+  const auto by_step = run_with(DecayClock::Step, 0.5);
+  const double s40 = record(by_step, 40).emotions[s];
+  const StepRecord sgoal = record(by_step, 40.5);
+  const double h = std::sqrt(0.3);
+  EXPECT_NEAR(sgoal.emotions[s], std::min(1.0, s40 * h / (1 + s40 * (1 - h)) + sgoal.impulse[s]),
+              1e-12);
+  EXPECT_GT(goal.emotions[s] - goal.impulse[s], sgoal.emotions[s] - sgoal.impulse[s] + 0.05);
+  // the per-step law of before (Step clock, r = 1): E' = Φ·E + I exactly
+  const auto old = run_with(DecayClock::Step, 1.0);
+  for (double t : {40.5, 41.0, 12.0}) {
+    const double before = record(old, t == 12.0 ? 11.0 : (t == 41.0 ? 40.5 : 40.0)).emotions[s];
+    const StepRecord now = record(old, t);
+    EXPECT_DOUBLE_EQ(now.emotions[s], std::min(1.0, 0.3 * before + now.impulse[s])) << t;
+  }
+  // Time clock with r = 1 and events one minute apart is the per-step law too: 41' → 42'
+  const auto time1 = run_with(DecayClock::Time, 1.0);
+  const std::size_t j = index(Emotion::Distress);
+  const StepRecord m42 = record(time1, 42);
+  EXPECT_NEAR(record(time1, 42).emotions[j],
+              std::min(1.0, 0.97 * record(time1, 41).emotions[j] +
+                                m42.impulse[j] *
+                                    (1 - record(time1, 41).emotions[index(Emotion::Joy)] * 0.3)),
+              1e-12);
+}
+
+TEST(Agent, DecayClockConfigIsValidated) {
+  AgentConfig c;
+  c.time_unit_seconds = 0.0;
+  EXPECT_THROW(c.validate(), emoface::InvalidInput);
+  c.time_unit_seconds = std::nan("");
+  EXPECT_THROW(c.validate(), emoface::InvalidInput);
+  EXPECT_EQ(decay_clock_from_string(to_string(DecayClock::Step)), DecayClock::Step);
+  EXPECT_EQ(decay_clock_from_string("time"), DecayClock::Time);
+  EXPECT_THROW(decay_clock_from_string("minutes"), emoface::InvalidInput);
 }

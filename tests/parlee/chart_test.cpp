@@ -36,6 +36,58 @@ TEST(Chart, LayoutAndSeries) {
   EXPECT_EQ(pixel(marked, 220, 50), (std::array<std::uint8_t, 3>{255, 0, 0}));
 }
 
+// Issue 19 item 4: title, legend, axis labels and y tick values.
+TEST(Chart, TitleLegendAxisLabelsAndTicks) {
+  ChartSeries a, b;
+  a.x = b.x = {0, 100};
+  a.y = {0.2, 0.2};
+  b.y = {0.6, 0.6};
+  a.rgb = {200, 0, 0};
+  b.rgb = {0, 0, 200};
+  a.name = "neutral";
+  b.name = "sensitive";
+  ChartOptions o;
+  o.width = 416;
+  o.panel_height = 100;
+  o.x_max = 100;
+  const RgbImage plain = draw_chart({{"p", {a, b}, 1.0}}, o);
+  o.title = "happiness";
+  o.x_label = "match minute";
+  o.y_label = "intensity";
+  const ChartLayout l = chart_layout({{"p", {a, b}, 1.0}}, o);
+  // title row 6 + 20, legend row + 18; y label column: left 56; x label row + 16
+  EXPECT_EQ(l.top, 6 + 20 + 18);
+  EXPECT_EQ(l.left, 56);
+  EXPECT_EQ(l.height, l.top + 100 + 28 + 16);
+  const RgbImage im = draw_chart({{"p", {a, b}, 1.0}}, o);
+  EXPECT_EQ(im.height, l.height);
+  EXPECT_EQ(plain.height, 6 + 18 + 100 + 28);  // named series: a legend row, no title
+  auto count = [&](int x0, int y0, int x1, int y1, std::array<std::uint8_t, 3> c) {
+    int k = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) k += pixel(im, x, y) == c;
+    return k;
+  };
+  const std::array<std::uint8_t, 3> ink{40, 40, 40};
+  // legend swatches (18 × 4 px lines) in the series colours, the first at the plot's left edge
+  EXPECT_EQ(pixel(im, l.left + 9, l.legend_y + 4), a.rgb);
+  const int second = l.left + 24 + text_width("neutral") + 20;
+  EXPECT_EQ(pixel(im, second + 9, l.legend_y + 4), b.rgb);
+  EXPECT_GT(count(l.left + 24, l.legend_y, second, l.legend_y + 10, ink), 40);  // "neutral"
+  // title ink centred above, x label ink below the tick values, y label ink left of the ticks
+  const int pw = l.plot_width;
+  const int tx = l.left + (pw - text_width("happiness")) / 2;
+  EXPECT_GT(count(tx, l.title_y, tx + text_width("happiness"), l.title_y + 10, ink), 60);
+  EXPECT_EQ(count(0, l.title_y, tx - 1, l.title_y + 10, ink), 0);
+  EXPECT_GT(count(l.left, l.height - 16, l.left + pw, l.height, ink), 60);
+  EXPECT_GT(count(0, l.top, 16, l.top + 100, ink), 60);
+  // y tick values: "1" at the top, "0.5" in the middle (24 px wide, right-aligned at left − 6)
+  EXPECT_GT(count(l.left - 6 - 24, l.top + 45, l.left - 6, l.top + 55, ink), 10);
+  EXPECT_GT(count(l.left - 6 - 8, l.top, l.left - 6, l.top + 10, ink), 5);
+  // the series are where they were, shifted by the layout: y = 0.2 → 80 px down the panel
+  EXPECT_EQ(pixel(im, l.left + pw / 2, l.top + 80), a.rgb);
+}
+
 TEST(Chart, PngCarriesTheVersionStamp) {
   ChartOptions o;
   const std::string png = render_chart({{"x", {}, 1.0}}, o);
@@ -74,6 +126,7 @@ TEST(Chart, EmotionPanels) {
   const auto panels = emotion_panels("neutral", run);
   ASSERT_EQ(panels.size(), 4u);
   EXPECT_EQ(panels[0].title, "neutral fear");
+  EXPECT_EQ(panels[0].series[0].name, "fear");
   EXPECT_EQ(panels[0].series[0].y, (std::vector<double>{0.0, 0.1, 0.2}));
   EXPECT_EQ(panels[0].series[0].x, (std::vector<double>{0, 10, 20}));
 }

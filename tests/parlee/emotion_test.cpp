@@ -1,10 +1,12 @@
+#include "emoface/parlee/emotion.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
-#include "emoface/parlee/emotion.hpp"
 
 using namespace emoface::parlee;
 using emoface::InvalidInput;
@@ -68,6 +70,112 @@ TEST(Emotion, DecayMultipliers) {
   params.decay_model = DecayModel::Product;  // §5.6.3 as printed: decay · feelingLevel
   p[Trait::FeelingLevel] = 0.5;
   EXPECT_NEAR(decay_multipliers(params, p)[0], 0.405, 1e-15);
+}
+
+// Issue 17 item 3: decay per second (§5.6.3 at the thesis' step of one match minute, §7.4).
+TEST(Emotion, DecayPerSecondEqualsPerStepAtOneStep) {
+  EXPECT_EQ(kThesisStepSeconds, 60.0);
+  EmotionParams params = EmotionParams::defaults();
+  EXPECT_EQ(params.step_seconds, 60.0);
+  params.low_intensity_rate = 1.0;  // every intensity alike: the per-step law
+  const EmotionVector phi = decay_multipliers(params, Personality{});
+  EmotionVector e{};
+  for (std::size_t i = 0; i < kEmotionCount; ++i) e[i] = 0.05 + 0.045 * static_cast<double>(i);
+  const EmotionVector one = decayed(e, params, phi, 60.0);
+  for (std::size_t i = 0; i < kEmotionCount; ++i) EXPECT_EQ(one[i], phi[i] * e[i]) << i;
+  // per second: d^(Δt/step); joy 0.9 per minute over 90 s = 0.9^1.5 = 0.853815…
+  EXPECT_NEAR(decayed(e, params, phi, 90.0)[0], e[0] * 0.85381496824546, 1e-14);
+  // k = −ln Φ / 60 s: joy 0.0017560 /s, surprise −ln 0.3 / 60 = 0.0200662 /s
+  const EmotionVector k = decay_rates(params, phi);
+  EXPECT_NEAR(k[index(Emotion::Joy)], 0.10536051565782628 / 60.0, 1e-15);
+  EXPECT_NEAR(k[index(Emotion::Surprise)], 1.2039728043259361 / 60.0, 1e-15);
+  // nothing decays in no time
+  EXPECT_EQ(decayed(e, params, phi, 0.0), e);
+}
+
+TEST(Emotion, TwoHalfStepsMakeOneStep) {
+  for (double r : {1.0, 0.5, 0.2, 0.0}) {
+    EmotionParams params = EmotionParams::defaults();
+    params.low_intensity_rate = r;
+    params.omega[index(Emotion::Joy)] = 2.0;
+    const EmotionVector phi = decay_multipliers(params, Personality{});
+    EmotionVector e{};
+    for (std::size_t i = 0; i < kEmotionCount; ++i) e[i] = 0.9 - 0.04 * static_cast<double>(i);
+    const EmotionVector whole = decayed(e, params, phi, 60.0);
+    const EmotionVector halves = decayed(decayed(e, params, phi, 30.0), params, phi, 30.0);
+    const EmotionVector thirds =
+        decayed(decayed(decayed(e, params, phi, 20.0), params, phi, 25.0), params, phi, 15.0);
+    for (std::size_t i = 0; i < kEmotionCount; ++i) {
+      EXPECT_NEAR(halves[i], whole[i], 1e-15) << "r " << r << " emotion " << i;
+      EXPECT_NEAR(thirds[i], whole[i], 1e-15) << "r " << r << " emotion " << i;
+      EXPECT_LT(whole[i], e[i]);
+    }
+  }
+}
+
+TEST(Emotion, LowIntensityDecaysSlowerByHand) {
+  // §5.6.3 "emotions decay slower when their intensity levels are lower": rate k·(r + (1−r)·E/ω).
+  EmotionParams params = EmotionParams::defaults();
+  EXPECT_EQ(params.low_intensity_rate, 0.5);
+  params.decay.fill(0.9);
+  const EmotionVector phi = decay_multipliers(params, Personality{});  // 0.9 (neutral)
+  EmotionVector e{};
+  e[0] = 0.8;
+  e[1] = 0.05;
+  // r = 1/2, ω = 1, one step: e^(−aΔt) = √0.9, b/a = 1, so E' = E·√d / (1 + E·(1 − √d))
+  const EmotionVector one = decayed(e, params, phi, 60.0);
+  EXPECT_NEAR(one[0], 0.7290179989462238, 1e-14);    // 0.8·0.948683/(1 + 0.8·0.051317)
+  EXPECT_NEAR(one[1], 0.047312768141469654, 1e-15);  // 0.05·0.948683/(1 + 0.05·0.051317)
+  EXPECT_GT(one[1] / e[1], one[0] / e[0]);           // the mood keeps more of itself
+  EXPECT_GT(one[0], 0.9 * e[0]);                     // never faster than Φ per step
+  // r = 0: dE/dt = −k·E²/ω, E' = E / (1 + k·E·Δt) = 0.8 / (1 − 0.8·ln 0.9)
+  params.low_intensity_rate = 0.0;
+  EXPECT_NEAR(decayed(e, params, phi, 60.0)[0], 0.7378110756861236, 1e-14);
+  // the instantaneous rate over a short time: (E − E')/(E·Δt) → k·(r + (1 − r)·E/ω)
+  params.low_intensity_rate = 0.25;
+  params.omega[0] = 2.0;
+  const double k = -std::log(0.9) / 60.0, dt = 1e-3;
+  const double rate = (e[0] - decayed(e, params, phi, dt)[0]) / (e[0] * dt);
+  EXPECT_NEAR(rate, k * (0.25 + 0.75 * 0.8 / 2.0), 1e-9);
+}
+
+TEST(Emotion, DecayEdgesAndBadInput) {
+  EmotionParams params = EmotionParams::defaults();
+  EmotionVector phi{}, e{};
+  phi.fill(0.5);
+  phi[0] = 0.0;  // no persistence: gone after any time
+  phi[1] = 1.0;  // no decay
+  e.fill(0.7);
+  const EmotionVector d = decayed(e, params, phi, 1.0);
+  EXPECT_EQ(d[0], 0.0);
+  EXPECT_EQ(d[1], 0.7);
+  EXPECT_EQ(decay_rates(params, phi)[1], 0.0);
+  EXPECT_TRUE(std::isinf(decay_rates(params, phi)[0]));
+  EXPECT_NEAR(decayed(e, params, phi, 1e7)[2], 0.0, 1e-12);  // a long time: nothing left
+  for (double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()})
+    EXPECT_THROW(decayed(e, params, phi, bad), InvalidInput) << bad;
+  params.step_seconds = 0.0;
+  EXPECT_THROW(params.validate(), InvalidInput);
+  params.step_seconds = std::nan("");
+  EXPECT_THROW(params.validate(), InvalidInput);
+  params = EmotionParams::defaults();
+  params.low_intensity_rate = 1.5;
+  EXPECT_THROW(params.validate(), InvalidInput);
+}
+
+TEST(Emotion, UpdateDecayedMatchesPerStepUpdate) {
+  EmotionParams params = EmotionParams::defaults();
+  EmotionVector e{}, impulse{}, mult{};
+  mult.fill(0.9);
+  for (std::size_t i = 0; i < kEmotionCount; ++i) {
+    e[i] = 0.03 * static_cast<double>(i);
+    impulse[i] = i % 3 == 0 ? 0.2 : 0.0;
+  }
+  EmotionVector a = e, b = e, psi{};
+  for (std::size_t i = 0; i < kEmotionCount; ++i) psi[i] = 0.9 * e[i];
+  update_emotions(a, impulse, params, params.alpha, mult);
+  update_decayed_emotions(b, psi, impulse, params, params.alpha);
+  EXPECT_EQ(a, b);
 }
 
 TEST(Emotion, UpdateHandComputed) {

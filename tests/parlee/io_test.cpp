@@ -47,6 +47,10 @@ TEST(AgentFile, RoundTrip) {
   c.appraisal.compound = CompoundRule::Standards;
   c.on_disallowed = DisallowedEvent::Stop;
   c.replenishment = {{"feed-self", Need::Thirst, 0.75}};
+  c.decay_clock = DecayClock::Step;
+  c.time_unit_seconds = 1.5;
+  c.emotions.step_seconds = 2.0;
+  c.emotions.low_intensity_rate = 0.125;
   const std::string text = write_agent(c);
   const AgentConfig d = parse_agent(text, "x.json");
   EXPECT_EQ(write_agent(d), text);
@@ -61,6 +65,10 @@ TEST(AgentFile, RoundTrip) {
   ASSERT_EQ(d.replenishment.size(), 1u);
   EXPECT_EQ(d.replenishment[0].need, Need::Thirst);
   EXPECT_EQ(d.replenishment[0].threshold, 0.75);
+  EXPECT_EQ(d.decay_clock, DecayClock::Step);
+  EXPECT_EQ(d.time_unit_seconds, 1.5);
+  EXPECT_EQ(d.emotions.step_seconds, 2.0);
+  EXPECT_EQ(d.emotions.low_intensity_rate, 0.125);
 }
 
 TEST(AgentFile, ShippedFilesParse) {
@@ -105,6 +113,18 @@ TEST(AgentFile, BadInputNamesThePointer) {
   EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","threshold":0}]})"),
             "/replenishment/0/threshold");
   EXPECT_EQ(pointer_of(head + R"("replenishment":[{"goal":"g","x":1}]})"), "/replenishment/0/x");
+  // issue 17 item 3: decay per second
+  EXPECT_EQ(pointer_of(head + R"("decay_clock":"minutes"})"), "/decay_clock");
+  EXPECT_EQ(pointer_of(head + R"("decay_clock":1})"), "/decay_clock");
+  EXPECT_EQ(pointer_of(head + R"("time_unit_seconds":0})"), "/time_unit_seconds");
+  EXPECT_EQ(pointer_of(head + R"("time_unit_seconds":-60})"), "/time_unit_seconds");
+  EXPECT_EQ(pointer_of(head + R"("time_unit_seconds":"60"})"), "/time_unit_seconds");
+  EXPECT_EQ(pointer_of(head + R"("emotions":{"step_seconds":0}})"), "/emotions/step_seconds");
+  EXPECT_EQ(pointer_of(head + R"("emotions":{"step_seconds":1e300}})"), "/emotions/step_seconds");
+  EXPECT_EQ(pointer_of(head + R"("emotions":{"low_intensity_rate":1.5}})"),
+            "/emotions/low_intensity_rate");
+  EXPECT_EQ(pointer_of(head + R"("emotions":{"low_intensity_rate":null}})"),
+            "/emotions/low_intensity_rate");
   EXPECT_NE(pointer_of(R"({"format":"emoface.parlee_agent","version":"2.0"})"), "");
   EXPECT_NE(pointer_of(R"({"format":"emoface.rig","version":"1.0"})"), "");
   EXPECT_NE(pointer_of(head + R"("name":"x")"), "");  // truncated

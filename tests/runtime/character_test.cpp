@@ -97,22 +97,50 @@ TEST(Character, ParleeDecayPerSecondMatchesThePerStepFormAtTheStepLength) {
     for (std::size_t i = 0; i < parlee::kEmotionCount; ++i)
       ASSERT_EQ(occ[i], rec.emotions[i]) << k << " " << i;
   }
-  // between events the decay is continuous: after another 2.5 s, E·Φ^2.5 (hand check on surprise,
-  // whose per-step factor is 0.3 with the neutral personality's Φ = 0.3^(1.5 − 0.5))
+  // between events the decay is continuous, ParleE's law (parlee::decayed, §5.6.3 slower at low
+  // intensity, r = 1/2): after another 2.5 s (2.5 steps) surprise (Φ = 0.3 with the neutral
+  // personality's Φ = 0.3^(1.5 − 0.5), ω = 1) is E·q / (1 + E·(1 − q)), q = 0.3^(r·2.5) = 0.3^1.25
   const auto before = c.occ_emotions();
   c.update(2.5);
   const auto after = c.occ_emotions();
   const auto s = static_cast<std::size_t>(parlee::Emotion::Surprise);
-  EXPECT_NEAR(after[s], before[s] * std::pow(0.3, 2.5), 1e-15);
-  // halving the step length doubles the decay per second
+  const double q = std::pow(0.3, 1.25);
+  ASSERT_GT(before[s], 0.01);
+  EXPECT_NEAR(after[s], before[s] * q / (1 + before[s] * (1 - q)), 1e-15);
+  // halving the step length doubles the decay per second: 1 s = 2 steps; fear after the kick-off
+  // (Φ = 0.85): q = 0.85^(0.5·2) = 0.85
+  const auto fear = static_cast<std::size_t>(parlee::Emotion::Fear);
   CharacterConfig half = parlee_config();
   half.options.step_seconds = 0.5;
   Character h(half);
   h.update(1.0);
   ASSERT_TRUE(h.push_parlee_event(events[0]).applied);
   const auto h0 = h.occ_emotions();
+  ASSERT_GT(h0[fear], 0.1);
   h.update(1.0);
-  EXPECT_NEAR(h.occ_emotions()[s], h0[s] * 0.09, 1e-15);
+  EXPECT_NEAR(h.occ_emotions()[fear], h0[fear] * 0.85 / (1 + h0[fear] * 0.15), 1e-15);
+  // with every intensity alike (r = 1) the per-second law is E·Φ^(Δt/step): E·0.3^2.5 (surprise
+  // after 40') and E·0.85² (fear after the kick-off, 2 steps)
+  CharacterConfig flat = parlee_config();
+  flat.agent.emotions.low_intensity_rate = 1.0;
+  Character f(flat);
+  f.update(1.0);
+  for (std::size_t k = 0; k < 40; ++k) {
+    ASSERT_TRUE(f.push_parlee_event(events[k]).applied);
+    f.update(1.0);
+  }
+  const auto f0 = f.occ_emotions();
+  ASSERT_GT(f0[s], 0.01);
+  f.update(2.5);
+  EXPECT_NEAR(f.occ_emotions()[s], f0[s] * std::pow(0.3, 2.5), 1e-15);
+  flat.options.step_seconds = 0.5;
+  Character fh(flat);
+  fh.update(1.0);
+  ASSERT_TRUE(fh.push_parlee_event(events[0]).applied);
+  const auto fh0 = fh.occ_emotions();
+  ASSERT_GT(fh0[fear], 0.1);
+  fh.update(1.0);
+  EXPECT_NEAR(fh.occ_emotions()[fear], fh0[fear] * 0.85 * 0.85, 1e-15);
 }
 
 TEST(Character, ParleeEventNotAllowedIsSkippedAndTheAgentStaysUsable) {

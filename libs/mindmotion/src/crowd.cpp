@@ -7,13 +7,16 @@
 #include <cstring>
 #include <ctime>
 #include <exception>
+#include <iomanip>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <thread>
 
+#include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
-#include "emoface/bridge/face_landmark_model.hpp"
+#include "emoface/core/text.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/mindmap/chart.hpp"
@@ -256,9 +259,11 @@ Crowd animate_crowd(std::vector<mindmap::MindMap> maps, std::vector<mindmap::Eve
   return crowd;
 }
 
-fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::uint32_t>& colours, int width,
-                     int height) {
+fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::uint32_t>& colours,
+                     int width, int height, const std::vector<std::string>& labels) {
   if (values.size() != colours.size()) throw InvalidInput("mood_strip: one colour per value is needed");
+  if (!labels.empty() && labels.size() != values.size())
+    throw InvalidInput("mood_strip: one label per value is needed (or none)");
   if (width < 8 || width > 8192 || height < 8 || height > 8192)
     throw InvalidInput("mood_strip: width and height must be in [8, 8192]");
   const int n = static_cast<int>(values.size());
@@ -275,7 +280,11 @@ fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::u
   if (n == 0) return img;
   const int slot = width / n, left = (width - slot * n) / 2;
   const int pad = std::max(1, slot / 6);
-  const int top = std::max(1, height / 10), bottom = height - 1 - std::max(1, height / 10);  // frame rows
+  // labels (issue 19): a text row of 8 pixels at the bottom of strips of at least 24 pixels
+  const bool text = !labels.empty() && height >= 24;
+  const int bars_height = text ? height - 8 : height;
+  const int top = std::max(1, bars_height / 10),
+            bottom = bars_height - 1 - std::max(1, bars_height / 10);  // frame rows
   constexpr std::uint32_t kFrame = 0xc8c8c8;
   for (int i = 0; i < n; ++i) {
     const double v = values[static_cast<std::size_t>(i)];
@@ -291,6 +300,12 @@ fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::u
     const int bar = static_cast<int>(std::lround(clamped * inner));
     for (int y = bottom - bar; y < bottom; ++y)
       for (int x = x0 + 1; x <= x1 - 1; ++x) set(x, y, colours[static_cast<std::size_t>(i)]);
+    if (text) {
+      const std::size_t fit = static_cast<std::size_t>(std::max(0, (x1 - x0 + 2) / 4));
+      const std::string t = labels[static_cast<std::size_t>(i)].substr(0, fit);
+      core::draw_text(img.rgb, width, height, (x0 + x1 + 1 - core::text_width(t, 1)) / 2 + 1,
+                      height - 7, t, {60, 60, 60}, 1);
+    }
   }
   return img;
 }
@@ -371,13 +386,23 @@ fm::Image CrowdRenderer::cell(std::size_t c, std::size_t k) const {
   const muscles::Deformation d = solver.deform(ch.tracks[k].values);
   const fm::Image face = fm::render(fm::Mesh{d.vertices, solver.neutral().faces}, colours_[ch.rig],
                                     d.crease, render_options_[ch.rig], fm::paint_for(solver.rig()));
-  const fm::Image strip = mood_strip(crowd_.strip_values(c, k), slot_colours_, options_.face_width, options_.strip_height);
+  const fm::Image strip = mood_strip(crowd_.strip_values(c, k), slot_colours_, options_.face_width,
+                                     options_.strip_height, crowd_.emotions);
   fm::Image out;
   out.width = cell_width();
   out.height = cell_height();
   out.rgb.resize(static_cast<std::size_t>(out.width) * out.height * 3);
   blit(out, face, 0, 0);
   blit(out, strip, 0, face_height_);
+  if (options_.face_width >= 64) {  // the character's name on a white label (issue 19)
+    const int sc = options_.face_width >= 160 ? 2 : 1;
+    const int w = std::min(out.width, 4 + core::text_width(ch.name, sc));
+    const int h = std::min(face_height_, 4 + core::text_height(sc) + 2);
+    for (int y = 0; y < h; ++y)
+      std::memset(&out.rgb[static_cast<std::size_t>(y) * out.width * 3], 255,
+                  static_cast<std::size_t>(w) * 3);
+    core::draw_text(out.rgb, out.width, out.height, 3, 3, ch.name, {40, 40, 40}, sc);
+  }
   return out;
 }
 
@@ -424,14 +449,24 @@ fm::Image CrowdRenderer::frame(std::size_t k) const {
 fm::Image CrowdRenderer::key_moment_sheet() const {
   if (crowd_.key_moments.empty()) throw InvalidInput("CrowdRenderer: no key moments (no stimulus inside the frames)");
   constexpr int kRule = 2;  // grey rule between moments
+  const int header = width() >= 200 ? 16 : 0;  // "<time> s: <stimuli>" above each moment (issue 19)
   fm::Image out;
   out.width = width();
-  out.height = static_cast<int>(crowd_.key_moments.size()) * (height() + kRule) - kRule;
+  out.height = static_cast<int>(crowd_.key_moments.size()) * (header + height() + kRule) - kRule;
   out.rgb.assign(static_cast<std::size_t>(out.width) * out.height * 3, 160);
   int y = 0;
   for (const auto& km : crowd_.key_moments) {
-    blit(out, compose(km.frames), 0, y);
-    y += height() + kRule;
+    if (header > 0) {
+      std::fill(out.rgb.begin() + static_cast<std::ptrdiff_t>(y) * out.width * 3,
+                out.rgb.begin() + static_cast<std::ptrdiff_t>(y + header) * out.width * 3, 255);
+      std::ostringstream t;
+      t << std::fixed << std::setprecision(1) << km.time << " s:";
+      for (std::size_t i = 0; i < km.stimuli.size(); ++i) t << (i ? ", " : " ") << km.stimuli[i];
+      core::draw_text(out.rgb, out.width, out.height, options_.gap + 2, y + 4, t.str(),
+                      {40, 40, 40}, 2);
+    }
+    blit(out, compose(km.frames), 0, y + header);
+    y += header + height() + kRule;
   }
   return out;
 }

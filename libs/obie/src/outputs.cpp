@@ -32,6 +32,10 @@ parlee::RgbImage emotion_chart(const ObieResult& result) {
   for (const auto& g : result.goals)
     options.markers.push_back({g.minute, std::to_string(g.for_score) + "-" + std::to_string(g.against_score),
                                {200, 60, 60}});
+  options.title =
+      "obie (" + result.agent_name + "): felt basic emotions, goals marked with the score";
+  options.x_label = "match minute";
+  options.y_label = "intensity";
   return parlee::draw_chart(parlee::emotion_panels(result.agent_name, result.timeline), options);
 }
 

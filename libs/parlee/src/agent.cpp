@@ -27,7 +27,17 @@ DisallowedEvent disallowed_event_from_string(std::string_view s) {
   throw InvalidInput("unknown on_disallowed '" + std::string(s) + "' (skip, stop)");
 }
 
+std::string_view to_string(DecayClock c) { return c == DecayClock::Time ? "time" : "step"; }
+
+DecayClock decay_clock_from_string(std::string_view s) {
+  if (s == "time") return DecayClock::Time;
+  if (s == "step") return DecayClock::Step;
+  throw InvalidInput("unknown decay_clock '" + std::string(s) + "' (time, step)");
+}
+
 void AgentConfig::validate() const {
+  if (!(time_unit_seconds > 0.0 && time_unit_seconds <= 1e9))
+    throw InvalidInput("time_unit_seconds must be in (0, 1e9]");
   personality.validate();
   emotions.validate();
   motivation.validate();
@@ -309,6 +319,12 @@ StepRecord Agent::step(const Event& event) {
     if (!(*event.feedback >= -1.0 && *event.feedback <= 1.0)) throw InvalidInput("feedback must be in [-1,1]");
     if (last_own_op_) feedback_[domain_->spec().operators[*last_own_op_].name].add(*event.feedback);
   }
+  // §5.6.3 per second: the time this event's decay covers (issue 17 item 3)
+  const double dt_seconds = config_.decay_clock == DecayClock::Time
+                                ? (event.time - time_) * config_.time_unit_seconds
+                                : config_.emotions.step_seconds;
+  if (!std::isfinite(dt_seconds))
+    throw InvalidInput("event time " + std::to_string(event.time) + " is too far ahead");
   time_ = event.time;
   StepRecord rec;
   rec.step = ++steps_;
@@ -373,8 +389,10 @@ StepRecord Agent::step(const Event& event) {
   }
 
   const EmotionVector alpha = motivated_alpha(config_.emotions, config_.motivation, config_.motivation_options);
-  update_emotions(emotions_, impulse, config_.emotions, alpha,
-                  decay_multipliers(config_.emotions, config_.personality));
+  const EmotionVector psi =
+      decayed(emotions_, config_.emotions, decay_multipliers(config_.emotions, config_.personality),
+              dt_seconds);
+  update_decayed_emotions(emotions_, psi, impulse, config_.emotions, alpha);
   rec.impulse = impulse;
   fill(rec);
   return rec;

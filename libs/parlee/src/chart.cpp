@@ -6,36 +6,10 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/png.hpp"
+#include "emoface/core/text.hpp"
 
 namespace emoface::parlee {
 namespace {
-
-// 3×5 pixel font: each glyph is 5 rows of 3 bits (MSB = left).
-struct Glyph {
-  char c;
-  std::uint8_t rows[5];
-};
-constexpr Glyph kFont[] = {
-    {'0', {7, 5, 5, 5, 7}}, {'1', {2, 6, 2, 2, 7}}, {'2', {7, 1, 7, 4, 7}}, {'3', {7, 1, 7, 1, 7}},
-    {'4', {5, 5, 7, 1, 1}}, {'5', {7, 4, 7, 1, 7}}, {'6', {7, 4, 7, 5, 7}}, {'7', {7, 1, 1, 1, 1}},
-    {'8', {7, 5, 7, 5, 7}}, {'9', {7, 5, 7, 1, 7}}, {'a', {2, 5, 7, 5, 5}}, {'b', {6, 5, 6, 5, 6}},
-    {'c', {7, 4, 4, 4, 7}}, {'d', {6, 5, 5, 5, 6}}, {'e', {7, 4, 6, 4, 7}}, {'f', {7, 4, 6, 4, 4}},
-    {'g', {7, 4, 5, 5, 7}}, {'h', {5, 5, 7, 5, 5}}, {'i', {7, 2, 2, 2, 7}}, {'j', {1, 1, 1, 5, 7}},
-    {'k', {5, 5, 6, 5, 5}}, {'l', {4, 4, 4, 4, 7}}, {'m', {5, 7, 7, 5, 5}}, {'n', {6, 5, 5, 5, 5}},
-    {'o', {7, 5, 5, 5, 7}}, {'p', {7, 5, 7, 4, 4}}, {'q', {7, 5, 5, 7, 1}}, {'r', {7, 5, 6, 5, 5}},
-    {'s', {7, 4, 7, 1, 7}}, {'t', {7, 2, 2, 2, 2}}, {'u', {5, 5, 5, 5, 7}}, {'v', {5, 5, 5, 5, 2}},
-    {'w', {5, 5, 7, 7, 5}}, {'x', {5, 5, 2, 5, 5}}, {'y', {5, 5, 7, 2, 2}}, {'z', {7, 1, 2, 4, 7}},
-    {'-', {0, 0, 7, 0, 0}}, {'_', {0, 0, 0, 0, 7}}, {'.', {0, 0, 0, 0, 2}}, {' ', {0, 0, 0, 0, 0}},
-    {':', {0, 2, 0, 2, 0}}, {'\'', {2, 2, 0, 0, 0}}, {'!', {2, 2, 2, 0, 2}}, {',', {0, 0, 0, 2, 4}},
-    {'/', {1, 1, 2, 4, 4}}, {'+', {0, 2, 7, 2, 0}}, {'(', {1, 2, 2, 2, 1}}, {')', {4, 2, 2, 2, 4}},
-};
-
-const Glyph* glyph(char ch) {
-  const char lc = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  for (const auto& g : kFont)
-    if (g.c == lc) return &g;
-  return nullptr;
-}
 
 void put(RgbImage& im, int x, int y, std::array<std::uint8_t, 3> c) {
   if (x < 0 || y < 0 || x >= im.width || y >= im.height) return;
@@ -75,20 +49,40 @@ void ChartOptions::validate() const {
     if (!std::isfinite(m.x)) throw InvalidInput("chart: marker positions must be finite");
 }
 
-int text_width(std::string_view text, int scale) noexcept { return static_cast<int>(text.size()) * 4 * scale; }
+int text_width(std::string_view text, int scale) noexcept { return core::text_width(text, scale); }
 
 void draw_text(RgbImage& image, int x, int y, std::string_view text, std::array<std::uint8_t, 3> rgb, int scale) {
-  scale = std::max(scale, 1);
-  for (char ch : text) {
-    if (const Glyph* g = glyph(ch)) {
-      for (int r = 0; r < 5; ++r)
-        for (int b = 0; b < 3; ++b)
-          if (g->rows[r] & (4 >> b))
-            for (int a = 0; a < scale; ++a)
-              for (int d = 0; d < scale; ++d) put(image, x + b * scale + a, y + r * scale + d, rgb);
-    }
-    x += 4 * scale;
-  }
+  core::draw_text(image.rgb, image.width, image.height, x, y, text, rgb, scale);
+}
+
+namespace {
+
+// Tick value text: integers as such, else up to two decimals without trailing zeros ("0.5").
+std::string tick_text(double v) {
+  const double r = std::round(v * 100.0) / 100.0;
+  if (r == std::floor(r)) return std::to_string(static_cast<long long>(r));
+  std::string t = std::to_string(r);
+  while (!t.empty() && t.back() == '0') t.pop_back();
+  return t;
+}
+
+}  // namespace
+
+ChartLayout chart_layout(const std::vector<ChartPanel>& panels, const ChartOptions& options) {
+  ChartLayout l;
+  bool legend = false;
+  for (const auto& p : panels)
+    for (const auto& s : p.series) legend = legend || !s.name.empty();
+  l.title_y = 6;
+  l.legend_y = l.title_y + (options.title.empty() ? 0 : 20);
+  l.top = l.legend_y + (legend ? 18 : 2);
+  if (options.title.empty() && !legend) l.top = 8;
+  l.left = options.y_label.empty() ? 40 : 56;
+  const int n = static_cast<int>(panels.size());
+  const int bottom = 28 + (options.markers.empty() ? 0 : 16) + (options.x_label.empty() ? 0 : 16);
+  l.height = l.top + n * options.panel_height + (n - 1) * 22 + bottom;
+  l.plot_width = options.width - l.left - 16;
+  return l;
 }
 
 RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options) {
@@ -103,16 +97,17 @@ RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& o
           if (std::isfinite(x)) x_max = std::max(x_max, x);
     x_max = std::ceil(x_max / 10) * 10;
   }
-  const int left = 40, right = 16, top = 8, gap = 22;
-  const int bottom = options.markers.empty() ? 28 : 44;
+  const ChartLayout l = chart_layout(panels, options);
+  const int left = l.left, top = l.top, gap = 22;
   const int n = static_cast<int>(panels.size());
   const int panel_height = options.panel_height;
   const int width = options.width;
-  const int height = top + n * panel_height + (n - 1) * gap + bottom;
+  const int height = l.height;
   RgbImage cv{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 3, 255)};
   const std::array<std::uint8_t, 3> grid{225, 225, 225}, frame{120, 120, 120}, ink{40, 40, 40};
-  const int pw = width - left - right;
+  const int pw = l.plot_width;
   auto X = [&](double x) { return left + static_cast<int>(std::lround(std::clamp(x / x_max, 0.0, 1.0) * pw)); };
+  const int plot_bottom = top + n * panel_height + (n - 1) * gap;
   for (int p = 0; p < n; ++p) {
     const int y0 = top + p * (panel_height + gap);
     const ChartPanel& panel = panels[static_cast<std::size_t>(p)];
@@ -128,19 +123,49 @@ RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& o
     line(cv, left, y0 + panel_height, left + pw, y0 + panel_height, frame);
     line(cv, left, y0, left, y0 + panel_height, frame);
     line(cv, left + pw, y0, left + pw, y0 + panel_height, frame);
-    draw_text(cv, 4, y0, "1", ink);
-    draw_text(cv, 4, y0 + panel_height - 10, "0", ink);
+    // y tick values 0, y_max/2, y_max right-aligned against the axis, with tick marks
+    for (double f : {0.0, 0.5, 1.0}) {
+      const std::string t = tick_text(f * panel.y_max);
+      const int ty = std::clamp(Y(f * panel.y_max) - 5, y0, y0 + panel_height - 10);
+      draw_text(cv, left - 6 - text_width(t), ty, t, ink);
+      line(cv, left - 4, Y(f * panel.y_max), left - 1, Y(f * panel.y_max), frame);
+    }
     for (const auto& s : panel.series)
       for (std::size_t i = 1; i < s.x.size() && i < s.y.size(); ++i)
         line(cv, X(s.x[i - 1]), Y(s.y[i - 1]), X(s.x[i]), Y(s.y[i]), s.rgb, 2);
     draw_text(cv, left + 6, y0 + 4, panel.title, ink);
   }
+  if (!options.y_label.empty())  // vertical, centred on the panels
+    core::draw_text_vertical(cv.rgb, width, height, 4,
+                             top + (plot_bottom - top + text_width(options.y_label)) / 2,
+                             options.y_label, ink, 2);
   for (double gx = 0; gx <= x_max + 1e-9; gx += 10) {
     const std::string label = std::to_string(static_cast<int>(gx));
-    draw_text(cv, X(gx) - 4 * static_cast<int>(label.size()), height - bottom + 8, label, ink);
+    line(cv, X(gx), plot_bottom + 1, X(gx), plot_bottom + 4, frame);
+    draw_text(cv, X(gx) - 4 * static_cast<int>(label.size()), plot_bottom + 8, label, ink);
   }
+  int below = plot_bottom + 26;
   for (const auto& m : options.markers)
-    draw_text(cv, X(m.x) - text_width(m.label) / 2, height - bottom + 26, m.label, m.rgb);
+    draw_text(cv, X(m.x) - text_width(m.label) / 2, below, m.label, m.rgb);
+  if (!options.markers.empty()) below += 16;
+  if (!options.x_label.empty())
+    draw_text(cv, left + (pw - text_width(options.x_label)) / 2, below, options.x_label, ink);
+  if (!options.title.empty())
+    draw_text(cv, left + (pw - text_width(options.title)) / 2, l.title_y, options.title, ink);
+  // legend: every distinct (name, colour) of the named series, in order, one row
+  std::vector<std::pair<std::string, std::array<std::uint8_t, 3>>> entries;
+  for (const auto& p : panels)
+    for (const auto& s : p.series)
+      if (!s.name.empty() &&
+          std::find(entries.begin(), entries.end(), std::make_pair(s.name, s.rgb)) == entries.end())
+        entries.emplace_back(s.name, s.rgb);
+  int lx = left;
+  for (const auto& [name, rgb] : entries) {
+    for (int dy = 0; dy < 4; ++dy)
+      line(cv, lx, l.legend_y + 3 + dy, lx + 18, l.legend_y + 3 + dy, rgb);
+    draw_text(cv, lx + 24, l.legend_y, name, ink);
+    lx += 24 + text_width(name) + 20;
+  }
   return cv;
 }
 
@@ -172,6 +197,7 @@ std::vector<ChartPanel> emotion_panels(const std::string& name, const std::vecto
       s.x.push_back(r.time);
       s.y.push_back(r.basic[c.basic]);
     }
+    s.name = c.name;
     panels.push_back({name + " " + c.name, {std::move(s)}, 1.0});
   }
   return panels;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "emoface/core/errors.hpp"
 
@@ -120,6 +121,9 @@ EmotionParams EmotionParams::defaults() {
 }
 
 void EmotionParams::validate() const {
+  if (!(step_seconds > 0.0 && step_seconds <= 1e9))
+    throw InvalidInput("step_seconds must be in (0, 1e9] seconds");
+  check_unit(low_intensity_rate, "low_intensity_rate");
   for (std::size_t i = 0; i < kEmotionCount; ++i) {
     const std::string name(kEmotionNames[i]);
     if (!(omega[i] > 0.0 && std::isfinite(omega[i]))) throw InvalidInput("omega of " + name + " must be > 0");
@@ -149,9 +153,56 @@ EmotionVector decay_multipliers(const EmotionParams& params, const Personality& 
   return out;
 }
 
+EmotionVector decay_rates(const EmotionParams& params, const EmotionVector& decay_multiplier) {
+  EmotionVector k{};
+  for (std::size_t i = 0; i < kEmotionCount; ++i) {
+    const double phi = decay_multiplier[i];
+    k[i] = phi <= 0.0 ? std::numeric_limits<double>::infinity()
+                      : (phi >= 1.0 ? 0.0 : -std::log(phi) / params.step_seconds);
+  }
+  return k;
+}
+
+// thesis §5.6.3 read per second with the intensity dependence it states (docs/parlee.md, "Decay per
+// second"): dE/dt = −aE − bE², a = r·k, b = (1 − r)·k/ω. With u = 1/E, du/dt = a·u + b, so
+// u(t) = (u0 + b/a)·e^(at) − b/a, i.e. E(t) = E0·e^(−at) / (1 + (b·E0/a)·(1 − e^(−at))).
+EmotionVector decayed(const EmotionVector& e, const EmotionParams& params,
+                      const EmotionVector& decay_multiplier, double dt_seconds) {
+  if (!(dt_seconds >= 0.0) || !std::isfinite(dt_seconds))
+    throw InvalidInput("decayed: elapsed time must be finite and >= 0 seconds");
+  EmotionVector out{};
+  const double r = params.low_intensity_rate;
+  const double steps = dt_seconds / params.step_seconds;
+  for (std::size_t i = 0; i < kEmotionCount; ++i) {
+    const double e0 = e[i], phi = decay_multiplier[i];
+    if (e0 <= 0.0 || dt_seconds == 0.0 || phi >= 1.0) {
+      out[i] = std::max(0.0, e0);
+      continue;
+    }
+    if (phi <= 0.0) {  // no persistence at all: gone after any positive time
+      out[i] = 0.0;
+      continue;
+    }
+    const double ln_phi = std::log(phi);  // = −k·step_seconds
+    // e^(−aΔt) = Φ^(r·Δt/step); r = 1 keeps pow(Φ, steps) exactly (one step: Φ·E)
+    const double fall = r == 1.0 ? std::pow(phi, steps) : std::exp(r * ln_phi * steps);
+    if (r == 1.0) {
+      out[i] = e0 * fall;
+      continue;
+    }
+    // in steps (the result then depends on Δt/step_seconds only): (1 − e^(−aΔt))/a → Δt as a → 0
+    const double a = -r * ln_phi;
+    const double g = r > 0.0 ? -std::expm1(r * ln_phi * steps) / a : steps;
+    const double b = -(1.0 - r) * ln_phi / params.omega[i];
+    out[i] = e0 * fall / (1.0 + b * e0 * g);
+  }
+  return out;
+}
+
 // thesis §5.6.4
-void update_emotions(EmotionVector& e, const EmotionVector& impulse, const EmotionParams& params,
-                     const EmotionVector& alpha, const EmotionVector& decay_multiplier) {
+void update_decayed_emotions(EmotionVector& e, const EmotionVector& decayed,
+                             const EmotionVector& impulse, const EmotionParams& params,
+                             const EmotionVector& alpha) {
   EmotionVector s_over_omega{};
   bool any_active = false;
   for (std::size_t j = 0; j < kEmotionCount; ++j) {
@@ -165,8 +216,15 @@ void update_emotions(EmotionVector& e, const EmotionVector& impulse, const Emoti
     if (any_active && impulse[i] > 0.0)
       for (std::size_t j = 0; j < kEmotionCount; ++j) damp += s_over_omega[j] * params.effect[j][i];
     const double in = impulse[i] > 0.0 ? impulse[i] * (1.0 - std::min(1.0, damp)) : 0.0;
-    e[i] = std::min(params.omega[i], std::max(0.0, decay_multiplier[i] * e[i] + in));
+    e[i] = std::min(params.omega[i], std::max(0.0, decayed[i] + in));
   }
+}
+
+void update_emotions(EmotionVector& e, const EmotionVector& impulse, const EmotionParams& params,
+                     const EmotionVector& alpha, const EmotionVector& decay_multiplier) {
+  EmotionVector psi{};
+  for (std::size_t i = 0; i < kEmotionCount; ++i) psi[i] = decay_multiplier[i] * e[i];
+  update_decayed_emotions(e, psi, impulse, params, alpha);
 }
 
 std::array<bool, kEmotionCount> active(const EmotionVector& e, const EmotionVector& alpha) {

@@ -99,6 +99,10 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
           } catch (const InvalidInput& e) {
             r.fail(p, e.what());
           }
+        } else if (k == "step_seconds") {
+          c.emotions.step_seconds = r.number(x, p, 1e-9, 1e9);
+        } else if (k == "low_intensity_rate") {
+          c.emotions.low_intensity_rate = r.number(x, p, 0.0, 1.0);
         } else if (k == "effect") {
           if (!x.is_array()) r.fail(p, "expected an array of {from, to, value}");
           c.emotions.effect = {};
@@ -171,6 +175,14 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
         if (g.goal.empty()) r.fail(pe, "needs a goal name");
         c.replenishment.push_back(g);
       }
+    } else if (key == "decay_clock") {
+      try {
+        c.decay_clock = decay_clock_from_string(r.string(v, ptr));
+      } catch (const InvalidInput& e) {
+        r.fail(ptr, e.what());
+      }
+    } else if (key == "time_unit_seconds") {
+      c.time_unit_seconds = r.number(v, ptr, 1e-9, 1e9);
     } else if (key == "on_disallowed") {
       try {
         c.on_disallowed = disallowed_event_from_string(r.string(v, ptr));
@@ -243,6 +255,8 @@ std::string write_agent(const AgentConfig& c) {
   e["omega"] = emotion_json(c.emotions.omega);
   e["decay"] = emotion_json(c.emotions.decay);
   e["decay_model"] = std::string(to_string(c.emotions.decay_model));
+  e["step_seconds"] = c.emotions.step_seconds;
+  e["low_intensity_rate"] = c.emotions.low_intensity_rate;
   Json m = Json::array();
   for (std::size_t a = 0; a < kEmotionCount; ++a)
     for (std::size_t b = 0; b < kEmotionCount; ++b)
@@ -257,6 +271,8 @@ std::string write_agent(const AgentConfig& c) {
   j["planning"] = {{"horizon", c.planning.horizon}, {"model_depth", c.planning.model_depth},
                    {"semantics", to_string(c.planning.semantics)}};
   j["on_disallowed"] = std::string(to_string(c.on_disallowed));
+  j["decay_clock"] = std::string(to_string(c.decay_clock));
+  j["time_unit_seconds"] = c.time_unit_seconds;
   Json rep = Json::array();
   for (const auto& g : c.replenishment)
     rep.push_back(

@@ -111,6 +111,11 @@ Character::Impl::Impl(CharacterConfig c) : config(std::move(c)) {
     parlee::DomainSpec spec;
     parlee::parse_domain_text(config.domain_text, "<domain>", spec);
     domain = std::make_unique<parlee::Domain>(std::move(spec));
+    // one decay implementation (parlee::decayed, §5.6.3 per second): the agent's events are timed
+    // in thesis steps of options.step_seconds (as in snapshots' logs), decayed by that time
+    config.agent.decay_clock = parlee::DecayClock::Time;
+    config.agent.time_unit_seconds = o.step_seconds;
+    config.agent.emotions.step_seconds = o.step_seconds;
     make_agent();
     occ_last = agent->emotions();
     phi = parlee::decay_multipliers(config.agent.emotions, config.agent.personality);
@@ -162,10 +167,8 @@ std::array<double, 6> Character::Impl::esv_at(double t) {
       break;
     }
     case SourceKind::Parlee: {
-      parlee::EmotionVector occ{};
-      const double steps = (t - t_last) / config.options.step_seconds;
-      for (std::size_t i = 0; i < parlee::kEmotionCount; ++i)
-        occ[i] = occ_last[i] * std::pow(phi[i], steps);
+      const parlee::EmotionVector occ =
+          parlee::decayed(occ_last, config.agent.emotions, phi, std::max(0.0, t - t_last));
       e = parlee::basic_emotions(occ, config.agent.emotions);
       break;
     }
@@ -300,12 +303,7 @@ EventResult Character::Impl::parlee_event(parlee::Event e, bool log) {
     return {false, "event skipped: " + refused};
   }
   if (log) parlee_log.push_back(e);
-  const double steps = (time - t_last) / config.options.step_seconds;
-  parlee::EmotionVector decay{};
-  for (std::size_t i = 0; i < parlee::kEmotionCount; ++i) decay[i] = std::pow(phi[i], steps);
-  const parlee::EmotionVector alpha = parlee::motivated_alpha(
-      config.agent.emotions, agent->motivation(), config.agent.motivation_options);
-  parlee::update_emotions(occ_last, rec.impulse, config.agent.emotions, alpha, decay);
+  occ_last = agent->emotions();  // decayed by the agent over the time since its last event
   t_last = time;
   return {true, ""};
 }
@@ -491,9 +489,10 @@ const CharacterConfig& Character::config() const noexcept { return impl_->config
 std::vector<double> Character::occ_emotions() const {
   if (impl_->config.source != SourceKind::Parlee) return {};
   std::vector<double> out(parlee::kEmotionCount);
-  const double steps = (impl_->time - impl_->t_last) / impl_->config.options.step_seconds;
-  for (std::size_t i = 0; i < out.size(); ++i)
-    out[i] = impl_->occ_last[i] * std::pow(impl_->phi[i], steps);
+  const parlee::EmotionVector now =
+      parlee::decayed(impl_->occ_last, impl_->config.agent.emotions, impl_->phi,
+                      std::max(0.0, impl_->time - impl_->t_last));
+  std::copy(now.begin(), now.end(), out.begin());
   return out;
 }
 

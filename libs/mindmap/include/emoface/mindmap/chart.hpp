@@ -3,7 +3,9 @@
 // motiongraph::encode_png). Each emotion node is a coloured line (palette order = emotion order,
 // listed in docs/mindmap.md); triggered actions are ticks under the plot (tall = stimulus, middle =
 // chain, short = decay hint) in the colour of the emotion that chose them. Grid: mood 0, 0.25, …, 1
-// and one vertical line per second (per 5 s past 30 s, per 30 s past 300 s).
+// and one vertical line per second (per 5 s past 30 s, per 30 s past 300 s). Charts of at least
+// 200 × 100 pixels carry text (issue 19, core::draw_text): the title "<character>: mood", a legend
+// naming the emotion nodes, tick values (mood 0, 0.5, 1; seconds) and axis labels.
 #include <cstdint>
 #include <vector>
 

@@ -163,10 +163,14 @@ struct CrowdRenderOptions {
 
 /// Draws a mood strip: `values.size()` equal slots left to right; slot i shows a bar of height
 /// values[i] · (inner height) in colours[i] (0xRRGGBB) on a light frame that marks the full scale 1
-/// (with a tick at 0.5); a NaN value leaves its slot blank (no frame), a zero value draws an empty frame.
-/// Values are clamped to [0, 1]. Throws InvalidInput for mismatched sizes or a size out of [8, 8192].
-facemesh::Image mood_strip(const std::vector<double>& values, const std::vector<std::uint32_t>& colours, int width,
-                           int height);
+/// (with a tick at 0.5); a NaN value leaves its slot blank (no frame), a zero value draws an empty
+/// frame. Values are clamped to [0, 1]. Throws InvalidInput for mismatched sizes or a size out of
+/// [8, 8192]. With `labels` (one per value, or empty) and a strip of at least 24 pixels, the bottom
+/// 8 rows carry each slot's label (core::draw_text at scale 1, cut to the slot's width) and the
+/// bars keep the rows above; smaller strips draw no text.
+facemesh::Image mood_strip(const std::vector<double>& values,
+                           const std::vector<std::uint32_t>& colours, int width, int height,
+                           const std::vector<std::string>& labels = {});
 
 /// Deforms and renders a Crowd: one cell per character (face over mood strip) in a grid.
 class CrowdRenderer {
@@ -183,14 +187,18 @@ class CrowdRenderer {
   int width() const noexcept { return columns_ * cell_width() + (columns_ + 1) * options_.gap; }
   int height() const noexcept { return rows_ * cell_height() + (rows_ + 1) * options_.gap; }
 
-  /// Character c at frame k: the deformed face rendered over its mood strip (cell_width × cell_height).
+  /// Character c at frame k: the deformed face rendered over its mood strip (cell_width ×
+  /// cell_height). Faces at least 64 pixels wide carry the character's name in the top-left corner,
+  /// strips of at least 24 pixels the emotion names under their bars (issue 19).
   facemesh::Image cell(std::size_t c, std::size_t k) const;
   /// Every character at frame k, in grid order (row-major, character order); cells render in parallel.
   facemesh::Image frame(std::size_t k) const;
   /// Character c at frames[c] (a frame of mixed times, e.g. key moments); frames.size() = characters.
   facemesh::Image compose(const std::vector<std::size_t>& frames) const;
-  /// The key moments stacked top to bottom, one composed row of all characters per stimulus (a crowd
-  /// of more than 4 keeps its grid per moment). Throws InvalidInput when there is no key moment.
+  /// The key moments stacked top to bottom, one composed row of all characters per stimulus (a
+  /// crowd of more than 4 keeps its grid per moment). Sheets at least 200 pixels wide give each
+  /// moment a 16-pixel header "<time> s: <stimuli>" (issue 19). Throws InvalidInput when there is
+  /// no key moment.
   facemesh::Image key_moment_sheet() const;
 
  private:

@@ -26,6 +26,15 @@ enum class DisallowedEvent : std::uint8_t {
 std::string_view to_string(DisallowedEvent d);
 DisallowedEvent disallowed_event_from_string(std::string_view s);  ///< throws InvalidInput
 
+/// How much the emotions decay between two events (§5.6.3, issue 17 item 3).
+enum class DecayClock : std::uint8_t {
+  Time,  ///< by the time between the events: (Event::time − previous)·time_unit_seconds seconds
+  Step,  ///< one step of EmotionParams::step_seconds per event, whatever the times (before issue
+         ///< 17)
+};
+std::string_view to_string(DecayClock c);
+DecayClock decay_clock_from_string(std::string_view s);  ///< throws InvalidInput
+
 /// §5.5.4: a high motivational state generates a replenishment goal ("the agent wants to reduce
 /// these values"). The named goal of the agent (declared in the domain, e.g. `feed-self`) exists
 /// for the agent only while `need` ≥ `threshold`: below it the goal is dormant (not planned for,
@@ -57,6 +66,10 @@ struct AgentConfig {
   std::vector<ReplenishmentGoal> replenishment;  ///< §5.5.4 goals created by motivational states
   std::uint64_t seed = 1;            ///< own action choices and unspecified outcomes
   DisallowedEvent on_disallowed = DisallowedEvent::Skip;  ///< events the model does not allow
+  DecayClock decay_clock = DecayClock::Time;
+  /// Seconds per unit of Event::time, (0, 1e9]: 60 = event times are match minutes (§7.4).
+  /// With the defaults an event one minute after the previous one decays by one thesis step.
+  double time_unit_seconds = 60.0;
   void validate() const;
 };
 
@@ -106,6 +119,8 @@ class Agent {
 
   /// Applies one event (the agent acts first if it is its turn, then the event, then the agent
   /// responds if the turn came back), appraises each action, decays and updates the emotions.
+  /// Decay (DecayClock::Time): over the time since the previous event (or since 0), so two events
+  /// at the same time decay once and events half a minute apart by half a minute.
   /// An event the agent's model does not allow (action not applicable or ambiguous, unknown
   /// outcome) is skipped and reported in StepRecord::skipped (message lists what is applicable);
   /// with DisallowedEvent::Stop it throws InvalidInput instead, and the agent may by then have

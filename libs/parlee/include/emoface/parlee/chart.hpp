@@ -1,7 +1,9 @@
 #pragma once
 // Emotion charts (thesis Figs. 7.4–7.11): stacked line-chart panels sharing the x axis (match
-// minutes), a grid every 10 x-units with digit labels, optional vertical markers, encoded as PNG
-// (libpng, private) with a tEXt "Software" chunk carrying emoface::kGenerator.
+// minutes), a grid every 10 x-units with tick values, y tick values (0, y_max/2, y_max), optional
+// vertical markers, a title, axis labels and a legend of the named series (issue 19: text with
+// core::draw_text, the one bitmap font), encoded as PNG with a tEXt "Software" chunk carrying
+// emoface::kGenerator.
 // Used by `parlee run --plot` and by the obie pipeline (libs/obie), so both draw the same charts.
 #include <array>
 #include <cstddef>
@@ -24,6 +26,7 @@ struct RgbImage {
 struct ChartSeries {
   std::vector<double> x, y;  ///< same length; x in chart units (e.g. match minutes)
   std::array<std::uint8_t, 3> rgb{0, 0, 0};
+  std::string name;  ///< legend entry ("" = not in the legend)
 };
 
 struct ChartPanel {
@@ -44,8 +47,18 @@ struct ChartOptions {
   int panel_height = 150;  ///< pixels per panel, [40, 2048]
   double x_max = 0.0;      ///< x range [0, x_max]; 0 = the largest x of any series rounded up to 10
   std::vector<ChartMarker> markers;
+  std::string title;       ///< centred above the plot ("" = none)
+  std::string x_label;     ///< under the x tick values ("" = none)
+  std::string y_label;     ///< vertical, left of the y tick values ("" = none)
   void validate() const;   ///< throws InvalidInput
 };
+
+/// Where draw_chart puts things (pixels): panel p spans rows [top + p·(panel_height + 22),
+/// … + panel_height], columns [left, left + plot_width]. top = 8 without title and legend.
+struct ChartLayout {
+  int left = 40, top = 8, plot_width = 0, height = 0, title_y = 6, legend_y = 6;
+};
+ChartLayout chart_layout(const std::vector<ChartPanel>& panels, const ChartOptions& options);
 
 /// Draws the panels. Throws InvalidInput for no panels or bad options.
 RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options);
@@ -55,8 +68,8 @@ std::string encode_png(const RgbImage& image);
 /// draw_chart + encode_png.
 std::string render_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options);
 
-/// Draws `text` with the chart's 3×5 pixel font scaled by `scale` (≥ 1), top-left corner at (x, y);
-/// characters the font lacks are skipped, pixels outside the image clipped.
+/// core::draw_text on an RgbImage: the 3×5 pixel font scaled by `scale` (≥ 1), top-left corner at
+/// (x, y); characters the font lacks are skipped, pixels outside the image clipped.
 void draw_text(RgbImage& image, int x, int y, std::string_view text, std::array<std::uint8_t, 3> rgb,
                int scale = 2);
 /// Width in pixels of draw_text(text, scale).
@@ -72,7 +85,7 @@ struct ChartEmotion {
 const std::vector<ChartEmotion>& chart_emotions();
 
 /// One panel per chart_emotions() entry for one run: "<name> <emotion>", the basic intensity over
-/// StepRecord::time.
+/// StepRecord::time (series named by the emotion, for the legend).
 std::vector<ChartPanel> emotion_panels(const std::string& name, const std::vector<StepRecord>& run);
 
 }  // namespace emoface::parlee

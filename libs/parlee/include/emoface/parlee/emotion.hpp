@@ -69,15 +69,29 @@ enum class DecayModel : std::uint8_t {
 std::string_view to_string(DecayModel m);
 DecayModel decay_model_from_string(std::string_view s);
 
+/// The length of one ParleE step in the thesis' application, in seconds: thesis §7.4, "The match
+/// lasts for ninety minutes. Each minute there is an event happening" — one step = one match
+/// minute. The per-step decay constants (EmotionParams::decay, §5.6.3) are given for this step.
+inline constexpr double kThesisStepSeconds = 60.0;
+
 /// An agent's emotional characteristics (§5.5.2) and the effect matrix M of §5.6.4.
 struct EmotionParams {
   EmotionVector alpha;  ///< activation thresholds, 0 ≤ α ≤ ω (intensity units)
   EmotionVector omega;  ///< saturation thresholds, ω > 0
-  EmotionVector decay;  ///< decayFactor per time step, in [0,1]
+  EmotionVector decay;  ///< decayFactor per step of `step_seconds` (a saturated emotion), [0,1]
   /// effect[j][i] = M_{j,i}: how much an active emotion j damps impulses to emotion i. Entries in
   /// [0,1]; every column sum Σ_j M_{j,i} must lie in [0,1] (§5.6.4).
   std::array<EmotionVector, kEmotionCount> effect{};
   DecayModel decay_model = DecayModel::Power;
+  /// Seconds one step of `decay` lasts, (0, 1e9]: decay is per second, Φ^(Δt/step_seconds) over
+  /// Δt seconds (decayed()). Default the thesis' step, one match minute (kThesisStepSeconds).
+  double step_seconds = kThesisStepSeconds;
+  /// §5.6.3 "emotions decay slower when their intensity levels are lower … moods persist much
+  /// longer than high intensity emotions": the decay rate at intensity E is k·(r + (1 − r)·E/ω),
+  /// k = −ln Φ / step_seconds the rate of a saturated emotion, r this value, [0,1]. 1 = every
+  /// intensity decays alike (Φ per step exactly, the per-step behaviour before issue 17); 0.5
+  /// (default) = a faint mood decays at half the rate of a saturated emotion. See decayed().
+  double low_intensity_rate = 0.5;
 
   /// α = 0.1, ω = 1, decay 0.9 (hope/fear 0.85, surprise 0.3, distress 0.97), and a
   /// small Cathexis-style M: joy ⟷ distress 0.3, fear → joy/hope 0.2, hope → fear 0.2.
@@ -87,6 +101,26 @@ struct EmotionParams {
 
 /// Φ(E_i, personality) of §5.6.3 for every emotion.
 EmotionVector decay_multipliers(const EmotionParams& params, const Personality& p);
+
+/// Per-second decay rates k_i = −ln Φ_i / params.step_seconds of a saturated emotion (Φ_i =
+/// decay_multiplier[i]); +inf where Φ_i = 0, 0 where Φ_i = 1.
+EmotionVector decay_rates(const EmotionParams& params, const EmotionVector& decay_multiplier);
+
+/// Ψ of §5.6.3 over `dt_seconds` ≥ 0 of time, per emotion: the exact solution of
+///   dE/dt = −k·(r + (1 − r)·E/ω)·E,  k = decay_rates(), r = params.low_intensity_rate,
+/// i.e. with a = r·k, b = (1 − r)·k/ω:  E(Δt) = E·e^(−aΔt) / (1 + b·E·(1 − e^(−aΔt))/a)
+/// (E / (1 + b·E·Δt) when a = 0). A flow: decaying Δt₁ then Δt₂ equals decaying Δt₁ + Δt₂;
+/// with r = 1, E·Φ^(Δt/step_seconds), so one step of step_seconds multiplies by Φ exactly.
+/// Throws InvalidInput for a negative or non-finite dt.
+EmotionVector decayed(const EmotionVector& e, const EmotionParams& params,
+                      const EmotionVector& decay_multiplier, double dt_seconds);
+
+/// §5.6.4 with the decayed state given: E_{i,t+1} = min(ω_i, Ψ_i + I_i·(1 − Σ_j
+/// S_{j,t}/ω_j·M_{j,i})) with S from `e` (the state before decay, E_t). `decayed` = Ψ(E_t), e.g.
+/// from decayed().
+void update_decayed_emotions(EmotionVector& e, const EmotionVector& decayed,
+                             const EmotionVector& impulse, const EmotionParams& params,
+                             const EmotionVector& alpha);
 
 /// §5.6.4: E_{i,t+1} = min(ω_i, Φ_i·E_{i,t} + I_i·(1 − Σ_j S_{j,t}/ω_j · M_{j,i})),
 /// S_{j,t} = E_{j,t} if E_{j,t} ≥ α_j else 0. `alpha` is the effective α (after motivational

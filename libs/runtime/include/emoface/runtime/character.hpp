@@ -16,14 +16,16 @@
 //
 // Time: update(dt) advances the input clock by dt seconds; the outputs (emotions(), parameters(),
 // vertices()) are those of output_time() = the last internal frame mixed, `latency()` seconds
-// behind the input clock. Events and speech act at the input clock. Emotion decay is per second: a
-// thesis per-step factor d (ParleE's decayFactor, Φ of §5.6.3) applies as d^(Δt/step_seconds) over
-// Δt seconds, step_seconds being the length of one thesis step (one match minute in ch. 7 = 1 s of
-// animation by default); with events step_seconds apart it is exactly the per-step update of §5.6.4
-// (tested). Determinism: the same config (seed), events and update steps give bit-identical
-// outputs; snapshot() captures the whole state as JSON and restore_character() continues
-// bit-identically (tested). Not thread-safe: one thread per Character (different Characters are
-// independent).
+// behind the input clock. Events and speech act at the input clock. Emotion decay is per second,
+// ParleE's own (parlee::decayed, §5.6.3): a thesis per-step factor Φ applies over Δt seconds as
+// Φ^(Δt/step_seconds), slower at low intensity (EmotionParams::low_intensity_rate), step_seconds
+// being the length of one thesis step (one match minute in ch. 7 = 1 s of animation by default;
+// it overrides the agent's emotions.step_seconds and time_unit_seconds: agent event times are
+// input-clock seconds / step_seconds); with events step_seconds apart it is exactly the agent's
+// per-minute update (tested). Determinism: the same config (seed), events and update steps give
+// bit-identical outputs; snapshot() captures the whole state as JSON and restore_character()
+// continues bit-identically (tested). Not thread-safe: one thread per Character (different
+// Characters are independent).
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -73,8 +75,9 @@ struct CharacterOptions {
   channels::CoarticulationOptions coarticulation;
   double silence_pad = 0.2;        ///< silence viseme before and after each utterance, s, (0, 2]
   channels::SpeechOptions speech;  ///< the espeak-ng program (speak(text) without a synthesizer)
-  /// Seconds per thesis step for the per-step decay constants (ParleE), (0, 3600]; also converts
-  /// the agent's clock (event times are output_time / step_seconds steps).
+  /// Seconds per thesis step for the per-step decay constants (ParleE), (0, 3600]: the agent's
+  /// emotions.step_seconds and time_unit_seconds are set to it (agent event times are input-clock
+  /// seconds / step_seconds, thesis steps).
   double step_seconds = 1.0;
   /// Direct source: fraction of each emotion left after one second, (0, 1] (1 = held until
   /// changed).
