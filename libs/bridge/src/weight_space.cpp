@@ -181,6 +181,21 @@ std::string live_link_csv(const mg::TrackedFrames& take, double fps) {
   return out;
 }
 
+mg::TrackedFrames weight_take(const mg::MotionGraph& graph, const std::vector<mg::Pose>& frames,
+                              const std::string& id) {
+  const auto weights = mg::weight_frames(graph, frames, kArkit);
+  mg::TrackedFrames t;
+  t.id = id;
+  t.dimensions = 1;
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    t.frames.push_back(Eigen::Map<const Eigen::VectorXd>(weights[k].data(), kArkit));
+    t.times.push_back(static_cast<double>(k) / graph.frame_rate);
+    t.confidence.push_back(1.0);
+    t.success.push_back(1);
+  }
+  return t;
+}
+
 void WeightTakeOptions::validate() const {
   database.validate();
   if (rest_frames < 1) throw InvalidInput("weight takes: rest_frames must be >= 1");

@@ -63,6 +63,13 @@ motiongraph::TrackedFrames read_live_link_take(const std::string& path, double f
 /// The take as Live Link Face CSV at integer `fps` (weights must be in [0, 1]).
 std::string live_link_csv(const motiongraph::TrackedFrames& take, double fps);
 
+/// Synthesized frames of an ARKit weight graph as a 52-channel weight take (channels outside the
+/// graph's regions 0, values clamped to [0, 1], time = index / frame rate), e.g. for live_link_csv.
+/// Throws InvalidInput for a landmark graph or frames that do not match it.
+motiongraph::TrackedFrames weight_take(const motiongraph::MotionGraph& graph,
+                                       const std::vector<motiongraph::Pose>& frames,
+                                       const std::string& id);
+
 struct WeightTakeOptions {
   WeightDatabaseOptions database;
   std::size_t rest_frames = 12;  ///< frames at rest before, between and after expressions, >= 1
