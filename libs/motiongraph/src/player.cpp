@@ -60,11 +60,14 @@ void MotionPlayer::check_label(Label label) const {
   throw InvalidInput("motion player: the graph has no peak labelled \"" + to_string(label) + "\"");
 }
 
-MotionPlayer::Part MotionPlayer::make_transition(const SynthesisState& from, Label label) {
+MotionPlayer::Part MotionPlayer::make_transition(const SynthesisState& from, Label label,
+                                                 double path_fraction) {
   Part p;
   p.label = label;
   p.end = from;
   SynthesisOptions o = options_.synthesis;
+  if (path_fraction < 1.0) o.path_fraction = path_fraction;
+  o.validate();
   o.seed = core::derive_seed(options_.synthesis.seed, calls_++);
   p.frames = synthesize(graph_, p.end, label, o);
   // The first frame repeats the pose the part starts from: drop it (no held frame).
@@ -106,16 +109,27 @@ const SynthesisState& MotionPlayer::tail_state() const {
   return playing_.end;
 }
 
-void MotionPlayer::queue(Label label) {
+bool MotionPlayer::busy() const noexcept {
+  if (!playing_.idle && index_ < playing_.frames.size()) return true;
+  for (const Part& p : parts_)
+    if (!p.idle) return true;
+  return false;
+}
+
+void MotionPlayer::queue(Label label, double path_fraction) {
   check_label(label);
+  if (!(path_fraction > 0.0 && path_fraction <= 1.0))
+    throw InvalidInput("motion player: path_fraction must be in (0, 1]");
   // Speculative idle stretches prepared ahead give way to the transition.
   while (!parts_.empty() && parts_.back().idle) parts_.pop_back();
-  Part t = make_transition(tail_state(), label);
+  Part t = make_transition(tail_state(), label, path_fraction);
   parts_.push_back(std::move(t));
 }
 
-void MotionPlayer::interrupt(Label label) {
+void MotionPlayer::interrupt(Label label, double path_fraction) {
   check_label(label);
+  if (!(path_fraction > 0.0 && path_fraction <= 1.0))
+    throw InvalidInput("motion player: path_fraction must be in (0, 1]");
   // State at the current frame: per region the nearest node, and the exact current displacement.
   SynthesisState from = playing_.end;
   from.nodes.assign(graph_.regions.size(), 0);
@@ -134,7 +148,7 @@ void MotionPlayer::interrupt(Label label) {
     }
     from.last[r] = d;
   }
-  Part t = make_transition(from, label);
+  Part t = make_transition(from, label, path_fraction);
   parts_.clear();
   playing_ = std::move(t);
   playing_label_ = label;

@@ -42,13 +42,17 @@ class MotionPlayer {
   /// now); it is synthesized immediately (prepared ahead). Idle stretches prepared ahead are
   /// dropped: the transition follows the current part. Throws InvalidInput if the graph has no peak
   /// of `label` (nothing changes then).
-  void queue(Label label);
+  /// `path_fraction` in (0, 1] overrides SynthesisOptions::path_fraction for this transition (§6.1
+  /// mood-decay hints: only the leading path nodes).
+  void queue(Label label, double path_fraction = 1.0);
   /// Replaces what plays and the queue by a transition to `label` that starts at the current frame
   /// (the pose last returned by next_frame(), or the start pose): each region continues from the node
   /// nearest to its current displacement, and the offset to it fades out over the transition
   /// (synthesize's continuation), so the first new frame is one step from the current one. Throws
   /// InvalidInput like queue() (nothing changes then).
-  void interrupt(Label label);
+  void interrupt(Label label, double path_fraction = 1.0);
+  /// True while a transition plays or is queued (false while idling or holding).
+  bool busy() const noexcept;
   /// The next frame (graph.landmark_ids() poses, graph units); never runs dry: idles (or holds) when
   /// nothing is queued, preparing the next idle stretch when the current one starts.
   const Pose& next_frame();
@@ -69,7 +73,7 @@ class MotionPlayer {
     bool idle = false;
     SynthesisState end;  // the graph state after this part
   };
-  Part make_transition(const SynthesisState& from, Label label);
+  Part make_transition(const SynthesisState& from, Label label, double path_fraction);
   Part make_idle(const SynthesisState& from, Label label);
   void check_label(Label label) const;
   const SynthesisState& tail_state() const;
