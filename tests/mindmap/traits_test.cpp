@@ -188,3 +188,22 @@ TEST(RuntimeTraits, DotShowsContextAndAffection) {
   EXPECT_NE(dot.find("\"bob\""), std::string::npos);
   EXPECT_NE(dot.find("affection\\nsadness 0.70"), std::string::npos) << dot;
 }
+
+TEST(RuntimeTraits, ShippedExampleRuns) {
+  const std::string dir = std::string(EMOFACE_SOURCE_DIR) + "/data/mindmap";
+  const auto maps = mm::read_mind_map_dir(dir + "/characters");
+  const auto events = mm::read_events(dir + "/events_traits.ndjson");
+  const auto r = mm::simulate(maps, events, {});
+  bool at_ben = false;
+  for (const auto& a : r.actions) at_ben = at_ben || (a.character == "ana" && a.addressee == "ben");
+  EXPECT_TRUE(at_ben);
+  std::size_t ana = 0;
+  while (maps[ana].character != "ana") ++ana;
+  const mm::MindMap before = mm::map_at(maps, events, ana, 3.0);
+  const mm::MindMap after = mm::map_at(maps, events, ana, 14.0);
+  EXPECT_EQ(before.traits.background_context, maps[ana].traits.background_context);
+  EXPECT_EQ(after.traits.background_context, (std::vector<double>{0.9, 0.0, 0.0, 0.2, 0.0, 0.1}));
+  ASSERT_NE(after.traits.affection_towards("ben"), nullptr);
+  EXPECT_EQ(*after.traits.affection_towards("ben"), (std::vector<double>{0.0, 0.3, 0.8, 0.0, 0.1, 0.0}));
+  EXPECT_THROW(mm::map_at(maps, events, 7, 1.0), emoface::InvalidInput);
+}

@@ -331,6 +331,17 @@ void World::apply(const Event& event, std::vector<TriggeredAction>* out) {
     deliver(targets[k], event, plans[k] ? &*plans[k] : nullptr, out);
 }
 
+MindMap map_at(std::vector<MindMap> maps, std::vector<Event> events, std::size_t c, double time,
+               const SimulationOptions& options) {
+  World world(std::move(maps), options);
+  if (c >= world.size()) throw InvalidInput("map_at: character index out of range");
+  std::stable_sort(events.begin(), events.end(),
+                   [](const Event& a, const Event& b) { return a.time < b.time; });
+  for (const Event& e : events)
+    if (e.time <= time) world.apply(e, nullptr);
+  return world.map(c);
+}
+
 SimulationResult simulate(std::vector<MindMap> maps, std::vector<Event> events,
                           const SimulationOptions& options) {
   World world(std::move(maps), options);

@@ -178,6 +178,12 @@ struct SimulationResult {
   double duration = 0.0;
 };
 
+/// The mind map of character `c` as it stands at `time` after the events up to then (sorted by
+/// time, stable; no propagation): copied stimuli learnt and background context / affection changed
+/// at run time (issue 19), for drawing (mind_map_dot). Throws like World::apply.
+MindMap map_at(std::vector<MindMap> maps, std::vector<Event> events, std::size_t c, double time,
+               const SimulationOptions& options = {});
+
 /// Runs the events (sorted by time, stable) through a World and samples every mood at frame_rate.
 /// Events at a sample time are applied before the sample.
 SimulationResult simulate(std::vector<MindMap> maps, std::vector<Event> events,
