@@ -347,6 +347,8 @@ int main(int argc, char** argv) {
   sim->add_option("--decay-interval", a.sim.decay_interval, "seconds between decay hints")->capture_default_str();
   sim->add_option("--propagate", a.sim.propagation_depth, "hops a performed stimulus travels to the others (0 = off)")
       ->capture_default_str();
+  sim->add_flag("--to-addressee", a.sim.propagate_to_addressee,
+                "with --propagate: an action aimed at a character reaches only that character");
   sim->add_option("--hint-fraction", a.motion.hint_path_fraction, "path fraction of decay hints")
       ->capture_default_str();
   add_motion_options(sim, a);

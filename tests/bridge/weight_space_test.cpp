@@ -1,5 +1,7 @@
 // Weight-space motion graphs on the face (issue 19 item 2): ARKit layout, the generated weight
 // database and Live Link takes, and synthesized weights driving the face through the exact mapping.
+#include "emoface/bridge/weight_space.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,7 +9,6 @@
 #include <iostream>
 #include <set>
 
-#include "emoface/bridge/weight_space.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/faceweights/names.hpp"
 #include "emoface/motiongraph/weights.hpp"
@@ -47,7 +48,8 @@ TEST(ArkitLayout, RegionsCoverEveryChannelButTheTongue) {
   EXPECT_EQ(l.regions[2].landmarks.size(), 2u);   // nose
   EXPECT_EQ(l.regions[3].landmarks.size(), 23u);  // mouth
   EXPECT_EQ(l.regions[4].landmarks.size(), 7u);   // cheeks + jaw
-  for (int id : l.regions[3].landmarks) EXPECT_EQ(names[static_cast<std::size_t>(id)].rfind("mouth", 0), 0u);
+  for (int id : l.regions[3].landmarks)
+    EXPECT_EQ(names[static_cast<std::size_t>(id)].rfind("mouth", 0), 0u);
 }
 
 TEST(WeightDatabase, FaceDrivenWeightsFollowTheMapping) {
@@ -114,7 +116,8 @@ TEST(LiveLinkTakes, RoundTripTrimAndLabels) {
   EXPECT_EQ(labels.entries.size(), expressions);
   // The database from the files and the side table: one sequence per expression, labels matching.
   std::vector<mg::TrackedFrames> read;
-  for (const auto& t : takes) read.push_back(br::parse_live_link_take(br::live_link_csv(t, 30.0), t.id + ".csv", 30.0));
+  for (const auto& t : takes)
+    read.push_back(br::parse_live_link_take(br::live_link_csv(t, 30.0), t.id + ".csv", 30.0));
   const mg::Database db = mg::capture_database(read, {}, &labels);
   EXPECT_EQ(db.sequences.size(), expressions);
   EXPECT_EQ(db.dimensions, 1);
@@ -191,9 +194,10 @@ TEST(WeightDrive, SynthesizedWeightsDriveTheFaceExactly) {
   for (std::size_t c = 0; c < w.size(); ++c) EXPECT_NEAR(again[c], w[c], 1e-5) << c;
   // The jaw opens on the surprise apex (jawOpen → masseter).
   const auto& names = emoface::muscles::parameter_names();
-  const auto masseter = std::find_if(names.begin(), names.end(), [](const std::string& n) {
-                          return n.find("masseter") != std::string::npos;
-                        }) - names.begin();
+  const auto masseter =
+      std::find_if(names.begin(), names.end(),
+                   [](const std::string& n) { return n.find("masseter") != std::string::npos; }) -
+      names.begin();
   EXPECT_GT(params.back().values[static_cast<std::size_t>(masseter)], 0.2);
   // A landmark graph is refused.
   mg::MotionGraph landmarks = g;

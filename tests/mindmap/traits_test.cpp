@@ -56,8 +56,8 @@ TEST(Addressee, ResponsesAreAimedAtTheSource) {
   w.advance_to(20.0, &out);
   for (const auto& a : out) EXPECT_EQ(a.addressee, "") << "decay";
   // The actions file keeps it ("at") and reads it back.
-  std::vector<mm::TriggeredAction> a{{1.0, "alice", "sigh", "sadness", "sadness", 0.5,
-                                      mm::Cause::Stimulus, "insult", 0, "bob"}};
+  std::vector<mm::TriggeredAction> a{
+      {1.0, "alice", "sigh", "sadness", "sadness", 0.5, mm::Cause::Stimulus, "insult", 0, "bob"}};
   const auto back = mm::parse_actions(mm::actions_to_ndjson(a), "a.ndjson");
   ASSERT_EQ(back.size(), 1u);
   EXPECT_EQ(back[0].addressee, "bob");
@@ -124,7 +124,8 @@ TEST(RuntimeTraits, BadChangesAreRefusedAndChangeNothing) {
   EXPECT_THROW(w.apply(change(1.0, "alice", {0.5, 1.5}), nullptr), emoface::InvalidInput);
   EXPECT_THROW(w.apply(change(1.0, "alice", {0.5, std::nan("")}), nullptr), emoface::InvalidInput);
   EXPECT_THROW(w.apply(change(1.0, "nobody", {0.5, 0.5}), nullptr), emoface::InvalidInput);
-  EXPECT_THROW(w.apply(change(1.0, "alice", {}, {{"alice", {0.1, 0.1}}}), nullptr), emoface::InvalidInput);
+  EXPECT_THROW(w.apply(change(1.0, "alice", {}, {{"alice", {0.1, 0.1}}}), nullptr),
+               emoface::InvalidInput);
   EXPECT_THROW(w.apply(change(1.0, "alice", {}, {{"bob", {0.1}}}), nullptr), emoface::InvalidInput);
   // "*": bob's map has 2 emotions as well; a bad row for anyone stops the whole change.
   EXPECT_THROW(w.apply(change(1.0, "*", {0.2, -0.1}), nullptr), emoface::InvalidInput);
@@ -204,6 +205,7 @@ TEST(RuntimeTraits, ShippedExampleRuns) {
   EXPECT_EQ(before.traits.background_context, maps[ana].traits.background_context);
   EXPECT_EQ(after.traits.background_context, (std::vector<double>{0.9, 0.0, 0.0, 0.2, 0.0, 0.1}));
   ASSERT_NE(after.traits.affection_towards("ben"), nullptr);
-  EXPECT_EQ(*after.traits.affection_towards("ben"), (std::vector<double>{0.0, 0.3, 0.8, 0.0, 0.1, 0.0}));
+  EXPECT_EQ(*after.traits.affection_towards("ben"),
+            (std::vector<double>{0.0, 0.3, 0.8, 0.0, 0.1, 0.0}));
   EXPECT_THROW(mm::map_at(maps, events, 7, 1.0), emoface::InvalidInput);
 }

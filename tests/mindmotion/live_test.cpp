@@ -1,4 +1,7 @@
-// A live mind-map character (issue 19 item 5): per-frame stimuli → mood → synthesized motion → face.
+// A live mind-map character (issue 19 item 5): per-frame stimuli → mood → synthesized motion →
+// face.
+#include "emoface/mindmotion/live.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,7 +10,6 @@
 #include "emoface/bridge/weight_space.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/mindmap/io.hpp"
-#include "emoface/mindmotion/live.hpp"
 #include "emoface/motiongraph/weights.hpp"
 #include "emoface/muscles/parameters.hpp"
 
@@ -51,9 +53,10 @@ const mg::MotionGraph& weight_graph() {
     o.database.subjects = 4;
     o.database.min_frames = 8;
     o.database.max_frames = 16;
-    return mg::build_graph(mg::preprocess(emoface::bridge::generate_weight_database(face, o),
-                                          emoface::bridge::arkit_layout(), mg::weight_preprocess_options()),
-                           mg::weight_graph_options());
+    return mg::build_graph(
+        mg::preprocess(emoface::bridge::generate_weight_database(face, o),
+                       emoface::bridge::arkit_layout(), mg::weight_preprocess_options()),
+        mg::weight_graph_options());
   }();
   return g;
 }
@@ -160,7 +163,8 @@ TEST(LiveCharacter, ChainsAreQueuedHintsDroppedWhileBusyAndBadInputRefused) {
   mg::MotionGraph no_disgust = weight_graph();
   for (auto& r : no_disgust.regions)
     for (auto& node : r.nodes)
-      node.peak_labels.erase(std::remove(node.peak_labels.begin(), node.peak_labels.end(), mg::Label::Disgust),
-                             node.peak_labels.end());
+      node.peak_labels.erase(
+          std::remove(node.peak_labels.begin(), node.peak_labels.end(), mg::Label::Disgust),
+          node.peak_labels.end());
   EXPECT_THROW(mm::LiveCharacter(no_disgust, rex()), emoface::InvalidInput);
 }

@@ -1,12 +1,13 @@
 // The live motion API (issue 19 item 5): prepared-ahead transitions, idle when done, interrupts
 // that continue from the current frame without a jump.
+#include "emoface/motiongraph/player.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
-#include "emoface/motiongraph/player.hpp"
 #include "fixtures.hpp"
 
 namespace mg = emoface::motiongraph;
@@ -21,7 +22,8 @@ double step(const mg::Pose& a, const mg::Pose& b) { return (a - b).rowwise().nor
 double largest_plain_step() {
   mg::SynthesisState s = mg::initial_state(graph());
   double m = 0.0;
-  for (mg::Label l : {mg::Label::Happiness, mg::Label::Surprise, mg::Label::Fear, mg::Label::Neutral}) {
+  for (mg::Label l :
+       {mg::Label::Happiness, mg::Label::Surprise, mg::Label::Fear, mg::Label::Neutral}) {
     const auto f = mg::synthesize(graph(), s, l);
     for (std::size_t i = 1; i < f.size(); ++i) m = std::max(m, step(f[i], f[i - 1]));
   }
@@ -66,8 +68,10 @@ TEST(MotionPlayer, QueuedTransitionIsPreparedAheadAndMatchesSynthesis) {
   // Unknown peaks are refused and change nothing.
   mg::MotionGraph no_contempt = graph();
   for (auto& r : no_contempt.regions)
-    for (auto& n : r.nodes) n.peak_labels.erase(std::remove(n.peak_labels.begin(), n.peak_labels.end(),
-                                                            mg::Label::Contempt), n.peak_labels.end());
+    for (auto& n : r.nodes)
+      n.peak_labels.erase(
+          std::remove(n.peak_labels.begin(), n.peak_labels.end(), mg::Label::Contempt),
+          n.peak_labels.end());
   mg::MotionPlayer q(no_contempt);
   const std::size_t n = q.prepared_frames();
   EXPECT_THROW(q.queue(mg::Label::Contempt), emoface::InvalidInput);
@@ -89,8 +93,8 @@ TEST(MotionPlayer, InterruptContinuesFromTheCurrentFrameWithoutAJump) {
     // The first new frame is one ordinary step away (the offset fades over the transition) ...
     const mg::Pose first = p.next_frame();
     EXPECT_LE(step(first, before), plain) << "interrupt at frame " << at;
-    // ... and every later step stays ordinary: the faded offset adds offset/(n − 1) per frame, a few
-    // per cent of the largest plain step (25 % allowed).
+    // ... and every later step stays ordinary: the faded offset adds offset/(n − 1) per frame, a
+    // few per cent of the largest plain step (25 % allowed).
     mg::Pose prev = first;
     double worst = 0.0;
     for (int i = 0; i < 60; ++i) {

@@ -1,5 +1,7 @@
 // Weight-space motion graphs (issue 19 item 2): databases of dimensions 1 through preprocessing,
 // graph building, synthesis, idle, evaluation and the readers.
+#include "emoface/motiongraph/weights.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include "emoface/core/errors.hpp"
 #include "emoface/motiongraph/capture.hpp"
 #include "emoface/motiongraph/io.hpp"
-#include "emoface/motiongraph/weights.hpp"
 
 namespace mg = emoface::motiongraph;
 
@@ -36,9 +37,10 @@ mg::Database weight_db() {
   db.dimensions = 1;
   db.landmark_count = 6;
   db.frame_rate = 30.0;
-  db.sequences = {ramp("a", mg::Label::Happiness, 0, 12, 0.8), ramp("b", mg::Label::Happiness, 0, 14, 0.7),
-                  ramp("c", mg::Label::Sadness, 1, 10, 0.6), ramp("d", mg::Label::Sadness, 1, 16, 0.5),
-                  ramp("e", mg::Label::Surprise, 2, 11, 0.9)};
+  db.sequences = {
+      ramp("a", mg::Label::Happiness, 0, 12, 0.8), ramp("b", mg::Label::Happiness, 0, 14, 0.7),
+      ramp("c", mg::Label::Sadness, 1, 10, 0.6), ramp("d", mg::Label::Sadness, 1, 16, 0.5),
+      ramp("e", mg::Label::Surprise, 2, 11, 0.9)};
   return db;
 }
 
@@ -75,8 +77,8 @@ TEST(WeightSpace, PreprocessNeitherTranslatesNorAligns) {
     EXPECT_NEAR(n.maxCoeff(), 0.05, 1e-15);
     EXPECT_NEAR(n.minCoeff(), 0.05, 1e-15);
   }
-  // Displacements are the weights minus the first frame, frame for frame (hand-computed: sample "a",
-  // region 0, frame 11 of 12 = 0.8 − 0.05; channel 1 half of it).
+  // Displacements are the weights minus the first frame, frame for frame (hand-computed: sample
+  // "a", region 0, frame 11 of 12 = 0.8 − 0.05; channel 1 half of it).
   const mg::PreparedSample& a = data.samples[0];
   EXPECT_NEAR(a.displacement[0](11, 0), 0.75, 1e-12);
   EXPECT_NEAR(a.displacement[0](11, 1), 0.375, 1e-12);
@@ -96,7 +98,8 @@ TEST(WeightSpace, Eq1InOneDimensionIsL1PlusStillTerm) {
 }
 
 TEST(WeightSpace, GraphSynthesisReachesTheLabelsPeakAndReturnsToRest) {
-  const mg::PreparedDatabase data = mg::preprocess(weight_db(), three_regions(), mg::weight_preprocess_options());
+  const mg::PreparedDatabase data =
+      mg::preprocess(weight_db(), three_regions(), mg::weight_preprocess_options());
   const mg::MotionGraph g = mg::build_graph(data, mg::weight_graph_options());
   EXPECT_EQ(g.dimensions, 1);
   EXPECT_GT(g.compression_ratio(), 0.0);
@@ -139,7 +142,8 @@ TEST(WeightSpace, EvaluationComparesWithRawSamplesToo) {
   mg::Database db = weight_db();
   // Jitter on the raw samples: the cleaned and raw comparisons must then differ.
   for (auto& s : db.sequences)
-    for (std::size_t f = 1; f + 1 < s.frames.size(); ++f) s.frames[f](0, 0) += (f % 2 ? 0.01 : -0.01);
+    for (std::size_t f = 1; f + 1 < s.frames.size(); ++f)
+      s.frames[f](0, 0) += (f % 2 ? 0.01 : -0.01);
   mg::PreprocessOptions po = mg::weight_preprocess_options();
   po.check_neutral_start = false;
   const mg::PreparedDatabase cleaned = mg::preprocess(db, three_regions(), po);
@@ -204,7 +208,8 @@ TEST(WeightSpace, JsonAndCsvRoundTrip) {
 }
 
 TEST(WeightSpace, WeightTakesAreTrimmedWithWeightThresholds) {
-  // A take at rest (0.02 jitter-free) with one expression: 10 rest, 8 onset to 0.6, 4 hold, 10 rest.
+  // A take at rest (0.02 jitter-free) with one expression: 10 rest, 8 onset to 0.6, 4 hold, 10
+  // rest.
   mg::TrackedFrames t;
   t.id = "take";
   t.dimensions = 1;

@@ -99,8 +99,8 @@ mg::Database generate_weight_database(const FaceLandmarkModel& face,
     const std::size_t subject = index % so.subjects;
     rng.normal();  // the landmark database draws a head offset here; keep the streams aligned
     rng.normal();
-    const std::size_t n =
-        so.min_frames + static_cast<std::size_t>(rng.uniform_int(so.max_frames - so.min_frames + 1));
+    const std::size_t n = so.min_frames + static_cast<std::size_t>(
+                                              rng.uniform_int(so.max_frames - so.min_frames + 1));
     const double peak = rng.uniform(so.min_intensity, so.max_intensity);
     mg::Sequence seq;
     char name[48];
@@ -128,7 +128,8 @@ mg::TrackedFrames parse_live_link_take(std::string_view text, const std::string&
                                        const std::string& id) {
   fw::WeightTrackReadOptions ro;
   ro.fps = fps;
-  const fw::WeightTrack track = fw::parse_weight_track(text, fw::builtin_weight_set("arkit"), file, ro);
+  const fw::WeightTrack track =
+      fw::parse_weight_track(text, fw::builtin_weight_set("arkit"), file, ro);
   mg::TrackedFrames t;
   t.id = id;
   if (t.id.empty()) {  // the file's stem
@@ -142,7 +143,8 @@ mg::TrackedFrames parse_live_link_take(std::string_view text, const std::string&
     if (i > 0 && !(track.times[i] > track.times[i - 1]))
       throw FormatError({file, "", i + 2, 1}, "times must increase (Timecode or time column)");
     mg::Pose p(static_cast<Eigen::Index>(kArkit), 1);
-    for (std::size_t c = 0; c < kArkit; ++c) p(static_cast<Eigen::Index>(c), 0) = track.weights[i][c];
+    for (std::size_t c = 0; c < kArkit; ++c)
+      p(static_cast<Eigen::Index>(c), 0) = track.weights[i][c];
     t.frames.push_back(std::move(p));
     t.times.push_back(track.times[i]);
     t.confidence.push_back(1.0);
@@ -172,7 +174,8 @@ std::string live_link_csv(const mg::TrackedFrames& take, double fps) {
     for (int k : fw::live_link_face_to_arkit()) {
       const double v = take.frames[i](k, 0);
       if (!(v >= 0.0 && v <= 1.0))
-        throw InvalidInput("live_link_csv: frame " + std::to_string(i) + " has a weight outside [0, 1]");
+        throw InvalidInput("live_link_csv: frame " + std::to_string(i) +
+                           " has a weight outside [0, 1]");
       std::snprintf(buf, sizeof buf, ",%.17g", v);
       out += buf;
     }
@@ -270,7 +273,8 @@ std::vector<muscles::ParameterFrame> weight_parameters(const mg::MotionGraph& gr
     const fw::FitReport fr = mapper.inverse(weights[k], params);
     if (!fr.converged) ++rep.not_converged;
     for (const auto& u : fr.unrepresented)
-      if (std::find(rep.unrepresented.begin(), rep.unrepresented.end(), u) == rep.unrepresented.end())
+      if (std::find(rep.unrepresented.begin(), rep.unrepresented.end(), u) ==
+          rep.unrepresented.end())
         rep.unrepresented.push_back(u);
     const std::vector<double> back = mapper.forward(params);
     const auto& set = mapper.set();

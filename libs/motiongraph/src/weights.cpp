@@ -70,10 +70,12 @@ std::vector<std::vector<double>> weight_frames(const MotionGraph& graph,
                          std::to_string(p.rows()) + "x" + std::to_string(p.cols()) + ", expected " +
                          std::to_string(ids.size()) + "x1");
     if (!p.allFinite())
-      throw InvalidInput("weight frames: frame " + std::to_string(f) + " has a NaN or infinite value");
+      throw InvalidInput("weight frames: frame " + std::to_string(f) +
+                         " has a NaN or infinite value");
     std::vector<double> w(channel_count, 0.0);
     for (std::size_t i = 0; i < ids.size(); ++i)
-      w[static_cast<std::size_t>(ids[i])] = std::clamp(p(static_cast<Eigen::Index>(i), 0), 0.0, 1.0);
+      w[static_cast<std::size_t>(ids[i])] =
+          std::clamp(p(static_cast<Eigen::Index>(i), 0), 0.0, 1.0);
     out.push_back(std::move(w));
   }
   return out;

@@ -1,7 +1,7 @@
 #pragma once
-// Weight-space motion graphs on the face (issue 19 item 2): ARKit-52 weight sequences as motion-graph
-// training data, and synthesized weight motion driving the muscle face exactly through faceweights'
-// parameter ↔ ARKit mapping (no landmark fit).
+// Weight-space motion graphs on the face (issue 19 item 2): ARKit-52 weight sequences as
+// motion-graph training data, and synthesized weight motion driving the muscle face exactly through
+// faceweights' parameter ↔ ARKit mapping (no landmark fit).
 //
 //   * arkit_layout(): the paper's regions (§4, fig. 3) over the ARKit channels;
 //   * generate_weight_database(): the face-driven synthetic database in weight space — label →
@@ -28,14 +28,15 @@ namespace emoface::bridge {
 
 /// Regions over the 52 ARKit channels (faceweights::arkit_names() order): eyes (eyeBlink, eyeLook,
 /// eyeSquint, eyeWide; 14), brows (5), nose (noseSneer; 2), mouth (mouth*; 23), cheeks+jaw (cheek*,
-/// jaw*; 7). tongueOut is left out: emoface's face has no tongue muscle (data/faceweights/arkit.json).
+/// jaw*; 7). tongueOut is left out: emoface's face has no tongue muscle
+/// (data/faceweights/arkit.json).
 motiongraph::LandmarkLayout arkit_layout();
 
 /// The ARKit mapper on muscles::parameter_names() (the 42 face parameters).
 const faceweights::Mapper& arkit_mapper();
 
-/// ARKit weights (52, arkit_names() order) of the face-driven expression of `label` at `intensity` in
-/// [0, 1]: Mapper::forward of FaceLandmarkModel::side_parameters (pose and gaze parameters 0).
+/// ARKit weights (52, arkit_names() order) of the face-driven expression of `label` at `intensity`
+/// in [0, 1]: Mapper::forward of FaceLandmarkModel::side_parameters (pose and gaze parameters 0).
 std::vector<double> expression_weights(const FaceLandmarkModel& face, motiongraph::Label label,
                                        double intensity);
 
@@ -43,8 +44,9 @@ struct WeightDatabaseOptions {
   /// Sequences, labels, subjects, lengths, intensities, frame rate and seed as for the landmark
   /// database (the pixel fields — scale, shape, translation, roll, noise — are not used).
   motiongraph::SyntheticOptions database;
-  double gain_std = 0.1;    ///< per-subject, per-channel gain ~ N(1, gain_std), >= 0 (people differ)
-  double noise_std = 0.01;  ///< per-frame tracking noise (weight units), >= 0; results clamped to [0, 1]
+  double gain_std = 0.1;  ///< per-subject, per-channel gain ~ N(1, gain_std), >= 0 (people differ)
+  double noise_std =
+      0.01;  ///< per-frame tracking noise (weight units), >= 0; results clamped to [0, 1]
   void validate() const;
 };
 
@@ -78,11 +80,11 @@ struct WeightTakeOptions {
 };
 
 /// Long weight takes, one per subject: each of its sequences of generate_weight_database played as
-/// rest → onset → hold → offset (the onset reversed) → rest, with tracking noise at rest and hold and
-/// a per-frame label column (`neutral` at rest; kept in memory — Live Link files carry no labels,
-/// write a side table with weight_take_labels()). Deterministic for the seed.
-std::vector<motiongraph::TrackedFrames> generate_weight_takes(const FaceLandmarkModel& face,
-                                                              const WeightTakeOptions& options = {});
+/// rest → onset → hold → offset (the onset reversed) → rest, with tracking noise at rest and hold
+/// and a per-frame label column (`neutral` at rest; kept in memory — Live Link files carry no
+/// labels, write a side table with weight_take_labels()). Deterministic for the seed.
+std::vector<motiongraph::TrackedFrames> generate_weight_takes(
+    const FaceLandmarkModel& face, const WeightTakeOptions& options = {});
 
 /// The side table (take, segment, label) of takes with label columns, from the same trimming
 /// capture_database does (each segment gets the label at its peak frame; neutral segments are left

@@ -59,8 +59,8 @@ class LiveCharacter {
   /// InvalidInput for an unknown stimulus that cannot be copied or bad weights (nothing changes).
   void push_stimulus(const std::string& stimulus,
                      const std::vector<std::pair<std::string, double>>& weights = {});
-  /// Advances the clock by dt seconds (finite, [0, 3600]): mood decay, due actions, and every motion
-  /// frame due (graph frame rate).
+  /// Advances the clock by dt seconds (finite, [0, 3600]): mood decay, due actions, and every
+  /// motion frame due (graph frame rate).
   void update(double dt);
 
   double time() const noexcept;

@@ -4,8 +4,8 @@
 // transition starts exactly at the pose on screen (no jump) and blends the difference out.
 //
 //   mg::MotionPlayer player(graph);                 // at rest, idling (Label::Neutral)
-//   player.queue(mg::Label::Happiness);             // synthesized now, played after the current part
-//   for (;;) { const mg::Pose& p = player.next_frame(); ... }   // one pose per graph frame
+//   player.queue(mg::Label::Happiness);             // synthesized now, played after the current
+//   part for (;;) { const mg::Pose& p = player.next_frame(); ... }   // one pose per graph frame
 //   player.interrupt(mg::Label::Surprise);          // from the current frame, drops the queue
 //
 // Works on landmark and weight graphs (weights.hpp) alike. Not thread-safe; deterministic for the
@@ -34,8 +34,8 @@ PlayerOptions weight_player_options();
 
 class MotionPlayer {
  public:
-  /// Starts at the graph's neutral pose under Label::Neutral. Throws InvalidInput for an empty graph
-  /// or invalid options. The graph must outlive the player.
+  /// Starts at the graph's neutral pose under Label::Neutral. Throws InvalidInput for an empty
+  /// graph or invalid options. The graph must outlive the player.
   explicit MotionPlayer(const MotionGraph& graph, PlayerOptions options = {});
 
   /// Appends a transition to a peak of `label` after the last queued one (or after the part playing
@@ -46,15 +46,15 @@ class MotionPlayer {
   /// mood-decay hints: only the leading path nodes).
   void queue(Label label, double path_fraction = 1.0);
   /// Replaces what plays and the queue by a transition to `label` that starts at the current frame
-  /// (the pose last returned by next_frame(), or the start pose): each region continues from the node
-  /// nearest to its current displacement, and the offset to it fades out over the transition
+  /// (the pose last returned by next_frame(), or the start pose): each region continues from the
+  /// node nearest to its current displacement, and the offset to it fades out over the transition
   /// (synthesize's continuation), so the first new frame is one step from the current one. Throws
   /// InvalidInput like queue() (nothing changes then).
   void interrupt(Label label, double path_fraction = 1.0);
   /// True while a transition plays or is queued (false while idling or holding).
   bool busy() const noexcept;
-  /// The next frame (graph.landmark_ids() poses, graph units); never runs dry: idles (or holds) when
-  /// nothing is queued, preparing the next idle stretch when the current one starts.
+  /// The next frame (graph.landmark_ids() poses, graph units); never runs dry: idles (or holds)
+  /// when nothing is queued, preparing the next idle stretch when the current one starts.
   const Pose& next_frame();
 
   const Pose& current() const noexcept { return current_; }
