@@ -148,3 +148,12 @@ TEST(MotionPlayer, InterruptDropsTheQueueAndHoldModeHolds) {
   b.queue(mg::Label::Disgust);
   for (int i = 0; i < 40; ++i) EXPECT_EQ(a.next_frame(), b.next_frame());
 }
+
+TEST(MotionPlayer, RefusesAMalformedGraph) {
+  mg::MotionGraph bad = graph();
+  bad.dimensions = 3;  // node sizes are for 2D
+  EXPECT_THROW(mg::MotionPlayer{bad}, emoface::InvalidInput);
+  mg::MotionGraph empty = graph();
+  empty.regions.clear();
+  EXPECT_THROW(mg::MotionPlayer{empty}, emoface::InvalidInput);
+}

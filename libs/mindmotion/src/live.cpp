@@ -113,7 +113,10 @@ struct LiveCharacter::Impl {
 
 LiveCharacter::LiveCharacter(const mg::MotionGraph& graph, mindmap::MindMap map,
                              LiveCharacterOptions options, const bridge::LandmarkFitter* fitter)
-    : impl_(std::make_unique<Impl>(graph, std::move(map), std::move(options), fitter)) {}
+    : impl_((!mg::is_weight_space(graph.dimensions) && !fitter
+                 ? throw InvalidInput("live character: a landmark graph needs a LandmarkFitter")
+                 : 0,
+             std::make_unique<Impl>(graph, std::move(map), std::move(options), fitter))) {}
 LiveCharacter::~LiveCharacter() = default;
 LiveCharacter::LiveCharacter(LiveCharacter&&) noexcept = default;
 

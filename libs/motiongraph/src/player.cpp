@@ -44,6 +44,15 @@ MotionPlayer::MotionPlayer(const MotionGraph& graph, PlayerOptions options)
     : graph_(graph), options_(std::move(options)) {
   options_.validate();
   if (graph_.regions.empty()) throw InvalidInput("motion player: empty motion graph");
+  for (const RegionGraph& rg : graph_.regions) {  // a malformed graph must not index out of range
+    const auto width = static_cast<Eigen::Index>(rg.landmarks.size()) * graph_.dimensions;
+    bool ok = graph_.dimensions >= 1 && graph_.dimensions <= 3 && rg.neutral.size() == width &&
+              rg.neutral_node < rg.nodes.size();
+    for (const Node& n : rg.nodes) ok = ok && n.displacement.size() == width;
+    if (!ok)
+      throw InvalidInput("motion player: region \"" + rg.name +
+                         "\" does not match the graph's dimensions and landmarks");
+  }
   playing_.end = initial_state(graph_);
   playing_.label = Label::Neutral;
   playing_.idle = true;
