@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "emoface/bridge/face_landmark_model.hpp"
+#include "emoface/bridge/weight_space.hpp"
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
@@ -23,6 +24,8 @@
 #include "emoface/motiongraph/render.hpp"
 #include "emoface/motiongraph/synthesis.hpp"
 #include "emoface/motiongraph/synthetic.hpp"
+#include "emoface/motiongraph/weights.hpp"
+#include "emoface/muscles/io.hpp"
 
 namespace emoface::mgraph {
 
@@ -41,38 +44,55 @@ void print_skipped(const ReadReport& report) {
   if (!report.skipped.empty()) std::cerr << "mgraph: " << report.skipped.size() << " record(s) skipped\n";
 }
 
-PreparedDatabase load_prepared(const Args& a) {
+Database load_database(const Args& a) {
   if (a.db.empty() == a.ckplus.empty()) throw InvalidInput("give exactly one of --db and --ckplus");
   ReadReport report;
   CkPlusOptions ck;
   ck.on_error = on_error(a);
-  const Database db = a.db.empty() ? read_ck_plus(a.ckplus, ck, &report) : read_database(a.db, 30.0, ck.on_error, &report);
+  Database db = a.db.empty() ? read_ck_plus(a.ckplus, ck, &report) : read_database(a.db, 30.0, ck.on_error, &report);
   print_skipped(report);
-  LandmarkLayout layout = a.layout.empty() ? (db.landmark_count == 68 ? default_layout()
-                                                                      : single_region_layout(db.landmark_count))
-                                           : read_layout(a.layout);
-  PreprocessOptions o;
+  return db;
+}
+
+// `clean` = false gives the raw samples (eval --raw).
+PreparedDatabase prepare(const Args& a, const Database& db, bool clean, bool quiet = false) {
+  const bool weights = is_weight_space(db.dimensions);
+  // Weight databases: the ARKit regions for 52 channels (bridge::arkit_layout), else one region.
+  LandmarkLayout layout = !a.layout.empty()           ? read_layout(a.layout)
+                          : db.landmark_count == 68 && !weights ? default_layout()
+                          : db.landmark_count == 52 && weights  ? bridge::arkit_layout()
+                                                                : single_region_layout(db.landmark_count);
+  PreprocessOptions o = weights ? weight_preprocess_options() : PreprocessOptions{};
   o.align = !a.no_align;
-  o.clean = !a.no_clean;
+  o.clean = clean && !a.no_clean;
   o.append_reversed = !a.no_reverse;
-  o.skip_bad_samples = ck.on_error == OnError::Skip;  // a sample that does not start neutral
+  o.skip_bad_samples = on_error(a) == OnError::Skip;  // a sample that does not start neutral
   PreprocessReport pr;
   PreparedDatabase data = preprocess(db, layout, o, &pr);
-  for (const auto& s : pr.skipped) std::cerr << "mgraph: skipped: " << s << "\n";
+  if (!quiet)
+    for (const auto& s : pr.skipped) std::cerr << "mgraph: skipped: " << s << "\n";
   return data;
 }
 
-GraphOptions graph_options(const Args& a) {
-  GraphOptions g;
+PreparedDatabase load_prepared(const Args& a) { return prepare(a, load_database(a), true); }
+
+GraphOptions graph_options(const Args& a, int dimensions) {
+  GraphOptions g = is_weight_space(dimensions) ? weight_graph_options() : GraphOptions{};
   g.similarity.lambda = a.lambda;
   g.seed = a.seed;
-  g.sample_threshold = a.sample_threshold;
-  g.merge_threshold = a.merge_threshold;
+  if (a.sample_threshold >= 0.0) g.sample_threshold = a.sample_threshold;
+  if (a.merge_threshold >= 0.0) g.merge_threshold = a.merge_threshold;
   return g;
 }
 
 // Sequences (one per animation) as a database of the graph's reduced landmarks, plus pictures.
 int write_animation(const Args& a, const MotionGraph& g, const std::vector<Sequence>& seqs) {
+  const bool weights = is_weight_space(g.dimensions);
+  if (weights && !(a.video.empty() && a.sheet.empty() && a.plot.empty() && a.frames_dir.empty()))
+    throw cli::UsageError("--video, --sheet, --plot and --frames-dir draw landmarks: not for a weight graph "
+                          "(use --params and faceanim)");
+  if (!weights && !(a.livelink_out.empty() && a.params_out.empty()))
+    throw cli::UsageError("--livelink and --params need a weight graph (mgraph generate --space arkit)");
   Database db;
   db.dimensions = g.dimensions;
   db.frame_rate = g.frame_rate;
@@ -116,9 +136,21 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
       core::write_file_atomic(a.frames_dir + name, encode_png(img));
     }
   }
+  // Weight graphs: the weights as Live Link Face CSV, the face parameters through the ARKit mapping
+  // (exact, no landmark fit; bridge/weight_space.hpp). Everything computed before writing.
+  std::string livelink, params;
+  if (!a.livelink_out.empty()) livelink = bridge::live_link_csv(bridge::weight_take(g, all, "synth"), g.frame_rate);
+  if (!a.params_out.empty()) {
+    bridge::WeightDriveReport rep;
+    params = muscles::format_parameter_frames_csv(bridge::weight_parameters(g, all, &rep));
+    std::cerr << "mgraph: " << rep.frames << " frames of face parameters, largest weight error "
+              << rep.max_weight_error << "\n";
+  }
   cli::Output out(a.out);
   const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
   out.write(csv ? database_to_csv(db) : database_to_json(db));
+  if (!a.livelink_out.empty()) core::write_file_atomic(a.livelink_out, livelink);
+  if (!a.params_out.empty()) core::write_file_atomic(a.params_out, params);
   out.commit();
   return cli::kExitOk;
 }
@@ -148,6 +180,31 @@ int generate(const Args& a) {
   o.subjects = a.subjects;
   o.noise_std = a.noise;
   const cli::Shard shard = cli::parse_shard(a.shard);
+  if (a.space != "landmarks" && a.space != "arkit")
+    throw cli::UsageError("--space: unknown value \"" + a.space + "\" (expected landmarks|arkit)");
+  if (a.space == "arkit") {  // weight space (issue 19 item 2): ARKit-52 weights of the face model
+    if (a.model != "face") throw cli::UsageError("--space arkit needs --model face");
+    if (!a.sheet.empty()) throw cli::UsageError("--sheet draws landmarks: not with --space arkit");
+    bridge::WeightDatabaseOptions wo;
+    wo.database = o;
+    wo.noise_std = a.weight_noise;
+    try {
+      wo.validate();
+    } catch (const InvalidInput& e) {
+      throw cli::UsageError(e.what());
+    }
+    Database db = bridge::generate_weight_database(bridge::FaceLandmarkModel(), wo);
+    std::vector<Sequence> mine;  // sequence i depends only on (seed, i)
+    for (std::size_t i = 0; i < db.sequences.size(); ++i)
+      if (shard.owns(i)) mine.push_back(std::move(db.sequences[i]));
+    if (mine.empty()) throw InvalidInput("--shard " + a.shard + " owns none of the sequences");
+    db.sequences = std::move(mine);
+    cli::Output out(a.out);
+    const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
+    out.write(csv ? database_to_csv(db) : database_to_json(db));
+    out.commit();
+    return cli::kExitOk;
+  }
   const std::unique_ptr<LandmarkModel> model = landmark_model(a);
   // Sequence i depends only on (seed, i): shards of a batch are parts of the same database.
   Database db;
@@ -186,7 +243,7 @@ int generate(const Args& a) {
 
 int build(const Args& a) {
   const PreparedDatabase data = load_prepared(a);
-  GraphOptions g = graph_options(a);
+  GraphOptions g = graph_options(a, data.dimensions);
   if (a.target_compression >= 0.0)
     g.sample_threshold = g.merge_threshold = threshold_for_compression(data, a.target_compression, g);
   const MotionGraph graph = build_graph(data, g);
@@ -202,7 +259,8 @@ namespace {
 // each when asked. Sequence ids start with `prefix`.
 void synthesize_chain(const Args& a, const MotionGraph& g, const std::vector<std::string>& labels,
                       std::uint64_t seed, const std::string& prefix, std::vector<Sequence>& seqs) {
-  SynthesisOptions o;
+  const bool weights = is_weight_space(g.dimensions);
+  SynthesisOptions o = weights ? weight_synthesis_options() : SynthesisOptions{};
   o.seed = seed;
   o.vary_duration = a.vary;
   o.replace_probability = a.replace;
@@ -218,7 +276,7 @@ void synthesize_chain(const Args& a, const MotionGraph& g, const std::vector<std
     out.push_back({prefix + "synth_" + std::to_string(out.size()) + "_" + name, "", parsed[k],
                    synthesize(g, state, parsed[k], o)});
     if (a.idle_after > 0.0) {
-      IdleOptions io;
+      IdleOptions io = weights ? weight_idle_options() : IdleOptions{};
       io.duration = a.idle_after;
       io.seed = seed;
       out.push_back({prefix + "idle_" + std::to_string(out.size()) + "_" + name, "", parsed[k],
@@ -303,11 +361,12 @@ int idle(const Args& a) {
   const MotionGraph g = read_graph(a.graph);
   const Label label = label_from_string(a.idle_label);
   SynthesisState state = initial_state(g);
-  SynthesisOptions so;
+  const bool weights = is_weight_space(g.dimensions);
+  SynthesisOptions so = weights ? weight_synthesis_options() : SynthesisOptions{};
   so.seed = a.seed;
   std::vector<Sequence> seqs;
   if (label != Label::Neutral) seqs.push_back({"onset_" + a.idle_label, "", label, synthesize(g, state, label, so)});
-  IdleOptions o;
+  IdleOptions o = weights ? weight_idle_options() : IdleOptions{};
   o.duration = a.duration;
   o.hop_interval = a.hop_interval;
   o.dwell = a.dwell;
@@ -317,13 +376,18 @@ int idle(const Args& a) {
 }
 
 int eval(const Args& a) {
-  const PreparedDatabase data = load_prepared(a);
-  const GraphOptions g = graph_options(a);
+  const Database db = load_database(a);
+  const PreparedDatabase data = prepare(a, db, true);
+  // --raw: the same samples without sigmoid cleaning (issue 19: compare with what the tracker gave).
+  std::optional<PreparedDatabase> raw;
+  if (a.raw) raw = prepare(a, db, false, true);
+  const bool weights = is_weight_space(data.dimensions);
+  const GraphOptions g = graph_options(a, data.dimensions);
   std::vector<double> thresholds = a.thresholds;
   if (thresholds.empty())
     for (double c : a.compressions) thresholds.push_back(threshold_for_compression(data, c, g));
   for (std::size_t i = 1; i <= a.curve; ++i) thresholds.push_back(0.25 * static_cast<double>(i));
-  EvaluationOptions eo;
+  EvaluationOptions eo = weights ? weight_evaluation_options() : EvaluationOptions{};
   eo.graph = g;
   const cli::Shard shard = cli::parse_shard(a.shard);
   eo.shard_index = shard.index;
@@ -333,18 +397,30 @@ int eval(const Args& a) {
                 shard.count, shard.count, shard.index);
   // The sums let rows of shards be merged exactly (motiongraph::merge_rows; docs/motiongraph.md).
   std::string csv = core::csv_stamp() + "threshold,compression_percent,nodes,length_diff_mean,length_diff_std,pose_diff_mean,"
-                    "pose_diff_std,samples,distances,length_sum,length_sum2,pose_sum,pose_sum2\n";
-  std::printf("%10s %14s %7s %22s %22s\n", "threshold", "compression %", "nodes", "length diff (frames)",
-              "pose diff (px)");
+                    "pose_diff_std,samples,distances,length_sum,length_sum2,pose_sum,pose_sum2" +
+                    std::string(raw ? ",raw_pose_diff_mean,raw_pose_diff_std,raw_pose_sum,raw_pose_sum2" : "") +
+                    "\n";
+  const char* unit = weights ? "(weight)" : "(px)";
+  std::printf("%10s %14s %7s %22s %22s%s\n", "threshold", "compression %", "nodes", "length diff (frames)",
+              (std::string("pose diff ") + unit).c_str(),
+              raw ? (std::string("   vs raw samples ") + unit).c_str() : "");
   for (double t : thresholds) {
-    const EvaluationRow r = evaluate(data, t, eo);
-    std::printf("%10.4f %14.2f %7zu %10.3f +- %-8.3f %10.3f +- %-8.3f\n", t, 100 * r.compression, r.nodes,
+    const EvaluationRow r = evaluate(data, t, eo, raw ? &*raw : nullptr);
+    std::printf("%10.4f %14.2f %7zu %10.3f +- %-8.3f %10.4f +- %-8.4f", t, 100 * r.compression, r.nodes,
                 r.length_mean, r.length_std, r.pose_mean, r.pose_std);
-    char line[512];
-    std::snprintf(line, sizeof line, "%.6g,%.4f,%zu,%.6g,%.6g,%.6g,%.6g,%zu,%zu,%.17g,%.17g,%.17g,%.17g\n", t,
+    if (raw) std::printf(" %10.4f +- %-8.4f", r.raw_pose_mean, r.raw_pose_std);
+    std::printf("\n");
+    char line[640];
+    std::snprintf(line, sizeof line, "%.6g,%.4f,%zu,%.6g,%.6g,%.6g,%.6g,%zu,%zu,%.17g,%.17g,%.17g,%.17g", t,
                   100 * r.compression, r.nodes, r.length_mean, r.length_std, r.pose_mean, r.pose_std, r.samples,
                   r.distances, r.length_sum, r.length_sum2, r.pose_sum, r.pose_sum2);
     csv += line;
+    if (raw) {
+      std::snprintf(line, sizeof line, ",%.6g,%.6g,%.17g,%.17g", r.raw_pose_mean, r.raw_pose_std, r.raw_pose_sum,
+                    r.raw_pose_sum2);
+      csv += line;
+    }
+    csv += "\n";
   }
   std::printf("paper (CK+, 70 sequences): 90%% -> 0.98 +- 1.84 frames, 2.86 +- 2.3 px; 78%% -> 0.071 +- 0.39, "
               "2.12 +- 1.81; 57.53%% -> 0 +- 0, 1.52 +- 1.51\n");
@@ -355,7 +431,10 @@ int eval(const Args& a) {
 // Capture files (issue 19): OpenFace CSV / MediaPipe NDJSON takes → cleaned, stabilised, trimmed,
 // labelled landmark database.
 int capture(const Args& a) {
-  if (a.openface.empty() == a.mediapipe.empty()) throw cli::UsageError("give --openface or --mediapipe files");
+  if ((a.openface.empty() ? 0 : 1) + (a.mediapipe.empty() ? 0 : 1) + (a.livelink.empty() ? 0 : 1) != 1)
+    throw cli::UsageError("give --openface, --mediapipe or --livelink files (one kind)");
+  if (!a.livelink.empty() && !a.label_column.empty())
+    throw cli::UsageError("--label-column: Live Link Face files have no label column (use --labels)");
   CaptureOptions co;
   co.on_error = on_error(a);
   co.filter.min_confidence = a.min_confidence;
@@ -377,6 +456,9 @@ int capture(const Args& a) {
   mo.use_z = a.use_3d;
   for (const auto& f : a.openface) takes.push_back(read_openface_csv(f, oo));
   for (const auto& f : a.mediapipe) takes.push_back(read_mediapipe_ndjson(f, mo));
+  if (!(a.timecode_fps > 0.0 && a.timecode_fps <= 1000.0))
+    throw cli::UsageError("--timecode-fps must be in (0, 1000]");
+  for (const auto& f : a.livelink) takes.push_back(bridge::read_live_link_take(f, a.timecode_fps));
   std::optional<LabelTable> labels;
   if (!a.labels_file.empty()) labels = read_label_table(a.labels_file);
   ReadReport report;
@@ -395,8 +477,34 @@ int capture(const Args& a) {
 
 // Example capture files from emoface's own face: one file per take and the labels side file.
 int capture_example(const Args& a) {
-  if (a.format != "openface" && a.format != "mediapipe")
-    throw cli::UsageError("--format: unknown value \"" + a.format + "\" (expected openface|mediapipe)");
+  if (a.format != "openface" && a.format != "mediapipe" && a.format != "livelink")
+    throw cli::UsageError("--format: unknown value \"" + a.format + "\" (expected openface|mediapipe|livelink)");
+  if (a.format == "livelink") {  // ARKit weights of the face model (issue 19 item 2)
+    bridge::WeightTakeOptions wo;
+    wo.database.database.seed = a.seed;
+    wo.database.database.sequences_per_label = a.per_label;
+    wo.database.database.subjects = a.subjects;
+    wo.database.database.min_frames = a.min_frames;
+    wo.database.database.max_frames = a.max_frames;
+    wo.database.noise_std = a.weight_noise;
+    wo.rest_frames = a.rest_frames;
+    wo.hold_frames = a.hold_frames;
+    try {
+      wo.validate();
+    } catch (const InvalidInput& e) {
+      throw cli::UsageError(e.what());
+    }
+    std::vector<TrackedFrames> takes = bridge::generate_weight_takes(bridge::FaceLandmarkModel(), wo);
+    if (a.max_takes > 0 && takes.size() > a.max_takes) takes.resize(a.max_takes);
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const TrackedFrames& t : takes)
+      files.emplace_back(a.out + "/" + t.id + ".csv", bridge::live_link_csv(t, wo.database.database.frame_rate));
+    files.emplace_back(a.out + "/labels.csv", label_table_csv(bridge::weight_take_labels(takes)));
+    std::filesystem::create_directories(a.out);
+    for (const auto& [path, content] : files) core::write_file_atomic(path, content);
+    std::cerr << "mgraph: wrote " << takes.size() << " livelink take(s) and labels.csv to " << a.out << "\n";
+    return cli::kExitOk;
+  }
   CaptureExampleOptions o;
   o.database.seed = a.seed;
   o.database.sequences_per_label = a.per_label;

@@ -13,7 +13,7 @@ struct Args {
   double camera_distance = 1.0, fps = 0.0;
   int video_width = 640, video_height = 490;
   bool no_align = false, no_clean = false, no_reverse = false, vary = false, no_sigmoid = false;
-  double lambda = 0.5, sample_threshold = 0.4, merge_threshold = 0.4, target_compression = -1.0;
+  double lambda = 0.5, sample_threshold = -1.0, merge_threshold = -1.0, target_compression = -1.0;
   double replace = 0.0, hint = 1.0, idle_after = 0.0, duration = 4.0, hop_interval = 1.0, dwell = 0.4;
   double noise = 0.4;
   std::uint64_t seed = 1;
@@ -30,6 +30,11 @@ struct Args {
   std::size_t depth = 0;
   bool edge_weights = false;
   std::size_t max_gap = 3, min_frames = 10, max_frames = 30, rest_frames = 12, hold_frames = 6, max_takes = 0;
+  // weight space (issue 19 item 2)
+  std::string space = "landmarks", livelink_out, params_out;
+  std::vector<std::string> livelink;
+  double weight_noise = 0.01, timecode_fps = 60.0;
+  bool raw = false;
 };
 
 int generate(const Args& a);

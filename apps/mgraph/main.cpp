@@ -62,13 +62,17 @@ int main(int argc, char** argv) {
   gen->add_option("--per-label", a.per_label, "sequences per label (7 labels)")->capture_default_str();
   gen->add_option("--subjects", a.subjects, "distinct identities")->capture_default_str();
   gen->add_option("--noise", a.noise, "landmark noise std (pixels)")->capture_default_str();
+  gen->add_option("--space", a.space,
+                  "landmarks | arkit (ARKit-52 weights of the face model: faceweights mapping)")
+      ->capture_default_str();
+  gen->add_option("--weight-noise", a.weight_noise, "arkit: weight noise std")->capture_default_str();
 
   auto* build = app.add_subcommand("build", "build the region motion graphs");
   add_source(build);
-  build->add_option("--sample-threshold", a.sample_threshold, "sample-graph threshold (px per landmark)")
-      ->capture_default_str();
-  build->add_option("--merge-threshold", a.merge_threshold, "final-graph threshold (px per landmark)")
-      ->capture_default_str();
+  build->add_option("--sample-threshold", a.sample_threshold,
+                    "sample-graph threshold (default 0.4 px per landmark; 0.012 per weight channel)");
+  build->add_option("--merge-threshold", a.merge_threshold,
+                    "final-graph threshold (default 0.4 px per landmark; 0.012 per weight channel)");
   build->add_option("--compression", a.target_compression, "pick both thresholds for this ratio (0..1)");
   build->add_option("--out", a.out, "output graph JSON")->required();
 
@@ -87,6 +91,9 @@ int main(int argc, char** argv) {
   synth->add_option("--idle", a.idle_after, "seconds of idle motion after each transition")
       ->capture_default_str();
   synth->add_flag("--no-sigmoid", a.no_sigmoid, "Savitzky-Golay smoothing only");
+  synth->add_option("--livelink", a.livelink_out, "weight graph: also write the weights as Live Link Face CSV");
+  synth->add_option("--params", a.params_out,
+                    "weight graph: also write face parameters (muscles CSV) through the ARKit mapping");
   add_output(synth);
 
   auto* idle = app.add_subcommand("idle", "idle movements around a label's peak (§5)");
@@ -106,10 +113,15 @@ int main(int argc, char** argv) {
   eval->add_option("--curve", a.curve, "also sweep this many thresholds (whole curve)")->capture_default_str();
   eval->add_option("--csv", a.out, "also write the rows as CSV (with the sums that merge shards)");
   eval->add_option("--shard", a.shard, "i/N: evaluate only samples with index % N == i")->capture_default_str();
+  eval->add_flag("--raw", a.raw, "also compare with the raw (uncleaned) samples");
 
-  auto* cap = app.add_subcommand("capture", "tracker output (OpenFace CSV, MediaPipe NDJSON) -> labelled database");
+  auto* cap = app.add_subcommand("capture",
+                                 "tracker output (OpenFace CSV, MediaPipe NDJSON, Live Link Face CSV) -> labelled database");
   cap->add_option("--openface", a.openface, "OpenFace 2.0 FeatureExtraction CSV files (one take each)");
   cap->add_option("--mediapipe", a.mediapipe, "MediaPipe face-landmarker NDJSON files (one take each)");
+  cap->add_option("--livelink", a.livelink, "Live Link Face CSV files (ARKit weights; one take each)");
+  cap->add_option("--timecode-fps", a.timecode_fps, "Live Link: frame rate of the Timecode column")
+      ->capture_default_str();
   cap->add_option("--labels", a.labels_file, "side file: CSV take,segment,label (segment index or *)");
   cap->add_option("--label-column", a.label_column, "OpenFace: a column with a label per frame");
   cap->add_flag("--3d", a.use_3d, "3D landmarks (OpenFace X_/Y_/Z_, MediaPipe z)");
@@ -124,13 +136,14 @@ int main(int argc, char** argv) {
   cap->add_option("--out", a.out, "output database (.json or .csv; - = JSON on stdout)")->required();
 
   auto* ex = app.add_subcommand("capture-example", "example tracker files from emoface's own face");
-  ex->add_option("--format", a.format, "openface|mediapipe")->capture_default_str();
+  ex->add_option("--format", a.format, "openface|mediapipe|livelink")->capture_default_str();
   ex->add_option("--out", a.out, "output directory (one file per take, labels.csv)")->required();
   ex->add_option("--model", a.model, "face|parametric")->capture_default_str();
   ex->add_option("--seed", a.seed, "random seed")->capture_default_str();
   ex->add_option("--per-label", a.per_label, "sequences per label (7 labels)")->capture_default_str();
   ex->add_option("--subjects", a.subjects, "distinct identities (one take each)")->capture_default_str();
   ex->add_option("--noise", a.noise, "landmark noise std (pixels)")->capture_default_str();
+  ex->add_option("--weight-noise", a.weight_noise, "livelink: weight noise std")->capture_default_str();
   ex->add_option("--min-frames", a.min_frames, "shortest onset (frames)")->capture_default_str();
   ex->add_option("--max-frames", a.max_frames, "longest onset (frames)")->capture_default_str();
   ex->add_option("--rest", a.rest_frames, "frames at rest around expressions")->capture_default_str();

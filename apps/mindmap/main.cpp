@@ -300,14 +300,17 @@ int dot(Args& a) {
     if (maps[i].character == a.character) c = i;
   if (c == maps.size()) throw cli::UsageError("--character: no mind map of \"" + a.character + "\" in " + a.maps);
   mm::MindMapDotOptions o;
+  mm::MindMap shown = maps[c];
   if (!a.events.empty()) {
     if (a.time < 0.0) throw cli::UsageError("--events needs --time (seconds)");
     a.sim.duration = a.time;
-    o.mood = mm::mood_at(mm::simulate(maps, mm::read_events(a.events), a.sim), c, a.time);
+    const std::vector<mm::Event> events = mm::read_events(a.events);
+    o.mood = mm::mood_at(mm::simulate(maps, events, a.sim), c, a.time);
+    shown = mm::map_at(maps, events, c, a.time, a.sim);  // context/affection changed by then
   } else if (a.time >= 0.0) {
     o.mood = maps[c].traits.starting_mood;  // no stimuli: the starting mood
   }
-  write_dot(mm::mind_map_dot(maps[c], o), a.out);
+  write_dot(mm::mind_map_dot(shown, o), a.out);
   std::cout << "wrote " << a.out << "\n";
   return cli::kExitOk;
 }
@@ -344,6 +347,8 @@ int main(int argc, char** argv) {
   sim->add_option("--decay-interval", a.sim.decay_interval, "seconds between decay hints")->capture_default_str();
   sim->add_option("--propagate", a.sim.propagation_depth, "hops a performed stimulus travels to the others (0 = off)")
       ->capture_default_str();
+  sim->add_flag("--to-addressee", a.sim.propagate_to_addressee,
+                "with --propagate: an action aimed at a character reaches only that character");
   sim->add_option("--hint-fraction", a.motion.hint_path_fraction, "path fraction of decay hints")
       ->capture_default_str();
   add_motion_options(sim, a);

@@ -1,10 +1,13 @@
-// Landmark → muscle fit per frame on the default face (issue #8 target: < 2 ms per frame).
+// Landmark → muscle fit per frame on the default face (issue #8 target: < 2 ms per frame), and
+// weight-space synthesis (issue 19: < 1 ms per transition).
 //   build-bench/tests/bench/bridge_bench --benchmark_min_time=1
 #include <cmath>
 
 #include <benchmark/benchmark.h>
 
 #include "emoface/bridge/landmark_fit.hpp"
+#include "emoface/bridge/weight_space.hpp"
+#include "emoface/motiongraph/weights.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/muscles/parameters.hpp"
 
@@ -60,3 +63,56 @@ BENCHMARK(BM_MuscleModelDeform)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();
+
+// Issue 19 item 2: one synthesized transition in weight space (ARKit-52 graph of the face-driven
+// weight database, 5 regions, §5 steps 1–4 with the sigmoid smoothing) against the baseline of the
+// same run: one transition of the landmark graph of the face-driven landmark database (same
+// sequences); then the weight frames → face parameters through the ARKit mapping (per transition).
+//   build-bench/tests/bench/bridge_bench --benchmark_filter='Transition|WeightDrive'
+namespace {
+namespace mg = emoface::motiongraph;
+namespace br = emoface::bridge;
+
+const br::FaceLandmarkModel& face_model() {
+  static const br::FaceLandmarkModel m;
+  return m;
+}
+const mg::MotionGraph& weight_graph() {
+  static const mg::MotionGraph g = mg::build_graph(
+      mg::preprocess(br::generate_weight_database(face_model()), br::arkit_layout(),
+                     mg::weight_preprocess_options()),
+      mg::weight_graph_options());
+  return g;
+}
+const mg::MotionGraph& landmark_graph() {
+  static const mg::MotionGraph g = mg::build_graph(
+      mg::preprocess(mg::generate_synthetic_database(face_model()), mg::default_layout()));
+  return g;
+}
+const mg::Label kLabels[] = {mg::Label::Happiness, mg::Label::Fear, mg::Label::Surprise, mg::Label::Anger};
+
+void BM_LandmarkTransitionBaseline(benchmark::State& state) {
+  mg::SynthesisState s = mg::initial_state(landmark_graph());
+  std::size_t i = 0, frames = 0;
+  for (auto _ : state) frames += mg::synthesize(landmark_graph(), s, kLabels[i++ % 4]).size();
+  state.counters["frames/transition"] = static_cast<double>(frames) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_LandmarkTransitionBaseline)->Unit(benchmark::kMicrosecond);
+
+void BM_WeightTransition(benchmark::State& state) {
+  const mg::SynthesisOptions o = mg::weight_synthesis_options();
+  mg::SynthesisState s = mg::initial_state(weight_graph());
+  std::size_t i = 0, frames = 0;
+  for (auto _ : state) frames += mg::synthesize(weight_graph(), s, kLabels[i++ % 4], o).size();
+  state.counters["frames/transition"] = static_cast<double>(frames) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_WeightTransition)->Unit(benchmark::kMicrosecond);
+
+void BM_WeightDriveTransition(benchmark::State& state) {
+  mg::SynthesisState s = mg::initial_state(weight_graph());
+  const auto frames = mg::synthesize(weight_graph(), s, mg::Label::Surprise, mg::weight_synthesis_options());
+  for (auto _ : state) benchmark::DoNotOptimize(br::weight_parameters(weight_graph(), frames));
+  state.counters["frames"] = static_cast<double>(frames.size());
+}
+BENCHMARK(BM_WeightDriveTransition)->Unit(benchmark::kMicrosecond);
+}  // namespace

@@ -311,3 +311,72 @@ TEST_F(Mgraph, DotDrawsARegionGraph) {
 }
 
 }  // namespace
+
+// Issue 19, item 2: motion graphs in weight space (ARKit-52), Live Link Face takes.
+TEST_F(Mgraph, WeightSpaceFromLiveLinkAndTheFaceModel) {
+  const std::string data = std::string(EMOFACE_SOURCE_DIR) + "/data/capture/livelink/";
+  auto r = run("capture-example --format livelink --out " + path("ll") +
+               " --subjects 7 --per-label 1 --max-takes 2 --min-frames 8 --max-frames 12 --rest 6 --hold 3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"take_S001.csv", "take_S002.csv", "labels.csv"})
+    EXPECT_EQ(slurp(path("ll/") + f), slurp(data + f)) << f;
+  const std::string takes = data + "take_S001.csv " + data + "take_S002.csv";
+  r = run("capture --livelink " + takes + " --labels " + data + "labels.csv --timecode-fps 30 --out " + path("w.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("2 take(s) → 2 labelled neutral-to-peak sequence(s)"), std::string::npos) << r.err;
+  const auto db = nlohmann::json::parse(slurp(path("w.json")));
+  EXPECT_EQ(db["dimensions"], 1);
+  EXPECT_EQ(db["landmark_count"], 52);
+  EXPECT_EQ(db["sequences"][0]["label"], "happiness");
+  EXPECT_EQ(db["sequences"][1]["label"], "sadness");
+  // Face model → ARKit weights → graph → synthesis → Live Link CSV and face parameters.
+  r = run("generate --space arkit --per-label 1 --subjects 7 --out " + path("wdb.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(path("wdb.csv")).find(",frame,w0,w1,"), std::string::npos);
+  r = run("build --db " + path("wdb.csv") + " --out " + path("wg.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("threshold 0.012"), std::string::npos) << r.err;  // the weight default
+  r = run("synth --graph " + path("wg.json") + " --labels surprise,neutral --idle 0.5 --out " + path("s.json") +
+          " --livelink " + path("s_ll.csv") + " --params " + path("s_params.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(path("s_ll.csv")).rfind("Timecode,BlendShapeCount,EyeBlinkLeft,", 0), 0u);
+  const auto params = csv_lines(slurp(path("s_params.csv")));
+  ASSERT_GT(params.size(), 10u);
+  EXPECT_EQ(params[0].rfind("time,zygomatic_major_l,", 0), 0u) << params[0];
+  r = run("eval --db " + path("wdb.csv") + " --thresholds 0.01 --raw --csv " + path("e.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("vs raw samples (weight)"), std::string::npos) << r.out;
+  const auto rows = csv_lines(slurp(path("e.csv")));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_NE(rows[0].find(",raw_pose_diff_mean,raw_pose_diff_std,raw_pose_sum,raw_pose_sum2"), std::string::npos);
+  // Usage errors (exit 1) and bad files (exit 2, nothing written, file:line named).
+  EXPECT_EQ(run("generate --space voxels --out " + path("x.json")).code, 1);
+  EXPECT_EQ(run("generate --space arkit --model parametric --out " + path("x.json")).code, 1);
+  EXPECT_EQ(run("generate --space arkit --sheet " + path("x.png") + " --out " + path("x.json")).code, 1);
+  EXPECT_EQ(run("generate --space arkit --weight-noise -1 --out " + path("x.json")).code, 1);
+  EXPECT_EQ(run("synth --graph " + path("wg.json") + " --labels fear --sheet " + path("x.png") + " --out " +
+                path("x.json")).code, 1);
+  EXPECT_EQ(run("synth --graph " + shared("graph.json") + " --labels fear --livelink " + path("x.csv") +
+                " --out " + path("x.json")).code, 1);
+  EXPECT_EQ(run("capture --livelink " + takes + " --openface " + takes + " --out " + path("x.json")).code, 1);
+  EXPECT_EQ(run("capture --livelink " + takes + " --label-column label --out " + path("x.json")).code, 1);
+  EXPECT_EQ(run("capture --livelink " + takes + " --timecode-fps 0 --out " + path("x.json")).code, 1);
+  EXPECT_FALSE(fs::exists(path("x.json")));
+  r = run("capture --livelink " + takes + " --timecode-fps 30 --out " + path("none.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("has no label"), std::string::npos) << r.err;
+  std::string text = slurp(data + "take_S001.csv");
+  const std::size_t line3 = text.find('\n', text.find('\n') + 1) + 1;
+  const std::size_t field = text.find(',', text.find(',', line3) + 1) + 1;  // EyeBlinkLeft of frame 2
+  text.replace(field, text.find(',', field) - field, "nan");
+  r = run("capture --livelink " + write("bad.csv", text) + " --labels " + data + "labels.csv --timecode-fps 30 --out " +
+          path("bad.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bad.csv:3:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("bad.json")));
+  text = slurp(data + "take_S001.csv");
+  r = run("capture --livelink " + write("short.csv", text.substr(0, line3 + 40)) + " --timecode-fps 30 --out " +
+          path("short.json"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("short.csv:3"), std::string::npos) << r.err;
+}

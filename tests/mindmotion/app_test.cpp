@@ -125,3 +125,32 @@ TEST(MindmapApp, DotDrawsAMindMapWithItsMood) {
   }
   fs::remove_all(out);
 }
+
+// Issue 19: addressees and run-time trait changes through the CLI (the shipped example).
+TEST(MindmapApp, AddresseesAndRuntimeTraits) {
+  const fs::path out = scratch("traits");
+  ASSERT_EQ(run("simulate --maps " + kData + "/characters --events " + kData +
+                "/events_traits.ndjson --propagate 1 --to-addressee --no-charts --out " + out.string()),
+            0);
+  const auto actions = emoface::mindmap::parse_actions(
+      emoface::core::read_file(out.string() + "/actions.ndjson"), "actions.ndjson");
+  bool at = false;
+  for (const auto& a : actions) at = at || a.addressee == "ben";
+  EXPECT_TRUE(at);
+  // The map drawn at 14 s carries the changed context and affection.
+  const fs::path dot = scratch("traits_dot");
+  fs::create_directories(dot);
+  ASSERT_EQ(run("dot --maps " + kData + "/characters --character ana --events " + kData +
+                "/events_traits.ndjson --time 14 --out " + (dot / "ana.dot").string()),
+            0);
+  const std::string text = emoface::core::read_file((dot / "ana.dot").string());
+  EXPECT_NE(text.find("context 0.90"), std::string::npos);
+  EXPECT_NE(text.find("anger 0.80"), std::string::npos);
+  // A bad trait change is a located input error (exit 2).
+  const fs::path bad = scratch("traits_bad");
+  fs::create_directories(bad);
+  std::ofstream(bad / "e.ndjson") << "{\"time\": 1, \"to\": \"ana\", \"context\": [0.5]}\n";
+  EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + (bad / "e.ndjson").string() +
+                " --no-charts --out " + (bad / "out").string()),
+            2);
+}

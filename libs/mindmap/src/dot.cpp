@@ -51,6 +51,8 @@ std::string mind_map_dot(const MindMap& map, const MindMapDotOptions& options) {
       label += "\nmood " + fixed(options.mood[e]);
       width = fixed(1.0 + 4.0 * options.mood[e]);
     }
+    // The background context (issue 19: may change at run time, World::traits).
+    if (!map.traits.background_context.empty()) label += "\ncontext " + fixed(map.traits.background_context[e]);
     out += "  " + emotion_id(e) + " [shape=ellipse, style=filled, fillcolor=\"" +
            hex(emotion_colour(e)) + "40\", color=\"" + hex(emotion_colour(e)) +
            "\", penwidth=" + width + ", label=" + dot_quote(label) + "];\n";
@@ -78,6 +80,18 @@ std::string mind_map_dot(const MindMap& map, const MindMapDotOptions& options) {
   for (std::size_t e = 0; e < map.emotion_count(); ++e)
     if (const std::size_t a = map.representative_of(e); a != kNone)
       out += "  " + emotion_id(e) + " -> " + action_id(a) + " [style=dotted, label=\"decay\"];\n";
+  // Affection rows (the moods towards other characters, eq. 2): a node per other character, the
+  // edge labelled with its non-zero entries.
+  for (std::size_t k = 0; k < map.traits.affection.size(); ++k) {
+    const auto& [who, row] = map.traits.affection[k];
+    std::string text;
+    for (std::size_t e = 0; e < row.size(); ++e)
+      if (row[e] > 0.0) text += (text.empty() ? "" : "\n") + map.emotions[e] + " " + fixed(row[e]);
+    const std::string id = "other" + std::to_string(k);
+    out += "  " + id + " [shape=octagon, style=dashed, label=" + dot_quote(who) + "];\n";
+    out += "  character -> " + id + " [style=dashed, color=\"#666666\", label=" +
+           dot_quote("affection\n" + (text.empty() ? std::string("none") : text)) + "];\n";
+  }
   return out + "}\n";
 }
 

@@ -358,12 +358,36 @@ std::vector<MindMap> read_mind_map_dir(const std::string& dir,
 std::vector<Event> parse_events(std::string_view text, const std::string& file) {
   std::vector<Event> events;
   for_each_ndjson(text, file, [&](const Json& j, const Parser& p, std::size_t line) {
-    p.only_keys(j, "", {"time", "to", "stimulus", "from", "weights"});
+    p.only_keys(j, "", {"time", "to", "stimulus", "from", "weights", "context", "affection"});
     Event ev;
     ev.line = line;
     ev.time = p.number(p.member(j, "", "time"), "/time", 0.0, 1e9);
     ev.target = p.string(p.member(j, "", "to"), "/to");
-    ev.stimulus = p.string(p.member(j, "", "stimulus"), "/stimulus");
+    // Runtime trait changes (issue 19): {"time", "to", "context": [...], "affection": {"ben": [...]}}
+    // instead of a stimulus. Sizes are checked against the target's map when applied.
+    auto unit_list = [&](const Json& a, const std::string& ptr) {
+      if (!a.is_array()) p.fail(ptr, "expected an array of numbers in [0, 1]");
+      if (a.size() > 4096) p.fail(ptr, "too many values");
+      std::vector<double> v;
+      for (std::size_t i = 0; i < a.size(); ++i) v.push_back(p.number(a[i], ptr + "/" + std::to_string(i), 0.0, 1.0));
+      return v;
+    };
+    if (const Json* c = p.optional(j, "context")) {
+      ev.context = unit_list(*c, "/context");
+      if (ev.context.empty()) p.fail("/context", "empty background context");
+    }
+    if (const Json* a = p.optional(j, "affection")) {
+      p.object(*a, "/affection");
+      if (a->empty()) p.fail("/affection", "no affection row");
+      for (auto it = a->begin(); it != a->end(); ++it) {
+        if (it.key().empty()) p.fail("/affection", "empty character name");
+        ev.affection.emplace_back(it.key(), unit_list(it.value(), "/affection/" + core::json_pointer_token(it.key())));
+      }
+    }
+    const bool change = !ev.context.empty() || !ev.affection.empty();
+    if (change && p.optional(j, "stimulus"))
+      p.fail("/stimulus", "an event either delivers a stimulus or changes context/affection, not both");
+    if (!change) ev.stimulus = p.string(p.member(j, "", "stimulus"), "/stimulus");
     if (const Json* from = p.optional(j, "from")) ev.source = p.string(*from, "/from");
     if (const Json* w = p.optional(j, "weights")) {
       p.object(*w, "/weights");
@@ -383,7 +407,13 @@ std::string events_to_ndjson(const std::vector<Event>& events) {
     Json j;
     j["time"] = e.time;
     j["to"] = e.target;
-    j["stimulus"] = e.stimulus;
+    if (!e.changes_traits()) j["stimulus"] = e.stimulus;
+    if (!e.context.empty()) j["context"] = e.context;
+    if (!e.affection.empty()) {
+      Json a = Json::object();
+      for (const auto& [k, v] : e.affection) a[k] = v;
+      j["affection"] = std::move(a);
+    }
     if (!e.source.empty()) j["from"] = e.source;
     if (!e.weights.empty()) {
       Json w = Json::object();
@@ -431,6 +461,7 @@ std::string actions_to_ndjson(const std::vector<TriggeredAction>& actions) {
     j["cause"] = std::string(to_string(a.cause));
     j["stimulus"] = a.stimulus;
     j["depth"] = a.chain_depth;
+    if (!a.addressee.empty()) j["at"] = a.addressee;
     out += j.dump() + "\n";
   }
   return out;
@@ -439,7 +470,7 @@ std::string actions_to_ndjson(const std::vector<TriggeredAction>& actions) {
 std::vector<TriggeredAction> parse_actions(std::string_view text, const std::string& file) {
   std::vector<TriggeredAction> out;
   for_each_ndjson(text, file, [&](const Json& j, const Parser& p, std::size_t) {
-    p.only_keys(j, "", {"time", "character", "action", "label", "emotion", "mood", "cause", "stimulus", "depth"});
+    p.only_keys(j, "", {"time", "character", "action", "label", "emotion", "mood", "cause", "stimulus", "depth", "at"});
     TriggeredAction a;
     a.time = p.number(p.member(j, "", "time"), "/time", 0.0, 1e9);
     a.character = p.string(p.member(j, "", "character"), "/character");
@@ -455,6 +486,7 @@ std::vector<TriggeredAction> parse_actions(std::string_view text, const std::str
     if (!s.is_string()) p.fail("/stimulus", "expected a string");
     a.stimulus = s.get<std::string>();
     a.chain_depth = static_cast<std::size_t>(p.number(p.member(j, "", "depth"), "/depth", 0.0, 1e6));
+    if (const Json* at = p.optional(j, "at")) a.addressee = p.string(*at, "/at");
     out.push_back(std::move(a));
   });
   return out;

@@ -133,7 +133,7 @@ void World::decay(Character& ch, double t, std::vector<TriggeredAction>* out) {
     const std::size_t a = ch.map.representative_of(e);
     if (a != kNone && out)
       out->push_back({ch.next_hint, ch.map.character, ch.map.actions[a].name, ch.map.actions[a].label,
-                      ch.map.emotions[e], ch.scratch[e], Cause::Decay, {}, 0});
+                      ch.map.emotions[e], ch.scratch[e], Cause::Decay, {}, 0, {}});
     ch.next_hint += options_.decay_interval;
   }
   if (t >= end) {
@@ -234,7 +234,45 @@ void World::deliver(std::size_t c, const Event& event, const CopyPlan* plan,
     const ActionNode& act = ch.map.actions[chain[k]];
     out->push_back({event.time + static_cast<double>(k) * options_.chain_delay, ch.map.character,
                     act.name, act.label, ch.map.emotions[e], ch.mood[e],
-                    k == 0 ? Cause::Stimulus : Cause::Chain, event.stimulus, k});
+                    k == 0 ? Cause::Stimulus : Cause::Chain, event.stimulus, k, event.source});
+  }
+}
+
+namespace {
+void check_unit_row(const std::vector<double>& v, std::size_t n, const std::string& what) {
+  if (v.size() != n)
+    throw InvalidInput(what + " has " + std::to_string(v.size()) + " values, expected one per emotion node (" +
+                       std::to_string(n) + ")");
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]) || v[i] < 0.0 || v[i] > 1.0)
+      throw InvalidInput(what + " value " + std::to_string(i) + " must be in [0, 1]");
+}
+}  // namespace
+
+void World::set_background_context(std::size_t c, const std::vector<double>& context) {
+  Character& ch = characters_.at(c);
+  const std::size_t n = ch.map.emotion_count();
+  if (!context.empty()) check_unit_row(context, n, "background context of \"" + ch.map.character + "\"");
+  Traits& t = ch.map.traits;
+  t.background_context = context;
+  personality_traits(t.personality.data(), t.background_context.empty() ? nullptr : t.background_context.data(),
+                     ch.ptraits.data(), n);
+}
+
+void World::set_affection(std::size_t c, const std::string& other, const std::vector<double>& row) {
+  Character& ch = characters_.at(c);
+  const std::string what = "affection of \"" + ch.map.character + "\" towards \"" + other + "\"";
+  if (other.empty()) throw InvalidInput("affection of \"" + ch.map.character + "\": empty character name");
+  if (other == ch.map.character) throw InvalidInput(what + ": a character has no affection row for itself");
+  if (!row.empty()) check_unit_row(row, ch.map.emotion_count(), what);
+  auto& rows = ch.map.traits.affection;
+  auto it = std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r.first == other; });
+  if (row.empty()) {
+    if (it != rows.end()) rows.erase(it);
+  } else if (it != rows.end()) {
+    it->second = row;
+  } else {
+    rows.emplace_back(other, row);
   }
 }
 
@@ -242,6 +280,32 @@ void World::apply(const Event& event, std::vector<TriggeredAction>* out) {
   const std::string where = event_prefix(event);
   if (!std::isfinite(event.time) || event.time < time_)
     throw InvalidInput(where + "time must be finite and not before the previous event");
+  if (event.changes_traits()) {  // runtime change of background context / affection (issue 19)
+    std::vector<std::size_t> targets;
+    for (std::size_t c = 0; c < characters_.size(); ++c)
+      if (event.target == "*" || characters_[c].map.character == event.target) targets.push_back(c);
+    if (targets.empty()) throw InvalidInput(where + "unknown target character \"" + event.target + "\"");
+    // Check on copies first, so a bad change leaves the world as it was.
+    for (std::size_t c : targets) {
+      const std::size_t n = characters_[c].map.emotion_count();
+      try {
+        if (!event.context.empty()) check_unit_row(event.context, n, "background context");
+        for (const auto& [other, row] : event.affection) {
+          if (other.empty() || other == characters_[c].map.character)
+            throw InvalidInput("affection towards \"" + other + "\": not another character");
+          if (!row.empty()) check_unit_row(row, n, "affection towards \"" + other + "\"");
+        }
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(where + "character \"" + characters_[c].map.character + "\": " + e.what());
+      }
+    }
+    advance_to(event.time, out);
+    for (std::size_t c : targets) {
+      if (!event.context.empty()) set_background_context(c, event.context);
+      for (const auto& [other, row] : event.affection) set_affection(c, other, row);
+    }
+    return;
+  }
   if (event.stimulus.empty()) throw InvalidInput(where + "empty stimulus name");
   if (!event.source.empty() && !find(event.source))
     throw InvalidInput(where + "unknown source character \"" + event.source + "\"");
@@ -265,6 +329,17 @@ void World::apply(const Event& event, std::vector<TriggeredAction>* out) {
   advance_to(event.time, out);
   for (std::size_t k = 0; k < targets.size(); ++k)
     deliver(targets[k], event, plans[k] ? &*plans[k] : nullptr, out);
+}
+
+MindMap map_at(std::vector<MindMap> maps, std::vector<Event> events, std::size_t c, double time,
+               const SimulationOptions& options) {
+  World world(std::move(maps), options);
+  if (c >= world.size()) throw InvalidInput("map_at: character index out of range");
+  std::stable_sort(events.begin(), events.end(),
+                   [](const Event& a, const Event& b) { return a.time < b.time; });
+  for (const Event& e : events)
+    if (e.time <= time) world.apply(e, nullptr);
+  return world.map(c);
 }
 
 SimulationResult simulate(std::vector<MindMap> maps, std::vector<Event> events,
@@ -308,7 +383,9 @@ SimulationResult simulate(std::vector<MindMap> maps, std::vector<Event> events,
         const MindMap& m = world.map(*world.find(a.character));
         const auto ia = m.find_action(a.action);
         if (ia && m.actions[*ia].receivable) {
-          Event e{a.time, "*", a.action, a.character, {}, p.event.line};
+          // Addressed actions reach only their addressee (option; issue 19), others everyone.
+          const bool at = options.propagate_to_addressee && !a.addressee.empty() && world.find(a.addressee);
+          Event e{a.time, at ? a.addressee : "*", a.action, a.character, {}, p.event.line, {}, {}};
           queue.push({a.time, seq++, p.depth + 1, std::move(e)});
         }
       }

@@ -197,6 +197,7 @@ Crowd animate_crowd(std::vector<mindmap::MindMap> maps, std::vector<mindmap::Eve
   std::stable_sort(events.begin(), events.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
   std::vector<std::pair<double, std::vector<std::string>>> moments;  // stimulus times of the input events
   for (const auto& e : events) {
+    if (e.changes_traits()) continue;  // context/affection changes are not key moments
     if (moments.empty() || e.time > moments.back().first + 1e-9) moments.push_back({e.time, {}});
     auto& names = moments.back().second;
     if (std::find(names.begin(), names.end(), e.stimulus) == names.end()) names.push_back(e.stimulus);

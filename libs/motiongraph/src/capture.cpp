@@ -76,8 +76,12 @@ std::vector<std::pair<std::size_t, std::string_view>> lines_of(std::string_view 
 
 void TrackedFrames::validate() const {
   const std::size_t n = frames.size();
-  if (dimensions != 2 && dimensions != 3)
-    throw InvalidInput("tracked frames: dimensions must be 2 or 3");
+  if (dimensions < 1 || dimensions > 3)
+    throw InvalidInput("tracked frames: dimensions must be 1 (weights), 2 or 3");
+  // Weight takes (dimensions 1): every frame holds the same number of channels.
+  const Eigen::Index rows =
+      dimensions == 1 ? (n > 0 ? std::max<Eigen::Index>(frames[0].rows(), 1) : 1)
+                      : static_cast<Eigen::Index>(kIbug);
   if (times.size() != n || confidence.size() != n || success.size() != n)
     throw InvalidInput("tracked frames \"" + id +
                        "\": times, confidence and success need one value per frame");
@@ -86,10 +90,10 @@ void TrackedFrames::validate() const {
   if (au.size() != (au_names.empty() ? au.size() : n))
     throw InvalidInput("tracked frames \"" + id + "\": one AU row per frame");
   for (std::size_t i = 0; i < n; ++i) {
-    if (frames[i].rows() != static_cast<Eigen::Index>(kIbug) || frames[i].cols() != dimensions ||
-        !frames[i].allFinite())
-      throw InvalidInput("tracked frames \"" + id + "\": frame " + std::to_string(i) +
-                         " is not 68 finite landmarks");
+    if (frames[i].rows() != rows || frames[i].cols() != dimensions || !frames[i].allFinite())
+      throw InvalidInput("tracked frames \"" + id + "\": frame " + std::to_string(i) + " is not " +
+                         std::to_string(rows) +
+                         (dimensions == 1 ? " finite weights" : " finite landmarks"));
     if (!std::isfinite(times[i]) || (i > 0 && !(times[i] > times[i - 1])))
       throw InvalidInput("tracked frames \"" + id + "\": times must be finite and increasing");
     if (!(confidence[i] >= 0.0 && confidence[i] <= 1.0) || (success[i] != 0 && success[i] != 1))

@@ -159,6 +159,8 @@ void TrimOptions::validate() const {
   if (reference_frames < 1) throw InvalidInput("trim: reference_frames must be >= 1");
   if (!(low > 0.0 && low < high && high <= 1.0))
     throw InvalidInput("trim: need 0 < low < high <= 1");
+  if (!(weight_low > 0.0 && weight_low < weight_high && weight_high <= 1.0))
+    throw InvalidInput("trim: need 0 < weight_low < weight_high <= 1");
   if (!(baseline_window > 0.0 && baseline_window <= 600.0))
     throw InvalidInput("trim: baseline_window must be in (0, 600] s");
   if (min_frames < 2) throw InvalidInput("trim: min_frames must be >= 2");
@@ -177,11 +179,13 @@ std::vector<TakeSegment> find_segments(const TrackedFrames& take, const TrimOpti
   std::vector<double> raw(n), m(n);
   // RMS over the most displaced `top_fraction` of the landmarks: a local expression (one mouth
   // corner for contempt) is not diluted by the still rest of the face.
-  const auto top = static_cast<std::size_t>(std::max(1.0, std::round(options.top_fraction * 68.0)));
-  std::vector<double> d2(68);
+  const auto count = static_cast<std::size_t>(ref.rows());  // 68 landmarks, or weight channels
+  const auto top = static_cast<std::size_t>(
+      std::max(1.0, std::round(options.top_fraction * static_cast<double>(count))));
+  std::vector<double> d2(count);
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::VectorXd sq = (take.frames[i] - ref).rowwise().squaredNorm();
-    for (std::size_t l = 0; l < 68; ++l) d2[l] = sq[static_cast<Eigen::Index>(l)];
+    for (std::size_t l = 0; l < count; ++l) d2[l] = sq[static_cast<Eigen::Index>(l)];
     std::nth_element(d2.begin(), d2.begin() + static_cast<std::ptrdiff_t>(top - 1), d2.end(),
                      std::greater<double>());
     double sum = 0.0;
@@ -194,7 +198,9 @@ std::vector<TakeSegment> find_segments(const TrackedFrames& take, const TrimOpti
     for (std::size_t k = a; k <= b; ++k) s += raw[k];
     m[i] = s / static_cast<double>(b - a + 1);
   }
-  const double iod = (ref.row(36) - ref.row(45)).norm();  // outer eye corners
+  // Landmarks: thresholds relative to the outer-eye-corner distance; weights: absolute.
+  const bool weights = take.dimensions == 1;
+  const double iod = weights ? 1.0 : (ref.row(36) - ref.row(45)).norm();  // outer eye corners
   if (!(iod > 0.0))
     throw InvalidInput("trim: take \"" + take.id + "\" has coincident outer eye corners");
   // Slow drift of the rest pose (tracker drift, changed head pose the similarity cannot remove) is
@@ -209,7 +215,8 @@ std::vector<TakeSegment> find_segments(const TrackedFrames& take, const TrimOpti
                                         m.begin() + static_cast<std::ptrdiff_t>(b + 1));
   }
   if (magnitude) *magnitude = above;
-  const double low = options.low * iod, high = options.high * iod;
+  const double low = weights ? options.weight_low : options.low * iod;
+  const double high = weights ? options.weight_high : options.high * iod;
   m = above;
   std::size_t i = 0;
   while (i < n) {
@@ -304,7 +311,7 @@ Database capture_database(const std::vector<TrackedFrames>& takes, const Capture
   if (takes.empty()) throw InvalidInput("capture: no takes");
   Database db;
   db.dimensions = takes[0].dimensions;
-  db.landmark_count = 68;
+  db.landmark_count = takes[0].frames.empty() ? 68 : static_cast<std::size_t>(takes[0].frames[0].rows());
   std::vector<double> rates;
   auto problem = [&](const std::string& msg) {
     if (options.on_error == OnError::Stop) throw InvalidInput(msg);
@@ -312,7 +319,11 @@ Database capture_database(const std::vector<TrackedFrames>& takes, const Capture
   };
   for (const TrackedFrames& take : takes) {
     if (take.dimensions != db.dimensions)
-      throw InvalidInput("capture: takes mix 2D and 3D landmarks");
+      throw InvalidInput("capture: takes mix 2D, 3D landmarks or weights");
+    if (!take.frames.empty() && static_cast<std::size_t>(take.frames[0].rows()) != db.landmark_count)
+      throw InvalidInput("capture: take \"" + take.id + "\" has " +
+                         std::to_string(take.frames[0].rows()) + " channels, the first take " +
+                         std::to_string(db.landmark_count));
     std::vector<TrackedFrames> parts = clean_frames(take, options.filter);
     if (parts.empty()) {
       problem("capture: take \"" + take.id + "\" has no usable part (confidence, success, length)");
@@ -322,7 +333,8 @@ Database capture_database(const std::vector<TrackedFrames>& takes, const Capture
       std::vector<double> dt;
       for (std::size_t i = 1; i < part.size(); ++i) dt.push_back(part.times[i] - part.times[i - 1]);
       rates.push_back(1.0 / quantile(dt, 0.5));
-      if (options.stabilise) stabilise_head(part, options.stabilisation);
+      // Weights carry no head pose: nothing to stabilise.
+      if (options.stabilise && part.dimensions != 1) stabilise_head(part, options.stabilisation);
       std::vector<TakeSegment> segments;
       if (options.trim) {
         segments = find_segments(part, options.trimming);

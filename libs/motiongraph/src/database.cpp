@@ -31,8 +31,9 @@ Label label_from_string(std::string_view name) {
 }
 
 void validate(const Database& db, std::size_t min_frames) {
-  if (db.dimensions != 2 && db.dimensions != 3)
-    throw InvalidInput("database dimensions must be 2 or 3, got " + std::to_string(db.dimensions));
+  if (db.dimensions < 1 || db.dimensions > 3)
+    throw InvalidInput("database dimensions must be 1 (weights), 2 or 3, got " +
+                       std::to_string(db.dimensions));
   if (db.landmark_count == 0) throw InvalidInput("database landmark_count must be > 0");
   if (!(db.frame_rate > 0.0) || !std::isfinite(db.frame_rate))
     throw InvalidInput("database frame_rate must be a positive finite number");

@@ -30,8 +30,26 @@ struct Stats {
 }  // namespace
 
 // §7: "We have compared the training samples against the synthesized equivalent".
-EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const EvaluationOptions& options) {
+EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const EvaluationOptions& options,
+                       const PreparedDatabase* raw) {
   options.validate();
+  if (raw) {
+    bool same = raw->samples.size() == data.samples.size() &&
+                raw->layout.regions.size() == data.layout.regions.size() &&
+                raw->dimensions == data.dimensions;
+    for (std::size_t s = 0; same && s < data.samples.size(); ++s) {
+      const PreparedSample& a = data.samples[s];
+      const PreparedSample& b = raw->samples[s];
+      same = a.id == b.id && a.peak_frame == b.peak_frame &&
+             a.displacement.size() == b.displacement.size();
+      for (std::size_t r = 0; same && r < a.displacement.size(); ++r)
+        same = a.displacement[r].rows() == b.displacement[r].rows() &&
+               a.displacement[r].cols() == b.displacement[r].cols();
+    }
+    if (!same)
+      throw InvalidInput("evaluation: the raw database does not match the cleaned one (samples, "
+                         "frames or regions differ)");
+  }
   GraphOptions go = options.graph;
   go.sample_threshold = go.merge_threshold = threshold;
   GraphBuildReport built;
@@ -40,7 +58,7 @@ EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const Eva
   row.threshold = threshold;
   row.compression = graph.compression_ratio();
   row.nodes = graph.node_count();
-  Stats length, pose;
+  Stats length, pose, raw_pose;
   const int d = data.dimensions;
   for (std::size_t s = 0; s < data.samples.size(); ++s) {
     if (s % options.shard_count != options.shard_index) continue;
@@ -68,13 +86,21 @@ EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const Eva
       for (std::size_t r = 0; r < graph.regions.size(); ++r) {
         const Eigen::RowVectorXd truth =
             graph.regions[r].neutral + ps.displacement[r].row(static_cast<Eigen::Index>(t));
+        const Eigen::RowVectorXd truth_raw =
+            raw ? (graph.regions[r].neutral +
+                   raw->samples[s].displacement[r].row(static_cast<Eigen::Index>(t)))
+                      .eval()
+                : truth;
         for (Eigen::Index l = 0; l < truth.size() / d; ++l, ++col) {
-          double d2 = 0.0;
+          double d2 = 0.0, r2 = 0.0;
           for (int j = 0; j < d; ++j) {
-            const double e = resampled(static_cast<Eigen::Index>(t), col * d + j) - truth[l * d + j];
+            const double v = resampled(static_cast<Eigen::Index>(t), col * d + j);
+            const double e = v - truth[l * d + j], er = v - truth_raw[l * d + j];
             d2 += e * e;
+            r2 += er * er;
           }
           pose.add(std::sqrt(d2));
+          if (raw) raw_pose.add(std::sqrt(r2));
         }
       }
     }
@@ -87,17 +113,30 @@ EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const Eva
   row.distances = static_cast<std::size_t>(pose.n);
   row.length_sum = length.sum, row.length_sum2 = length.sum2;
   row.pose_sum = pose.sum, row.pose_sum2 = pose.sum2;
+  if (raw) {
+    row.has_raw = true;
+    row.raw_pose_mean = raw_pose.mean(), row.raw_pose_std = raw_pose.std();
+    row.raw_pose_sum = raw_pose.sum, row.raw_pose_sum2 = raw_pose.sum2;
+  }
   return row;
 }
 
 EvaluationRow merge_rows(const std::vector<EvaluationRow>& rows) {
   if (rows.empty()) throw InvalidInput("merge_rows: no rows");
   EvaluationRow out = rows.front();
-  Stats length, pose;
+  Stats length, pose, raw_pose;
   for (const EvaluationRow& r : rows) {
     if (r.threshold != out.threshold) throw InvalidInput("merge_rows: rows of different thresholds");
+    if (r.has_raw != out.has_raw)
+      throw InvalidInput("merge_rows: rows with and without the raw comparison");
     length.sum += r.length_sum, length.sum2 += r.length_sum2, length.n += static_cast<double>(r.samples);
     pose.sum += r.pose_sum, pose.sum2 += r.pose_sum2, pose.n += static_cast<double>(r.distances);
+    raw_pose.sum += r.raw_pose_sum, raw_pose.sum2 += r.raw_pose_sum2;
+    raw_pose.n += static_cast<double>(r.distances);
+  }
+  if (out.has_raw) {
+    out.raw_pose_sum = raw_pose.sum, out.raw_pose_sum2 = raw_pose.sum2;
+    out.raw_pose_mean = raw_pose.mean(), out.raw_pose_std = raw_pose.std();
   }
   out.samples = static_cast<std::size_t>(length.n);
   out.distances = static_cast<std::size_t>(pose.n);

@@ -180,7 +180,7 @@ Database parse_database_json(std::string_view text, const std::string& file, OnE
   Reader rd{file};
   Database db;
   const std::size_t dims = rd.count(doc, "", "dimensions", 3);
-  if (dims != 2 && dims != 3) fail(file, "/dimensions", "dimensions must be 2 or 3");
+  if (dims < 1 || dims > 3) fail(file, "/dimensions", "dimensions must be 1 (weights), 2 or 3");
   db.dimensions = static_cast<int>(dims);
   db.landmark_count = rd.count(doc, "", "landmark_count", kMaxLandmarks);
   if (db.landmark_count == 0) fail(file, "/landmark_count", "landmark_count must be > 0");
@@ -225,7 +225,10 @@ Database parse_database_json(std::string_view text, const std::string& file, OnE
 // ---------------------------------------------------------------- database CSV
 std::string database_to_csv(const Database& db) {
   validate(db, 1);
-  static const char* axes[] = {"x", "y", "z"};
+  // Weight space (dimensions 1): one column w<i> per channel.
+  static const char* axes_xyz[] = {"x", "y", "z"};
+  static const char* axes_w[] = {"w"};
+  const char* const* axes = db.dimensions == 1 ? axes_w : axes_xyz;
   std::string out = core::csv_stamp() + "sequence,subject,label,frame";
   for (std::size_t i = 0; i < db.landmark_count; ++i)
     for (int j = 0; j < db.dimensions; ++j) out += "," + std::string(axes[j]) + std::to_string(i);
@@ -278,12 +281,15 @@ Database parse_database_csv(std::string_view text, const std::string& file, doub
         fail_line(file, line_no, 1, "header must start with sequence,subject,label,frame,x0,y0");
       const std::size_t coords = fields.size() - 4;
       const bool three = fields.size() >= 7 && fields[6] == "z0";
-      db.dimensions = three ? 3 : 2;
+      const bool weights = fields[4] == "w0";  // weight space: w0, w1, ...
+      db.dimensions = weights ? 1 : three ? 3 : 2;
       if (coords % static_cast<std::size_t>(db.dimensions) != 0)
         fail_line(file, line_no, fields.size(), "coordinate columns are not a multiple of the dimensions");
       db.landmark_count = coords / static_cast<std::size_t>(db.dimensions);
       if (db.landmark_count > kMaxLandmarks) fail_line(file, line_no, 1, "too many landmark columns");
-      static const char* axes[] = {"x", "y", "z"};
+      static const char* axes_xyz[] = {"x", "y", "z"};
+      static const char* axes_w[] = {"w"};
+      const char* const* axes = weights ? axes_w : axes_xyz;
       for (std::size_t c = 4; c < fields.size(); ++c) {
         const std::size_t k = c - 4;
         const std::string want = axes[k % db.dimensions] + std::to_string(k / db.dimensions);
@@ -434,7 +440,7 @@ MotionGraph parse_graph_json(std::string_view text, const std::string& file) {
   Reader rd{file};
   MotionGraph g;
   const std::size_t dims = rd.count(doc, "", "dimensions", 3);
-  if (dims != 2 && dims != 3) fail(file, "/dimensions", "dimensions must be 2 or 3");
+  if (dims < 1 || dims > 3) fail(file, "/dimensions", "dimensions must be 1 (weights), 2 or 3");
   g.dimensions = static_cast<int>(dims);
   g.frame_rate = rd.number(doc, "", "frame_rate");
   if (!(g.frame_rate > 0.0)) fail(file, "/frame_rate", "frame_rate must be > 0");

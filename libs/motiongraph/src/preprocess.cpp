@@ -109,14 +109,19 @@ PreparedDatabase preprocess(const Database& db, const LandmarkLayout& layout,
   const std::size_t nr = layout.regions.size();
   const std::vector<int> reduced = layout.reduced_landmarks();
 
+  // Weight space (dimensions 1, issue 19 item 2): weights are already in the face's own frame —
+  // no translation, no Procrustes alignment; the neutral is the plain mean of the first frames.
+  const bool weights = db.dimensions == 1;
+  const bool align = options.align && !weights;
   // Neutral-based translation (§4): each sample's first pose centred at the origin.
   std::vector<Eigen::RowVectorXd> shift(db.sequences.size());
   std::vector<Eigen::MatrixXd> neutrals;
   for (std::size_t s = 0; s < db.sequences.size(); ++s) {
-    shift[s] = db.sequences[s].frames[0].colwise().mean();
+    shift[s] = weights ? Eigen::RowVectorXd::Zero(1).eval()
+                       : db.sequences[s].frames[0].colwise().mean().eval();
     neutrals.push_back(db.sequences[s].frames[0].rowwise() - shift[s]);
   }
-  const Eigen::MatrixXd mean = mean_neutral(neutrals, options.align);
+  const Eigen::MatrixXd mean = mean_neutral(neutrals, align);
   for (const Region& r : layout.regions) out.neutral.push_back(flatten(rows_of(mean, r.landmarks)));
 
   PreprocessReport rep;
@@ -139,7 +144,8 @@ PreparedDatabase preprocess(const Database& db, const LandmarkLayout& layout,
           throw InvalidInput("preprocess: sequence \"" + seq.id + "\" does not start neutral (frame " +
                              std::to_string(f) + " is farther from the peak than frame 0)");
       // ... and its first frame is closer to the database's mean neutral than its last frame.
-      const Eigen::MatrixXd to_mean = procrustes(neutrals[s], mean);
+      const Eigen::MatrixXd to_mean =
+          weights ? Eigen::MatrixXd::Identity(2, 2).eval() : procrustes(neutrals[s], mean);
       auto rms_to_mean = [&](std::size_t f) {
         const Eigen::MatrixXd p = apply_transform(to_mean, seq.frames[f].rowwise() - shift[s]);
         return rms_size(rows_of(p, reduced) - rows_of(mean, reduced));
@@ -165,7 +171,7 @@ PreparedDatabase preprocess(const Database& db, const LandmarkLayout& layout,
       const std::vector<int>& markers = reg.alignment.empty() ? reg.landmarks : reg.alignment;
       // Regional Procrustes between samples (§4): the sample's neutral markers onto the mean's.
       Eigen::MatrixXd transform = Eigen::MatrixXd::Identity(db.dimensions + 1, db.dimensions + 1);
-      if (options.align) transform = procrustes(rows_of(neutrals[s], markers), rows_of(mean, markers));
+      if (align) transform = procrustes(rows_of(neutrals[s], markers), rows_of(mean, markers));
       const Eigen::Index k = static_cast<Eigen::Index>(reg.landmarks.size());
       Eigen::MatrixXd disp(static_cast<Eigen::Index>(n), k * db.dimensions);
       Eigen::RowVectorXd first;

@@ -29,6 +29,15 @@ struct Event {
   /// edge weights to be copied").
   std::vector<std::pair<std::string, double>> weights;
   std::size_t line = 0;  ///< 1-based line in the events file, for messages; 0 = unknown
+  /// Runtime trait changes (paper §6: the background context is "the influence of the current
+  /// location", the affection matrix "the moods towards other characters"; issue 19): an event with
+  /// an empty `stimulus` and a non-empty `context` and/or `affection` replaces the target's background
+  /// context (one value per emotion node in [0, 1]) and/or affection rows (by character name) at
+  /// `time`. The mood is not touched: the new context enters PTraits (eq. 3) of the next mood updates
+  /// (eq. 4), the new affection the perceived stimulus (eq. 2) of the next stimuli from that character.
+  std::vector<double> context;
+  std::vector<std::pair<std::string, std::vector<double>>> affection;
+  bool changes_traits() const noexcept { return stimulus.empty() && (!context.empty() || !affection.empty()); }
 };
 
 /// Why an action was triggered.
@@ -50,6 +59,9 @@ struct TriggeredAction {
   Cause cause = Cause::Stimulus;
   std::string stimulus;    ///< the stimulus that started it; empty for Decay
   std::size_t chain_depth = 0;  ///< 0 for the chosen action, k for the k-th chained one
+  /// The character the action is performed *at* (issue 19: addressees): the source of the stimulus
+  /// that started it (a response is aimed back at whoever acted); empty for world stimuli and decay.
+  std::string addressee;
 };
 
 /// A stimulus learnt by a character during the simulation (§6.1 copying).
@@ -80,6 +92,10 @@ struct SimulationOptions {
   /// stimulus copying apply) at the action's time, up to this many hops per original event, [0, 64];
   /// 0 = off (stimuli come only from the events).
   std::size_t propagation_depth = 0;
+  /// With propagation: an action that has an addressee reaches only that character (performed *at*
+  /// it); false = every other character, as before issue 19. Actions without addressee always go to
+  /// every other character.
+  bool propagate_to_addressee = false;
   std::uint64_t seed = 0;  ///< character c draws from core::Rng(seed, c)
   void validate() const;   ///< throws InvalidInput
 };
@@ -110,13 +126,22 @@ class World {
   /// Mood of character c at time(), one entry per emotion node.
   const std::vector<double>& mood(std::size_t c) const { return characters_.at(c).mood; }
   const std::vector<CopiedStimulus>& copied() const noexcept { return copied_; }
+  /// Runtime trait changes (issue 19): the background context of character c (one value per emotion
+  /// node in [0, 1]; empty = none) and its affection row towards `other` (empty row = remove it).
+  /// They enter the next mood updates (eqs. 2–4); the current mood and its decay towards the
+  /// personality are unchanged. Throw InvalidInput naming the field (nothing changes).
+  void set_background_context(std::size_t c, const std::vector<double>& context);
+  void set_affection(std::size_t c, const std::string& other, const std::vector<double>& row);
+  /// The current traits of character c (the map's, with runtime changes applied).
+  const Traits& traits(std::size_t c) const { return characters_.at(c).map.traits; }
 
   /// Moves the clock to t ≥ time(): moods decay towards the personality; representative actions
   /// due in (time(), t] are appended to `out` (may be null).
   void advance_to(double t, std::vector<TriggeredAction>* out);
 
   /// advance_to(event.time), then delivers the stimulus to its target(s): eqs. 2–4, action choice,
-  /// chain. Throws InvalidInput for unknown characters, an unknown stimulus that cannot be copied,
+  /// chain. A trait-change event (Event::changes_traits) replaces the target's background context
+  /// and/or affection rows instead ("*" = every character). Throws InvalidInput for unknown characters, an unknown stimulus that cannot be copied,
   /// bad weights or an event in the past (messages name the event's line); the world is then unchanged.
   void apply(const Event& event, std::vector<TriggeredAction>* out);
 
@@ -152,6 +177,12 @@ struct SimulationResult {
   std::vector<CopiedStimulus> copied;
   double duration = 0.0;
 };
+
+/// The mind map of character `c` as it stands at `time` after the events up to then (sorted by
+/// time, stable; no propagation): copied stimuli learnt and background context / affection changed
+/// at run time (issue 19), for drawing (mind_map_dot). Throws like World::apply.
+MindMap map_at(std::vector<MindMap> maps, std::vector<Event> events, std::size_t c, double time,
+               const SimulationOptions& options = {});
 
 /// Runs the events (sorted by time, stable) through a World and samples every mood at frame_rate.
 /// Events at a sample time are applied before the sample.

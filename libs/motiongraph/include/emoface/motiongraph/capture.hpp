@@ -29,11 +29,15 @@ namespace emoface::motiongraph {
 /// One tracker's per-frame output for one take, unfiltered.
 struct TrackedFrames {
   std::string id;                   ///< take id (file stem by default)
-  int dimensions = 2;               ///< of `frames`: 2 (pixels) or 3
+  /// Of `frames`: 2 (pixels) or 3; 1 = a weight take (issue 19 item 2: each frame one column of
+  /// channel weights, e.g. the ARKit-52 of a Live Link Face CSV, read by bridge/weight_space.hpp).
+  /// Weight takes are filtered and trimmed like landmark takes but never stabilised.
+  int dimensions = 2;
   std::vector<double> times;        ///< seconds, strictly increasing
   std::vector<double> confidence;   ///< per frame, [0, 1]
   std::vector<char> success;        ///< per frame, 0 or 1 (the tracker found the face)
-  std::vector<Pose> frames;         ///< per frame, 68 iBUG landmarks by `dimensions`
+  std::vector<Pose> frames;         ///< per frame, 68 iBUG landmarks by `dimensions` (or
+                                    ///< channels by 1)
   std::vector<std::string> labels;  ///< per frame (a label column), or empty
   std::vector<std::string>
       au_names;  ///< OpenFace action-unit columns (AU01_r, …, AU45_c), or empty
@@ -144,6 +148,12 @@ struct TrimOptions {
   /// e > low that reaches e > high. 0 < low < high <= 1.
   double low = 0.006;
   double high = 0.015;
+  /// The same thresholds for weight takes (dimensions 1: ARKit/FACS weights in [0, 1], issue 19
+  /// item 2), in weight units: e > weight_low reaching e > weight_high. 0 < low < high <= 1.
+  /// Live Link Face weights jitter by about ±0.01 at rest; an expression moves its top quarter of
+  /// channels by 0.1–0.6 (docs/motiongraph.md "Weight space").
+  double weight_low = 0.03;
+  double weight_high = 0.08;
   /// The baseline b(t) is the minimum of m within ±baseline_window seconds, (0, 600]: it follows
   /// slow drift of the rest pose but not an onset (CK+ onsets last < 1 s).
   double baseline_window = 1.5;

@@ -21,7 +21,8 @@ std::string to_string(Label label);
 Label label_from_string(std::string_view name);
 
 /// One pose: landmark_count by dimensions (2 or 3), row i = landmark i; pixels (2D) or the
-/// database's length unit (3D).
+/// database's length unit (3D). Weight space (issue 19 item 2): dimensions 1, row i = the weight of
+/// channel i (an ARKit blend shape or FACS action unit, in [0, 1]); "landmark" then means channel.
 using Pose = Eigen::MatrixXd;
 
 /// One labelled sequence. Samples start at a neutral pose; the last frame is the peak (CK+ layout).
@@ -34,7 +35,7 @@ struct Sequence {
 
 /// A set of sequences sharing landmark count, dimensionality and frame rate.
 struct Database {
-  int dimensions = 2;              ///< 2 or 3
+  int dimensions = 2;              ///< 2 or 3 (landmarks), 1 (weight space: one value per channel)
   std::size_t landmark_count = 0;  ///< landmarks per pose (68 for CK+)
   double frame_rate = 30.0;        ///< frames per second, > 0 (CK+ was recorded at 30 fps)
   /// Optional: for each landmark, its index in the source layout (e.g. iBUG-68), when the poses hold a
@@ -43,7 +44,7 @@ struct Database {
   std::vector<Sequence> sequences;
 };
 
-/// Checks shapes and values: dimensions 2|3, landmark_count > 0, frame_rate > 0, unique non-empty ids,
+/// Checks shapes and values: dimensions 1|2|3, landmark_count > 0, frame_rate > 0, unique non-empty ids,
 /// every frame landmark_count by dimensions, finite coordinates, at least `min_frames` frames per
 /// sequence, landmark_ids empty or of size landmark_count. Throws InvalidInput naming the sequence and
 /// frame.

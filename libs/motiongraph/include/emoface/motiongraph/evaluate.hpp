@@ -22,6 +22,10 @@ struct EvaluationRow {
   std::size_t samples = 0;       ///< samples evaluated
   std::size_t distances = 0;     ///< landmark distances measured
   double length_sum = 0.0, length_sum2 = 0.0, pose_sum = 0.0, pose_sum2 = 0.0;
+  /// The pose difference against the *raw* samples (issue 19: aligned but not sigmoid-cleaned, the
+  /// tracker's own values), when evaluate() was given them; else 0. Same landmarks and frames.
+  bool has_raw = false;
+  double raw_pose_mean = 0.0, raw_pose_std = 0.0, raw_pose_sum = 0.0, raw_pose_sum2 = 0.0;
 };
 
 struct EvaluationOptions {
@@ -36,8 +40,12 @@ struct EvaluationOptions {
 /// One row: builds the graph with sample = merge = `threshold`, re-synthesizes each sample from its
 /// first-frame node to its peak node (Dijkstra + §5 steps 1–4, no variation) and compares it with
 /// the sample's neutral-to-peak part (synthesized frames resampled to the original length).
+/// With `raw` (the same database preprocessed with `clean = false` and otherwise the same options:
+/// same samples, frames and alignment), the synthesized frames are also compared with the raw samples
+/// (EvaluationRow::raw_pose_*). Throws InvalidInput if `raw` does not match `data`.
 EvaluationRow evaluate(const PreparedDatabase& data, double threshold,
-                       const EvaluationOptions& options = {});
+                       const EvaluationOptions& options = {},
+                       const PreparedDatabase* raw = nullptr);
 
 /// Merges rows of the same threshold computed on different shards: sums added, statistics recomputed
 /// (mean and population standard deviation over all samples / distances). Throws InvalidInput for an
