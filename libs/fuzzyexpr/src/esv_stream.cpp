@@ -441,13 +441,6 @@ std::string FmcvWriter::end() const {
 
 // ---------------------------------------------------------------------------------------------------
 
-std::string_view to_string(OnError v) noexcept { return v == OnError::Stop ? "stop" : "skip"; }
-std::optional<OnError> on_error_from_string(std::string_view s) noexcept {
-  if (s == "stop") return OnError::Stop;
-  if (s == "skip") return OnError::Skip;
-  return std::nullopt;
-}
-
 void BatchOptions::validate() const {
   if (shard_count == 0 || shard_index >= shard_count)
     throw InvalidInput("BatchOptions: shard must satisfy 0 <= index < count");

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "emoface/core/text.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/fuzzyexpr/names.hpp"
 
@@ -100,12 +101,11 @@ class FmcvWriter {
   std::size_t rows_ = 0;
 };
 
-enum class OnError : std::uint8_t {
-  Stop,  ///< the first bad record ends the batch (its FormatError propagates)
-  Skip,  ///< bad records are counted and skipped; the good ones are converted
-};
-std::string_view to_string(OnError v) noexcept;
-std::optional<OnError> on_error_from_string(std::string_view s) noexcept;
+/// Stop: the first bad record ends the batch (its FormatError propagates); Skip: bad records are
+/// counted and skipped, the good ones converted. The one OnError of core (emoface/core/text.hpp).
+using core::OnError;
+using core::on_error_from_string;
+using core::to_string;
 
 struct BatchOptions {
   OnError on_error = OnError::Stop;
