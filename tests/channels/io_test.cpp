@@ -122,7 +122,8 @@ TEST(Io, BadVisemesAndConflicts) {
   expect_format_error([&] { parse_conflicts(cenv + "\"pairs\":[{\"a\":\"masseter\",\"b\":\"nose\"}]}"); }, "/pairs/0");
   expect_format_error([&] { parse_conflicts(cenv + "\"pairs\":[{\"a\":\"masseter\"}]}"); }, "\"b\"");
   expect_format_error([&] { parse_conflicts(cenv + "\"pairs\":{}}"); }, "/pairs");
-  // The unknown-field rule (core::JsonReader): a typo in a 1.0 file is an error; 1.1 may add fields.
+  // The unknown-field rule (core::JsonReader): a typo in a 1.0 file is an error; 1.1 may add
+  // fields.
   expect_format_error([&] { parse_conflicts(cenv + "\"pairs\":[],\"pair\":[]}"); },
                       "at /pair: unknown field \"pair\"");
   const std::string newer = "{\"format\":\"emoface.channels.conflicts\",\"version\":\"1.1\",";

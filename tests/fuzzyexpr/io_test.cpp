@@ -92,7 +92,8 @@ TEST(RuleFile, BadContentNamesTheField) {
   expect_bad([](Json& d) { d["no_blnd"] = Json::array(); }, "/no_blnd", "unknown field");
   expect_bad([](Json& d) { d["input_sets"][0]["points"] = 3; }, "/input_sets/0/points",
              "expected 3 numbers");
-  expect_bad([](Json& d) { d["single"] = Json::array(); }, "/single", "expected an object, got an array");
+  expect_bad([](Json& d) { d["single"] = Json::array(); }, "/single",
+             "expected an object, got an array");
 }
 
 TEST(RuleFile, NewerMinorVersionMayAddFields) {

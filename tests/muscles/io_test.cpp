@@ -90,7 +90,7 @@ TEST(ParameterFrames, RejectsBadInput) {
   expect_error("[1, 2]", FrameFormat::Json, 0);
   expect_error("{\"format\": \"emoface.params\", \"version\": \"9.0\", \"frames\": []}", FrameFormat::Json, 0);
   expect_error("{\"format\": \"emoface.params\", \"version\": \"1.0\", \"frames\": [{\"parameters\": {\"masseter\": -1}}]}", FrameFormat::Json, 0);
-  expect_error("[1]\n", FrameFormat::Ndjson, 1);                      // not an object
+  expect_error("[1]\n", FrameFormat::Ndjson, 1);  // not an object
   expect_error("{\"time\": \"x\", \"masseter\": 0.1}\n", FrameFormat::Ndjson, 1);
   FrameReadOptions lenient;
   lenient.ignore_unknown_columns = true;
@@ -117,8 +117,9 @@ TEST(ParameterFrames, UnknownFieldRuleOfTheParamsEnvelope) {
   EXPECT_EQ(frames[0].time, 0.5);
   EXPECT_EQ(frames[0].values[parameter_index("masseter")], 0.25);
   try {
-    parse_parameter_frames(R"({"format": "emoface.params", "version": "1.0", "fps": -1, "frames": []})",
-                           FrameFormat::Json, "p.json");
+    parse_parameter_frames(
+        R"({"format": "emoface.params", "version": "1.0", "fps": -1, "frames": []})",
+        FrameFormat::Json, "p.json");
     FAIL();
   } catch (const FormatError& e) {
     EXPECT_STREQ(e.what(), "p.json: at /fps: fps must be a number in (0, 1000]");

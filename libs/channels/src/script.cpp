@@ -1,19 +1,17 @@
 #include "emoface/channels/script.hpp"
 
-#include "emoface/core/vocab.hpp"
-
-#include <pugixml.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <pugixml.hpp>
 #include <set>
 
 #include "emoface/channels/parameters.hpp"
 #include "emoface/core/csv.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/rng.hpp"
+#include "emoface/core/vocab.hpp"
 
 namespace emoface::channels {
 

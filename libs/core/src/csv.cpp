@@ -203,7 +203,8 @@ const std::string& CsvTable::field(std::size_t row, std::size_t col) const {
 double CsvTable::number(std::size_t row, std::size_t col) const {
   const std::string& f = field(row, col);
   auto v = parse_number(f);
-  if (!v) fail(row, col, "column \"" + header_[col] + "\": expected a finite number, got \"" + f + "\"");
+  if (!v)
+    fail(row, col, "column \"" + header_[col] + "\": expected a finite number, got \"" + f + "\"");
   return *v;
 }
 

@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -53,7 +52,8 @@ WeightSet parse_document(const core::JsonValue& doc) {
     t.only_keys({"name", "terms", "facs", "sources", "note"});
     Target target;
     target.name = t.at("name").string();
-    for (const auto& [input, w] : t.at("terms").members()) target.terms.push_back({input, w.number()});
+    for (const auto& [input, w] : t.at("terms").members())
+      target.terms.push_back({input, w.number()});
     target.facs = t.string_or("facs", "");
     target.note = t.string_or("note", "");
     if (auto s = t.find("sources"))

@@ -76,7 +76,8 @@ class Parser {
     r.input_sets = sets(doc.at("input_sets"));
     r.output_sets = sets(doc.at("output_sets"));
     if (!covers_unit_interval(r.input_sets))
-      doc.at("input_sets").fail("the input sets do not cover [0, 1]: some intensity belongs to no set");
+      doc.at("input_sets")
+          .fail("the input sets do not cover [0, 1]: some intensity belongs to no set");
     for (const auto& [key, rows] : doc.at("single").members()) {
       auto e = emotion_from_string(key);
       if (!e) rows.fail("unknown emotion \"" + key + "\"");
@@ -88,7 +89,8 @@ class Parser {
         row.muscles = muscles(jm);
         if (row.muscles.empty()) jm.fail("a row must list at least one muscle");
         for (std::size_t k = 0; k < row.muscles.size(); ++k)
-          if (!seen.insert(row.muscles[k]).second) jm[k].fail("muscle already has rules for " + key);
+          if (!seen.insert(row.muscles[k]).second)
+            jm[k].fail("muscle already has rules for " + key);
         const JsonValue lv = jr.at("levels");
         if (!lv.is_array() || lv.size() != r.input_sets.size())
           lv.fail("expected one level per input set (" + std::to_string(r.input_sets.size()) +
@@ -127,9 +129,11 @@ class Parser {
       b.first_muscles = muscles(first);
       b.second_muscles = muscles(second);
       std::set<Muscle> seen;
-      for (auto [list, where] : {std::pair{&b.first_muscles, &first}, std::pair{&b.second_muscles, &second}})
+      for (auto [list, where] :
+           {std::pair{&b.first_muscles, &first}, std::pair{&b.second_muscles, &second}})
         for (std::size_t k = 0; k < list->size(); ++k)
-          if (!seen.insert((*list)[k]).second) (*where)[k].fail("muscle assigned twice in this blend");
+          if (!seen.insert((*list)[k]).second)
+            (*where)[k].fail("muscle assigned twice in this blend");
       r.blend.push_back(std::move(b));
     }
     if (auto nb = doc.find("no_blend")) {

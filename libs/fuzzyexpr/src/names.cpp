@@ -24,7 +24,8 @@ bool iequals(std::string_view a, std::string_view b) noexcept {
 struct SideNames {
   std::array<std::string_view, kSideParameterCount> views;
   SideNames() {
-    for (std::size_t j = 0; j < kSideParameterCount; ++j) views[j] = core::side_parameter_names()[j];
+    for (std::size_t j = 0; j < kSideParameterCount; ++j)
+      views[j] = core::side_parameter_names()[j];
   }
 };
 

@@ -4,9 +4,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"

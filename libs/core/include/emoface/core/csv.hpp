@@ -29,10 +29,11 @@ bool is_csv_comment(std::string_view line) noexcept;
 /// On failure `bad_offset` (if given) receives the 0-based offset of the first bad byte.
 bool is_valid_utf8(std::string_view text, std::size_t* bad_offset = nullptr);
 
-/// A whole CSV text read at once: comment lines ('#', e.g. the "# emoface x.y.z" stamp) and blank lines
-/// are skipped anywhere, the first other line is the header, and a later line equal to the header is
-/// skipped too (so concatenated shards read back). Every row must have as many fields as the header.
-/// Every error is a FormatError "FILE:LINE:COLUMN: message" (COLUMN = 1-based field number).
+/// A whole CSV text read at once: comment lines ('#', e.g. the "# emoface x.y.z" stamp) and blank
+/// lines are skipped anywhere, the first other line is the header, and a later line equal to the
+/// header is skipped too (so concatenated shards read back). Every row must have as many fields as
+/// the header. Every error is a FormatError "FILE:LINE:COLUMN: message" (COLUMN = 1-based field
+/// number).
 class CsvTable {
  public:
   struct Row {
@@ -56,7 +57,8 @@ class CsvTable {
   std::size_t require_column(std::string_view name, bool ignore_case = false) const;
 
   const std::string& field(std::size_t row, std::size_t col) const;
-  /// The field as a finite, locale-free number (parse_number), or FormatError at its line and column
+  /// The field as a finite, locale-free number (parse_number), or FormatError at its line and
+  /// column
   /// ("column \"x\": expected a number, got \"abc\"").
   double number(std::size_t row, std::size_t col) const;
   /// FormatError at row `row`, field `col` (col = SIZE_MAX: no column).

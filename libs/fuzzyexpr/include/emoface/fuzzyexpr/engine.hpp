@@ -107,9 +107,9 @@ class Engine {
   std::shared_ptr<const Impl> impl_;
 };
 
-/// The emotion → face mapping of thesis §6.5 as one function: ESV → FMCV (an Engine compiled once from
-/// `rules`) → the 35 side parameters (expand_to_sides). Copies share the engine; thread-safe to call.
-/// channels::side_parameter_mapper() turns it into a channel EmotionMapper.
+/// The emotion → face mapping of thesis §6.5 as one function: ESV → FMCV (an Engine compiled once
+/// from `rules`) → the 35 side parameters (expand_to_sides). Copies share the engine; thread-safe
+/// to call. channels::side_parameter_mapper() turns it into a channel EmotionMapper.
 std::function<SideParameters(const Esv&)> side_parameter_function(
     RuleBase rules = default_rule_base());
 

@@ -103,8 +103,8 @@ class FmcvWriter {
 
 /// Stop: the first bad record ends the batch (its FormatError propagates); Skip: bad records are
 /// counted and skipped, the good ones converted. The one OnError of core (emoface/core/text.hpp).
-using core::OnError;
 using core::on_error_from_string;
+using core::OnError;
 using core::to_string;
 
 struct BatchOptions {
