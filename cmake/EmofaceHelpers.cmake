@@ -3,6 +3,14 @@ include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
 set_property(GLOBAL PROPERTY EMOFACE_LIBRARIES "")
+
+# One warnings target (issue 18, docs/architecture.md#warnings): every library, app and test links it
+# privately (through $<BUILD_INTERFACE:...>, so it never reaches the installed export set).
+if(NOT TARGET emoface_warnings)
+  add_library(emoface_warnings INTERFACE)
+  target_compile_options(emoface_warnings INTERFACE
+    $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion>)
+endif()
 set_property(GLOBAL PROPERTY EMOFACE_PACKAGE_DEPENDENCIES "")
 
 # emoface_add_library(<lib> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...] [FIND_DEPENDENCIES ...])
@@ -23,8 +31,7 @@ function(emoface_add_library lib)
            $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
     PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
   target_compile_features(${target} PUBLIC cxx_std_17)
-  target_compile_options(${target} PRIVATE
-    $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion>)
+  target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:emoface_warnings>)
   if(ARG_PUBLIC_DEPS)
     target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_DEPS})
   endif()
@@ -68,7 +75,7 @@ function(emoface_add_app tool)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${tool} ${ARG_SOURCES})
   target_link_libraries(${tool} PRIVATE emoface_cli ${ARG_DEPS})
-  target_compile_options(${tool} PRIVATE $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic>)
+  target_link_libraries(${tool} PRIVATE emoface_warnings)
   if(EMOFACE_INSTALL)
     install(TARGETS ${tool} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   endif()

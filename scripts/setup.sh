@@ -24,6 +24,8 @@ PACKAGES=(
   liblz4-dev                        # retarget: FLANN's k-d tree headers reference LZ4 (linked directly)
   nodejs                            # test-only: the Khronos glTF-Validator (scripts/setup_npm.sh)
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest   # EMOFACE_PYTHON: import emoface
+  clang-format                      # scripts/check_format.sh (changed lines, docs/architecture.md)
+  python3-dask python3-distributed  # the Dask recipe of docs/scale-out.md and its test (ctest -L slow)
 )
 if [ "$BROWSER" = 1 ]; then PACKAGES+=(chromium); fi
 # Debian's npm package; a nodejs from elsewhere (e.g. NodeSource) bundles npm and conflicts with it.

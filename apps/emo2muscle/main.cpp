@@ -2,14 +2,15 @@
 // the fuzzy rule-based system of thesis chapter 6. Thin: parse arguments, call fuzzyexpr, write.
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/version.hpp"
+#include "emoface/faceweights/mapper.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/fuzzyexpr/esv_stream.hpp"
 #include "emoface/fuzzyexpr/io.hpp"
-#include "emoface/faceweights/mapper.hpp"
 
 namespace fx = emoface::fuzzyexpr;
 namespace cli = emoface::cli;
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   std::string input = "-", output = "-", from, to, rules_path, mode = "auto", tie = "fixed", weights,
               transition = "crisp", missing = "no_contraction", on_error = "stop", shard_text = "0/1",
               fll_path;
+  std::vector<std::string> merge;
   bool sides = false, clamp = false, summary = false;
   std::uint64_t seed = 0;
   int precision = 6;
@@ -43,7 +45,12 @@ int main(int argc, char** argv) {
                  "reading of '-' cells: no_contraction (default, Table 6.1 caption) or no_rule");
   app.add_option("--on-error", on_error, "stop|skip bad records (default stop: nothing written)");
   app.add_flag("--clamp", clamp, "clamp out-of-range intensities into [0,1] instead of failing");
-  app.add_option("--shard", shard_text, "i/N: convert only records with index % N == i");
+  app.add_option("--shard", shard_text,
+                 "i/N: convert only the i-th of N contiguous blocks of records; auto: from a Slurm "
+                 "job array (docs/scale-out.md)");
+  app.add_option("--merge", merge,
+                 "merge shard outputs (CSV or NDJSON, in shard order) into -o and exit")
+      ->expected(1, -1);
   app.add_option("--precision", precision, "decimals of the output levels (1-17, default 6)");
   app.add_option("--export-fll", fll_path, "write the rule base as a fuzzylite FLL engine and exit");
   app.add_flag("--summary", summary, "print one readable line per record (stderr if output is stdout)");
@@ -57,6 +64,14 @@ int main(int argc, char** argv) {
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
 
   return cli::run("emo2muscle", [&] {
+    if (!merge.empty()) {
+      std::vector<std::string> parts;
+      for (const auto& m : merge) parts.push_back(emoface::core::read_file(m));
+      cli::Output out(output);
+      out.write(emoface::core::merge_shard_outputs(parts));
+      out.commit();
+      return 0;
+    }
     fx::ExpressionOptions options;
     options.mode = parse_enum<fx::ExpressionMode>(mode, fx::expression_mode_from_string, "--mode", "auto|single|blend");
     options.tie_break = parse_enum<fx::TieBreak>(tie, fx::tie_break_from_string, "--tie-break", "fixed|random");
@@ -98,14 +113,28 @@ int main(int argc, char** argv) {
     const cli::Shard shard = cli::parse_shard(shard_text);
     batch.shard_index = shard.index;
     batch.shard_count = shard.count;
+    if (shard.count > 1 && out_opts.format == fx::StreamFormat::Json)
+      throw cli::UsageError("--shard needs a stream output (--to csv or ndjson), not json");
 
     std::ifstream file;
+    std::istringstream buffered;  // stdin, read once when a shard must count the records first
     if (input != "-") {
       file.open(input, std::ios::binary);
       if (!file) throw emoface::IoError(input + ": cannot open for reading");
+    } else if (shard.count > 1) {
+      std::ostringstream all;
+      all << std::cin.rdbuf();
+      buffered.str(all.str());
     }
-    std::istream& in = input == "-" ? std::cin : file;
-    fx::EsvReader reader(in, input == "-" ? "<stdin>" : input, in_opts);
+    std::istream& in = input != "-" ? file : shard.count > 1 ? buffered : std::cin;
+    const std::string name = input == "-" ? "<stdin>" : input;
+    if (shard.count > 1) {  // contiguous blocks need the number of records
+      fx::EsvReader counter(in, name, in_opts);
+      batch.total_records = fx::count_records(counter);
+      in.clear();
+      in.seekg(0);
+    }
+    fx::EsvReader reader(in, name, in_opts);
     fx::FmcvWriter writer(out_opts, reader.extra_columns());
     cli::Output out(output);
     std::ostream& notes = out.is_stdout() ? std::cerr : std::cout;

@@ -52,7 +52,9 @@ int main(int argc, char** argv) {
   app.add_option("--delta-c", delta_c, "Contraction step (thesis: 0.2)")->check(CLI::Range(0.001, 1.0));
   app.add_flag("--no-wrinkles", no_wrinkles, "Disable bulges and wrinkles");
   app.add_flag("--ignore-unknown-columns", ignore_unknown, "Skip columns/keys that are not face parameters");
-  app.add_option("--shard", shard_text, "Process only frames with index % N == i (i/N)");
+  app.add_option("--shard", shard_text,
+                 "i/N: only the i-th of N contiguous blocks of frames (files keep their global "
+                 "numbers); auto: from a Slurm job array");
   app.add_option("--write-default-face", default_dir, "Write default_face.obj + default.rig into DIR and exit");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("faceanim", [&]() {
@@ -115,7 +117,7 @@ int main(int argc, char** argv) {
     std::vector<double> times;
     mu::Deformation d;
     for (std::size_t i = 0; i < frames.size(); ++i) {
-      if (!shard.owns(i)) continue;
+      if (!shard.owns(i, frames.size())) continue;  // contiguous block: files keep global indices
       solver.deform(frames[i].values, d);
       if (!out_dir.empty()) {
         char name[64];

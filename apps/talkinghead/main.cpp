@@ -10,7 +10,7 @@
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/faceweights/tracks.hpp"
-#include "emoface/obie/pipeline.hpp"
+#include "emoface/fuzzyexpr/engine.hpp"
 #include "plot.hpp"
 
 namespace ch = emoface::channels;
@@ -104,7 +104,9 @@ int main(int argc, char** argv) {
     } else if (!timing_wavs.empty()) {
       throw emoface::cli::UsageError("--timings-wav needs --timings");
     }
-    const ch::TalkingHead th = ch::run_talking_head(script, visemes, conflicts, emoface::obie::fuzzy_emotion_mapper(), o);
+    const ch::EmotionMapper mapper =
+        ch::side_parameter_mapper(emoface::fuzzyexpr::side_parameter_function());
+    const ch::TalkingHead th = ch::run_talking_head(script, visemes, conflicts, mapper, o);
 
     if (weights_format.empty() != weights_path.empty())
       throw emoface::cli::UsageError("--weights and --weights-out go together");

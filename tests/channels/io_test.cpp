@@ -122,6 +122,23 @@ TEST(Io, BadVisemesAndConflicts) {
   expect_format_error([&] { parse_conflicts(cenv + "\"pairs\":[{\"a\":\"masseter\",\"b\":\"nose\"}]}"); }, "/pairs/0");
   expect_format_error([&] { parse_conflicts(cenv + "\"pairs\":[{\"a\":\"masseter\"}]}"); }, "\"b\"");
   expect_format_error([&] { parse_conflicts(cenv + "\"pairs\":{}}"); }, "/pairs");
+  // The unknown-field rule (core::JsonReader): a typo in a 1.0 file is an error; 1.1 may add
+  // fields.
+  expect_format_error([&] { parse_conflicts(cenv + "\"pairs\":[],\"pair\":[]}"); },
+                      "at /pair: unknown field \"pair\"");
+  const std::string newer = "{\"format\":\"emoface.channels.conflicts\",\"version\":\"1.1\",";
+  EXPECT_EQ(parse_conflicts(newer + "\"pairs\":[],\"notes\":\"x\"}").pairs.size(), 0u);
+  expect_format_error([&] { parse_visemes(env + "\"visemes\":[],\"silnce\":\"sil\"}"); },
+                      "at /silnce: unknown field");
+}
+
+TEST(Io, TracksJsonUnknownFieldRule) {
+  const std::string body = ",\"fps\":25,\"names\":[\"a\"],\"frames\":[[1]],\"units\":\"s\"}";
+  expect_format_error(
+      [&] { parse_tracks_json("{\"format\":\"emoface.tracks\",\"version\":\"1.0\"" + body); },
+      "at /units: unknown field \"units\"");
+  EXPECT_EQ(parse_tracks_json("{\"format\":\"emoface.tracks\",\"version\":\"1.2\"" + body).values,
+            std::vector<double>{1.0});
 }
 
 }  // namespace

@@ -1,78 +1,137 @@
-// The shared 3×5 bitmap font (issue 19: text on charts and strips).
 #include "emoface/core/text.hpp"
 
 #include <gtest/gtest.h>
 
+#include <clocale>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 
 namespace emoface::core {
 namespace {
 
-struct Im {
-  int w, h;
-  std::vector<std::uint8_t> rgb;
-  Im(int w_, int h_) : w(w_), h(h_), rgb(static_cast<std::size_t>(w_) * h_ * 3, 255) {}
-  bool ink(int x, int y) const { return rgb[(static_cast<std::size_t>(y) * w + x) * 3] == 0; }
-  int count() const {
-    int n = 0;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) n += ink(x, y);
-    return n;
+std::vector<std::pair<std::size_t, std::string>> all_lines(std::string_view text) {
+  std::vector<std::pair<std::size_t, std::string>> out;
+  for (const Line& l : Lines(text)) out.emplace_back(l.number, std::string(l.text));
+  return out;
+}
+
+TEST(Lines, NumbersLinesAndStripsCr) {
+  using V = std::vector<std::pair<std::size_t, std::string>>;
+  EXPECT_EQ(all_lines(""), V{});
+  EXPECT_EQ(all_lines("a"), (V{{1, "a"}}));
+  EXPECT_EQ(all_lines("a\n"), (V{{1, "a"}}));
+  EXPECT_EQ(all_lines("a\r\n\nb"), (V{{1, "a"}, {2, ""}, {3, "b"}}));
+  EXPECT_EQ(all_lines("\n\n"), (V{{1, ""}, {2, ""}}));
+}
+
+TEST(ParseNumber, AcceptsDecimalAndScientific) {
+  EXPECT_EQ(parse_number("1.5"), 1.5);
+  EXPECT_EQ(parse_number(" -2.25e1\t"), -22.5);
+  EXPECT_EQ(parse_number("+3"), 3.0);
+  EXPECT_EQ(parse_number(".5"), 0.5);
+  EXPECT_EQ(parse_number("0.1"), 0.1);        // the same double as the literal: correctly rounded
+  EXPECT_EQ(parse_number("1e-320"), 1e-320);  // subnormal
+}
+
+TEST(ParseNumber, RefusesJunkNonFiniteAndOverflow) {
+  for (const char* bad : {"", " ", "abc", "1.5x", "1,5", "--1", "+-1", "+", "0x10", "1e400", "nan",
+                          "inf", "-inf", "1 2"})
+    EXPECT_FALSE(parse_number(bad).has_value()) << bad;
+  EXPECT_TRUE(std::isinf(*parse_number("inf", true)));
+  EXPECT_TRUE(std::isnan(*parse_number("nan", true)));
+}
+
+TEST(ParseNumber, IgnoresTheCLocale) {
+  // A locale with a decimal comma would make strtod stop at '.'; from_chars does not care.
+  if (std::setlocale(LC_NUMERIC, "de_DE.UTF-8") == nullptr &&
+      std::setlocale(LC_NUMERIC, "fr_FR.UTF-8") == nullptr)
+    GTEST_SKIP() << "no decimal-comma locale installed";
+  EXPECT_EQ(parse_number("1.5"), 1.5);
+  EXPECT_FALSE(parse_number("1,5").has_value());
+  std::setlocale(LC_NUMERIC, "C");
+}
+
+TEST(ParseInteger, RangeAndJunk) {
+  EXPECT_EQ(parse_integer("42"), 42);
+  EXPECT_EQ(parse_integer(" -7 "), -7);
+  EXPECT_EQ(parse_integer("9223372036854775807"), std::numeric_limits<std::int64_t>::max());
+  EXPECT_EQ(parse_integer("-9223372036854775808"), std::numeric_limits<std::int64_t>::min());
+  for (const char* bad :
+       {"", "9223372036854775808", "-9223372036854775809", "1.0", "1e3", "x", "-"})
+    EXPECT_FALSE(parse_integer(bad).has_value()) << bad;
+}
+
+TEST(FormatNumber, ShortestRoundTrip) {
+  EXPECT_EQ(format_number(0.1), "0.1");
+  EXPECT_EQ(format_number(2.5), "2.5");
+  EXPECT_EQ(format_number(-3), "-3");
+  EXPECT_EQ(format_number(std::nan("")), "nan");
+  EXPECT_EQ(format_number(-INFINITY), "-inf");
+  const double third = 1.0 / 3.0;
+  EXPECT_EQ(parse_number(format_number(third)), third);
+}
+
+TEST(OnError, StringRoundTrip) {
+  for (OnError v : {OnError::Stop, OnError::Skip}) EXPECT_EQ(on_error_from_string(to_string(v)), v);
+  EXPECT_FALSE(on_error_from_string("Stop").has_value());
+  EXPECT_FALSE(on_error_from_string("").has_value());
+}
+
+std::string csv_error(std::string_view text) {
+  try {
+    CsvTable::parse(text, "t.csv");
+  } catch (const FormatError& e) {
+    return e.what();
   }
-};
-
-TEST(Text, GlyphPixelsByHand) {
-  Im im(40, 12);
-  // '1' rows 010 110 010 010 111 at scale 2: row 0 sets x 2..3, row 1 x 0..3, row 4 x 0..5
-  draw_text(im.rgb, im.w, im.h, 0, 0, "1", {0, 0, 0}, 2);
-  EXPECT_TRUE(im.ink(2, 0));
-  EXPECT_TRUE(im.ink(3, 1));
-  EXPECT_FALSE(im.ink(0, 0));
-  EXPECT_TRUE(im.ink(0, 2));
-  EXPECT_TRUE(im.ink(5, 9));
-  EXPECT_FALSE(im.ink(6, 9));
-  // 1·2 + 2·2 + 1·2 + 1·2 + 3·2 = 16 bits set in the glyph, 4 pixels each at scale 2
-  EXPECT_EQ(im.count(), 4 * (1 + 2 + 1 + 1 + 3));
-  EXPECT_EQ(text_width("abc", 2), 24);
-  EXPECT_EQ(text_width("abc", 0), 12);  // scale < 1 counts as 1
-  EXPECT_EQ(text_height(3), 15);
-  EXPECT_TRUE(has_glyph('Q'));
-  EXPECT_TRUE(has_glyph('%'));
-  EXPECT_FALSE(has_glyph('#'));
+  return "(no error)";
 }
 
-TEST(Text, UpperCaseIsLowerCaseAndUnknownAdvances) {
-  Im a(40, 6), b(40, 6), c(40, 6);
-  draw_text(a.rgb, a.w, a.h, 0, 0, "Ab", {0, 0, 0}, 1);
-  draw_text(b.rgb, b.w, b.h, 0, 0, "ab", {0, 0, 0}, 1);
-  EXPECT_EQ(a.rgb, b.rgb);
-  draw_text(c.rgb, c.w, c.h, 0, 0, "#b", {0, 0, 0}, 1);  // '#' leaves a blank cell
-  for (int y = 0; y < 5; ++y)
-    for (int x = 0; x < 4; ++x) EXPECT_FALSE(c.ink(x, y));
-  for (int y = 0; y < 5; ++y)
-    for (int x = 4; x < 8; ++x) EXPECT_EQ(c.ink(x, y), b.ink(x, y));
+TEST(CsvTable, SkipsStampCommentsBlankLinesAndRepeatedHeaders) {
+  const std::string text =
+      "\xEF\xBB\xBF# emoface 0.1.0\nid,x\r\na,1\n\n# emoface 0.1.0\nid,x\nb,2.5\n";
+  const CsvTable t = CsvTable::parse(text, "t.csv");
+  EXPECT_EQ(t.header(), (std::vector<std::string>{"id", "x"}));
+  EXPECT_EQ(t.header_line(), 2u);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t.rows()[0].line, 3u);
+  EXPECT_EQ(t.rows()[1].line, 7u);
+  EXPECT_EQ(t.field(1, 0), "b");
+  EXPECT_EQ(t.number(1, *t.column("x")), 2.5);
+  EXPECT_EQ(t.column("X", true), 1u);
+  EXPECT_FALSE(t.column("X").has_value());
 }
 
-TEST(Text, VerticalIsAQuarterTurn) {
-  Im h(12, 12), v(12, 12);
-  draw_text(h.rgb, h.w, h.h, 0, 0, "7", {0, 0, 0}, 1);
-  draw_text_vertical(v.rgb, v.w, v.h, 0, 11, "7", {0, 0, 0}, 1);
-  // horizontal pixel (col b, row r) lands at (r, 10 − b) when turned counter-clockwise
-  for (int r = 0; r < 5; ++r)
-    for (int b = 0; b < 3; ++b) EXPECT_EQ(v.ink(r, 10 - b), h.ink(b, r)) << r << " " << b;
-  EXPECT_EQ(v.count(), h.count());
+TEST(CsvTable, ErrorsNameFileLineAndColumn) {
+  EXPECT_EQ(csv_error(""), "t.csv:1: no header row");
+  EXPECT_EQ(csv_error("# only a stamp\n"), "t.csv:1: no header row");
+  EXPECT_EQ(csv_error("a,b\n1\n"), "t.csv:2: expected 2 fields (as the header), got 1");
+  EXPECT_EQ(csv_error("a,b\n1,\"x\n"), "t.csv:2:5: malformed CSV: unterminated quoted field");
+  EXPECT_EQ(csv_error("a,a\n"), "t.csv:1:2: duplicate column \"a\"");
+  EXPECT_EQ(csv_error("a,\n"), "t.csv:1:2: empty column name");
+  EXPECT_EQ(csv_error("a\n\xFF\n"), "t.csv:2: not valid UTF-8");
+  const CsvTable t = CsvTable::parse("a,b\n1,nan\n2,x\n", "t.csv");
+  try {
+    t.number(0, 1);
+    FAIL();
+  } catch (const FormatError& e) {
+    EXPECT_STREQ(e.what(), "t.csv:2:2: column \"b\": expected a finite number, got \"nan\"");
+    EXPECT_EQ(e.where().line, 2u);
+  }
+  EXPECT_THROW(t.number(1, 1), FormatError);
+  EXPECT_THROW(t.require_column("c"), FormatError);
+  EXPECT_THROW(t.field(5, 0), InvalidInput);
 }
 
-TEST(Text, ClipsAndRejectsWrongBuffers) {
-  Im im(10, 4);
-  draw_text(im.rgb, im.w, im.h, 6, 2, "zzzz", {0, 0, 0}, 3);       // partly outside: clipped
-  draw_text(im.rgb, im.w, im.h, -100, -100, "abc", {0, 0, 0}, 2);  // wholly outside
-  draw_text_vertical(im.rgb, im.w, im.h, 50, 50, "abc", {0, 0, 0}, 2);
-  EXPECT_GT(im.count(), 0);
-  std::vector<std::uint8_t> small(5);
-  EXPECT_THROW(draw_text(small, 10, 4, 0, 0, "a", {0, 0, 0}), InvalidInput);
-  EXPECT_THROW(draw_text_vertical(small, 10, 4, 0, 0, "a", {0, 0, 0}), InvalidInput);
-  EXPECT_THROW(draw_text(small, -1, 4, 0, 0, "a", {0, 0, 0}), InvalidInput);
+TEST(CsvTable, HugeRowCountStaysLinear) {
+  std::string text = "id,v\n";
+  for (int i = 0; i < 100000; ++i) text += std::to_string(i) + "," + std::to_string(i * 0.5) + "\n";
+  const CsvTable t = CsvTable::parse(text, "big.csv");
+  ASSERT_EQ(t.size(), 100000u);
+  EXPECT_EQ(t.number(99999, 1), 99999 * 0.5);
 }
 
 }  // namespace

@@ -116,6 +116,19 @@ TEST(WeightSet, BadInputsNameFileAndField) {
       R"( "sources": [], "targets": [{"name": "smileLeft", "terms": {"x": 1}}]})",
       "not an ARKit blend shape");
   EXPECT_THROW(read_weight_set("/nonexistent/w.json"), IoError);
+  // Unknown fields inside targets and sources are errors too in a 1.0 file (core::JsonReader).
+  expect_format_error(minimal(R"([{"name": "a", "terms": {"x": 1}, "notes": "typo"}])"),
+                      "at /targets/0/notes: unknown field \"notes\"");
+}
+
+TEST(WeightSet, NewerMinorVersionMayAddFields) {
+  const std::string doc =
+      R"({"format": "emoface.faceweights", "version": "1.4", "set": "x", "naming": "facs",)"
+      R"( "colour": 1, "sources": [{"id": "s", "citation": "c", "doi": "d"}],)"
+      R"( "targets": [{"name": "a", "terms": {"x": 1}, "sources": ["s"], "weight_hint": 2}]})";
+  const WeightSet s = parse_weight_set(doc, "w.json");
+  ASSERT_EQ(s.targets.size(), 1u);
+  EXPECT_EQ(s.targets[0].terms[0].weight, 1.0);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/shard.hpp"
 
 namespace emoface::fuzzyexpr {
 namespace {
@@ -201,7 +202,7 @@ TEST(EsvReader, SkipsVersionStampsAndStreamHeaders) {
   EXPECT_THROW(EsvReader(only_stamp, "x.csv"), FormatError);
 }
 
-TEST(ConvertStream, ShardsPartitionTheRowsAndAgreeWithOneRun) {
+TEST(ConvertStream, ContiguousShardsMergeBackToOneRunByteForByte) {
   std::string text = kHeader;
   for (int i = 0; i < 50; ++i)
     text += "r" + std::to_string(i) + ",0.4,0.4,0.4," + std::to_string(i / 50.0) + ",0,0\n";
@@ -209,36 +210,36 @@ TEST(ConvertStream, ShardsPartitionTheRowsAndAgreeWithOneRun) {
   eo.tie_break = TieBreak::Random;
   eo.seed = 3;
   Engine engine(default_rule_base(), eo);
-  auto run = [&](std::size_t i, std::size_t n) {
+  auto run = [&](std::size_t i, std::size_t n, std::size_t* written = nullptr) {
+    std::istringstream counting(text);
+    EsvReader c(counting, "t.csv");
     std::istringstream in(text);
     EsvReader r(in, "t.csv");
     FmcvWriter w({}, r.extra_columns());
     BatchOptions b;
     b.shard_index = i;
     b.shard_count = n;
+    b.total_records = count_records(c);
     std::string out;
     auto rep = convert_stream(r, w, engine, b, [&](std::string_view s) { out += s; });
     EXPECT_EQ(rep.records_read, 50u);
+    if (written) *written = rep.records_written;
     return out;
   };
   const std::string whole = run(0, 1);
-  std::string lines_of_shards;
-  for (std::size_t i = 0; i < 3; ++i) {
-    std::string part = run(i, 3);
-    part.erase(0, emoface::core::csv_stamp().size());    // drop the stamp
-    lines_of_shards += part.substr(part.find('\n') + 1);  // and the header
-  }
-  // Same set of lines (shards interleave rows; sort to compare).
-  auto sorted_lines = [](const std::string& s) {
-    std::vector<std::string> v;
-    std::istringstream in(s);
-    for (std::string l; std::getline(in, l);) v.push_back(l);
-    std::sort(v.begin(), v.end());
-    return v;
-  };
-  const std::string body = whole.substr(emoface::core::csv_stamp().size());
-  EXPECT_EQ(sorted_lines(body.substr(body.find('\n') + 1)), sorted_lines(lines_of_shards));
+  std::vector<std::string> parts;
+  std::size_t sizes[3];
+  for (std::size_t i = 0; i < 3; ++i) parts.push_back(run(i, 3, &sizes[i]));
+  // Blocks of floor(i·50/3): 16, 17, 17 rows, in order; r16 opens shard 1.
+  EXPECT_EQ(sizes[0], 16u);
+  EXPECT_EQ(sizes[1], 17u);
+  EXPECT_EQ(sizes[2], 17u);
+  EXPECT_NE(parts[1].find("\nr16,"), std::string::npos);
+  EXPECT_EQ(emoface::core::merge_shard_outputs(parts), whole);
   EXPECT_EQ(whole, run(0, 1));  // deterministic
+  BatchOptions unknown;
+  unknown.shard_count = 2;
+  EXPECT_THROW(unknown.validate(), InvalidInput);
 }
 
 TEST(ConvertStream, SkipCountsBadRecordsStopRethrows) {

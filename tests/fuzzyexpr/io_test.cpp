@@ -88,6 +88,12 @@ TEST(RuleFile, BadContentNamesTheField) {
              "assigned twice");
   expect_bad([](Json& d) { d["no_blend"].erase(1); }, "/blend", "sadness+surprise");
   expect_bad([](Json& d) { d["blend"][0]["extra"] = 1; }, "/blend/0/extra", "unknown field");
+  // A typo at the root of a same-version file is an error (issue 18: core::JsonReader's rule).
+  expect_bad([](Json& d) { d["no_blnd"] = Json::array(); }, "/no_blnd", "unknown field");
+  expect_bad([](Json& d) { d["input_sets"][0]["points"] = 3; }, "/input_sets/0/points",
+             "expected 3 numbers");
+  expect_bad([](Json& d) { d["single"] = Json::array(); }, "/single",
+             "expected an object, got an array");
 }
 
 TEST(RuleFile, NewerMinorVersionMayAddFields) {

@@ -90,11 +90,47 @@ TEST(ParameterFrames, RejectsBadInput) {
   expect_error("[1, 2]", FrameFormat::Json, 0);
   expect_error("{\"format\": \"emoface.params\", \"version\": \"9.0\", \"frames\": []}", FrameFormat::Json, 0);
   expect_error("{\"format\": \"emoface.params\", \"version\": \"1.0\", \"frames\": [{\"parameters\": {\"masseter\": -1}}]}", FrameFormat::Json, 0);
+  expect_error("[1]\n", FrameFormat::Ndjson, 1);  // not an object
+  expect_error("{\"time\": \"x\", \"masseter\": 0.1}\n", FrameFormat::Ndjson, 1);
   FrameReadOptions lenient;
   lenient.ignore_unknown_columns = true;
   EXPECT_NO_THROW(csv("smile,masseter\n1,0.5\n", lenient));
   lenient.fps = 0.0;
   EXPECT_THROW(csv("masseter\n1\n", lenient), InvalidInput);
+}
+
+// The unknown-field rule of docs/formats.md through core::JsonReader (issue 18): a typo in a 1.0
+// "emoface.params" file is an error naming it; a newer minor (1.3) may add fields.
+TEST(ParameterFrames, UnknownFieldRuleOfTheParamsEnvelope) {
+  const std::string body =
+      R"("fps": 10, "frames": [{"time": 0.5, "parameters": {"masseter": 0.25}, "note": "x"}]})";
+  try {
+    parse_parameter_frames(R"({"format": "emoface.params", "version": "1.0", )" + body,
+                           FrameFormat::Json, "p.json");
+    FAIL();
+  } catch (const FormatError& e) {
+    EXPECT_STREQ(e.what(), "p.json: at /frames/0/note: unknown field \"note\"");
+  }
+  const auto frames = parse_parameter_frames(
+      R"({"format": "emoface.params", "version": "1.3", )" + body, FrameFormat::Json, "p.json");
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].time, 0.5);
+  EXPECT_EQ(frames[0].values[parameter_index("masseter")], 0.25);
+  try {
+    parse_parameter_frames(
+        R"({"format": "emoface.params", "version": "1.0", "fps": -1, "frames": []})",
+        FrameFormat::Json, "p.json");
+    FAIL();
+  } catch (const FormatError& e) {
+    EXPECT_STREQ(e.what(), "p.json: at /fps: fps must be a number in (0, 1000]");
+  }
+}
+
+TEST(ParameterFrames, CsvSkipsStampsAndRepeatedHeadersOfConcatenatedShards) {
+  const std::string shard = "# emoface 0.1.0\ntime,masseter\n0,0.5\n";
+  const auto frames = parse_parameter_frames(shard + shard, FrameFormat::Csv, "cat.csv");
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[1].values[parameter_index("masseter")], 0.5);
 }
 
 }  // namespace

@@ -56,20 +56,11 @@ int run(std::string_view tool, const std::function<int()>& body) {
 }
 
 Shard parse_shard(std::string_view text) {
-  auto bad = [&]() {
-    return UsageError("--shard: expected i/N with 0 <= i < N, got \"" + std::string(text) + "\"");
-  };
-  auto slash = text.find('/');
-  if (slash == std::string_view::npos) throw bad();
-  auto parse_size = [&](std::string_view part) {
-    std::size_t value = 0;
-    auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
-    if (part.empty() || ec != std::errc() || ptr != part.data() + part.size()) throw bad();
-    return value;
-  };
-  Shard s{parse_size(text.substr(0, slash)), parse_size(text.substr(slash + 1))};
-  if (s.count == 0 || s.index >= s.count) throw bad();
-  return s;
+  try {
+    return core::parse_shard(text);
+  } catch (const InvalidInput& e) {
+    throw UsageError(e.what());
+  }
 }
 
 Output::Output(const std::string& path) {

@@ -2,71 +2,32 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <set>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
+#include "emoface/core/text.hpp"
 
 namespace emoface::channels {
 
 namespace {
 
 using Json = nlohmann::ordered_json;
+using core::JsonValue;
 
-[[noreturn]] void fail(const std::string& file, const std::string& pointer, const std::string& msg) {
-  SourceLocation where;
-  where.file = file;
-  where.json_pointer = pointer.empty() ? "/" : pointer;
-  throw FormatError(where, msg);
-}
-
-const Json& field(const Json& obj, const char* key, const std::string& file, const std::string& ptr) {
-  const auto it = obj.find(key);
-  if (it == obj.end()) fail(file, ptr, std::string("missing field \"") + key + "\"");
-  return *it;
-}
-
-double number(const Json& v, const std::string& file, const std::string& ptr) {
-  if (!v.is_number()) fail(file, ptr, "expected a number");
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) fail(file, ptr, "not a finite number");
-  return d;
-}
-
-std::string string(const Json& v, const std::string& file, const std::string& ptr) {
-  if (!v.is_string()) fail(file, ptr, "expected a string");
-  return v.get<std::string>();
-}
-
-const Json& object(const Json& v, const std::string& file, const std::string& ptr) {
-  if (!v.is_object()) fail(file, ptr, "expected an object");
-  return v;
-}
-
-const Json& array(const Json& v, const std::string& file, const std::string& ptr) {
-  if (!v.is_array()) fail(file, ptr, "expected an array");
-  return v;
-}
-
-std::string tok(const std::string& s) { return core::json_pointer_token(s); }
-
-Dominance parse_dominance(const Json& j, const std::string& file, const std::string& ptr) {
-  object(j, file, ptr);
+Dominance parse_dominance(const JsonValue& j) {
+  j.only_keys({"alpha", "theta_anticipatory", "theta_carryover", "c", "peak_offset"});
   Dominance d;
-  for (const auto& [k, v] : j.items()) {
-    const std::string p = ptr + "/" + tok(k);
-    if (k == "alpha") d.alpha = number(v, file, p);
-    else if (k == "theta_anticipatory") d.theta_anticipatory = number(v, file, p);
-    else if (k == "theta_carryover") d.theta_carryover = number(v, file, p);
-    else if (k == "c") d.c = number(v, file, p);
-    else if (k == "peak_offset") d.peak_offset = number(v, file, p);
-    else fail(file, p, "unknown dominance field \"" + k + "\"");
-  }
+  d.alpha = j.number_or("alpha", d.alpha);
+  d.theta_anticipatory = j.number_or("theta_anticipatory", d.theta_anticipatory);
+  d.theta_carryover = j.number_or("theta_carryover", d.theta_carryover);
+  d.c = j.number_or("c", d.c);
+  d.peak_offset = j.number_or("peak_offset", d.peak_offset);
   try {
     d.validate();
   } catch (const InvalidInput& e) {
-    fail(file, ptr, e.what());
+    j.fail(e.what());
   }
   return d;
 }
@@ -78,41 +39,31 @@ Json dominance_json(const Dominance& d) {
 
 }  // namespace
 
+// The readers below go through core::JsonReader: located errors and the unknown-field rule of
+// docs/formats.md (unknown fields are errors in files of this or an older minor version).
 VisemeSet parse_visemes(std::string_view text, const std::string& file) {
-  const Json doc = core::parse_json(text, file);
-  core::check_envelope(doc, "channels.visemes", {1, 0}, file);
+  const core::JsonReader reader(text, file, "channels.visemes", {1, 0});
+  const JsonValue doc = reader.root();
+  doc.only_keys({"silence", "visemes", "phonemes"});
   VisemeSet set;
-  if (doc.contains("silence")) set.silence = string(doc["silence"], file, "/silence");
-  const Json& vs = array(field(doc, "visemes", file, ""), file, "/visemes");
-  for (std::size_t i = 0; i < vs.size(); ++i) {
-    const std::string p = "/visemes/" + std::to_string(i);
-    const Json& v = object(vs[i], file, p);
+  set.silence = doc.string_or("silence", set.silence);
+  for (const JsonValue& v : doc.at("visemes").items()) {
+    v.only_keys({"name", "dominance", "targets", "per_parameter", "note"});
     Viseme vis;
-    vis.name = string(field(v, "name", file, p), file, p + "/name");
-    if (v.contains("dominance")) vis.dominance = parse_dominance(v["dominance"], file, p + "/dominance");
-    if (v.contains("targets")) {
-      for (const auto& [k, t] : object(v["targets"], file, p + "/targets").items())
-        vis.targets.push_back({k, number(t, file, p + "/targets/" + tok(k))});
-    }
-    if (v.contains("per_parameter")) {
-      for (const auto& [k, d] : object(v["per_parameter"], file, p + "/per_parameter").items())
-        vis.per_parameter[k] = parse_dominance(d, file, p + "/per_parameter/" + tok(k));
-    }
-    for (const auto& [k, unused] : v.items()) {
-      (void)unused;
-      if (k != "name" && k != "dominance" && k != "targets" && k != "per_parameter" && k != "note")
-        fail(file, p + "/" + tok(k), "unknown viseme field \"" + k + "\"");
-    }
+    vis.name = v.at("name").string();
+    if (auto d = v.find("dominance")) vis.dominance = parse_dominance(*d);
+    if (auto targets = v.find("targets"))
+      for (const auto& [k, t] : targets->members()) vis.targets.push_back({k, t.number()});
+    if (auto pp = v.find("per_parameter"))
+      for (const auto& [k, d] : pp->members()) vis.per_parameter[k] = parse_dominance(d);
     set.visemes.push_back(std::move(vis));
   }
-  if (doc.contains("phonemes")) {
-    for (const auto& [k, v] : object(doc["phonemes"], file, "/phonemes").items())
-      set.phoneme_to_viseme[k] = string(v, file, "/phonemes/" + tok(k));
-  }
+  if (auto ph = doc.find("phonemes"))
+    for (const auto& [k, v] : ph->members()) set.phoneme_to_viseme[k] = v.string();
   try {
     set.validate();
   } catch (const InvalidInput& e) {
-    fail(file, "/visemes", e.what());
+    doc.at("visemes").fail(e.what());
   }
   return set;
 }
@@ -148,22 +99,21 @@ void write_visemes(const std::string& path, const VisemeSet& set) {
 }
 
 ConflictTable parse_conflicts(std::string_view text, const std::string& file) {
-  const Json doc = core::parse_json(text, file);
-  core::check_envelope(doc, "channels.conflicts", {1, 0}, file);
+  const core::JsonReader reader(text, file, "channels.conflicts", {1, 0});
+  const JsonValue doc = reader.root();
+  doc.only_keys({"pairs"});
   ConflictTable t;
-  const Json& ps = array(field(doc, "pairs", file, ""), file, "/pairs");
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    const std::string p = "/pairs/" + std::to_string(i);
-    const Json& o = object(ps[i], file, p);
+  for (const JsonValue& o : doc.at("pairs").items()) {
+    o.only_keys({"a", "b", "rationale"});
     ConflictPair pair;
-    pair.a = string(field(o, "a", file, p), file, p + "/a");
-    pair.b = string(field(o, "b", file, p), file, p + "/b");
-    if (o.contains("rationale")) pair.rationale = string(o["rationale"], file, p + "/rationale");
+    pair.a = o.at("a").string();
+    pair.b = o.at("b").string();
+    pair.rationale = o.string_or("rationale", "");
     t.pairs.push_back(std::move(pair));
     try {
       t.validate();
     } catch (const InvalidInput& e) {
-      fail(file, p, e.what());
+      o.fail(e.what());
     }
   }
   return t;
@@ -184,28 +134,29 @@ void write_conflicts(const std::string& path, const ConflictTable& table) {
 }
 
 Tracks parse_tracks_json(std::string_view text, const std::string& file) {
-  const Json doc = core::parse_json(text, file);
-  core::check_envelope(doc, "tracks", {1, 0}, file);
+  const core::JsonReader reader(text, file, "tracks", {1, 0});
+  const JsonValue doc = reader.root();
+  doc.only_keys({"fps", "names", "frames"});
   Tracks t;
-  t.fps = number(field(doc, "fps", file, ""), file, "/fps");
-  if (!(t.fps > 0 && t.fps <= 1e6)) fail(file, "/fps", "fps must be in (0, 1e6]");
-  const Json& names = array(field(doc, "names", file, ""), file, "/names");
+  const JsonValue fps = doc.at("fps");
+  t.fps = fps.number();
+  if (!(t.fps > 0 && t.fps <= 1e6)) fps.fail("fps must be in (0, 1e6]");
+  const JsonValue names = doc.at("names");
   std::set<std::string> seen;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const std::string p = "/names/" + std::to_string(i);
-    t.names.push_back(string(names[i], file, p));
-    if (t.names.back().empty() || t.names.back() == "time") fail(file, p, "bad column name");
-    if (!seen.insert(t.names.back()).second) fail(file, p, "column \"" + t.names.back() + "\" repeated");
+  for (const JsonValue& n : names.items()) {
+    t.names.push_back(n.string());
+    if (t.names.back().empty() || t.names.back() == "time") n.fail("bad column name");
+    if (!seen.insert(t.names.back()).second) n.fail("column \"" + t.names.back() + "\" repeated");
   }
-  const Json& frames = array(field(doc, "frames", file, ""), file, "/frames");
-  if (names.empty() && !frames.empty()) fail(file, "/names", "frames without column names");
-  t.values.reserve(frames.size() * names.size());
-  for (std::size_t f = 0; f < frames.size(); ++f) {
-    const std::string p = "/frames/" + std::to_string(f);
-    const Json& row = array(frames[f], file, p);
-    if (row.size() != names.size())
-      fail(file, p, "expected " + std::to_string(names.size()) + " values, got " + std::to_string(row.size()));
-    for (std::size_t c = 0; c < row.size(); ++c) t.values.push_back(number(row[c], file, p + "/" + std::to_string(c)));
+  const JsonValue frames = doc.at("frames").expect_array();
+  if (t.names.empty() && frames.size() != 0) names.fail("frames without column names");
+  t.values.reserve(frames.size() * t.names.size());
+  for (const JsonValue& row : frames.items()) {
+    row.expect_array();
+    if (row.size() != t.names.size())
+      row.fail("expected " + std::to_string(t.names.size()) + " values, got " +
+               std::to_string(row.size()));
+    for (const JsonValue& v : row.items()) t.values.push_back(v.number());
   }
   return t;
 }
@@ -235,7 +186,7 @@ std::string format_tracks_json(const Tracks& tracks) {
 Tracks parse_tracks_csv(std::string_view text, const std::string& file) {
   Tracks t;
   std::vector<std::string> fields;
-  std::size_t line_no = 0, pos = 0, header_line = 0;
+  std::size_t line_no = 0, header_line = 0;
   const auto fail_at = [&](std::size_t col, const std::string& msg) {
     SourceLocation where;
     where.file = file;
@@ -244,13 +195,10 @@ Tracks parse_tracks_csv(std::string_view text, const std::string& file) {
     throw FormatError(where, msg);
   };
   std::vector<double> times;
-  while (pos < text.size()) {
-    std::size_t eol = text.find('\n', pos);
-    if (eol == std::string_view::npos) eol = text.size();
-    const std::string_view line = text.substr(pos, eol - pos);
-    pos = eol + 1;
-    ++line_no;
-    if (line.empty() || line == "\r") {
+  for (const core::Line& l : core::Lines(text)) {
+    const std::string_view line = l.text;
+    line_no = l.number;
+    if (line.empty()) {
       if (header_line == 0) fail_at(1, "empty header");
       continue;
     }
@@ -269,14 +217,15 @@ Tracks parse_tracks_csv(std::string_view text, const std::string& file) {
       continue;
     }
     if (fields.size() != t.names.size() + 1)
-      fail_at(0, "expected " + std::to_string(t.names.size() + 1) + " fields, got " + std::to_string(fields.size()));
+      fail_at(0, "expected " + std::to_string(t.names.size() + 1) + " fields, got " +
+                     std::to_string(fields.size()));
     for (std::size_t c = 0; c < fields.size(); ++c) {
-      const char* b = fields[c].c_str();
-      char* e = nullptr;
-      const double v = std::strtod(b, &e);
-      if (fields[c].empty() || *e != '\0' || !std::isfinite(v)) fail_at(c + 1, "not a finite number: \"" + fields[c] + "\"");
-      if (c == 0) times.push_back(v);
-      else t.values.push_back(v);
+      const auto v = core::parse_number(fields[c]);  // locale-free, finite, whole field
+      if (!v) fail_at(c + 1, "not a finite number: \"" + fields[c] + "\"");
+      if (c == 0)
+        times.push_back(*v);
+      else
+        t.values.push_back(*v);
     }
     if (t.values.size() > (std::size_t{1} << 28)) fail_at(0, "too many values");
   }

@@ -3,45 +3,23 @@
 #include <algorithm>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/vocab.hpp"
 
 namespace emoface::channels {
 
-// thesis Table 2.1 (muscle numbering 1–19, Appendix B)
+// Names from the one vocabulary (emoface/core/vocab.hpp): thesis Table 2.1 and §4.3.
 const std::vector<std::string>& muscle_names() {
-  static const std::vector<std::string> names = {
-      "zygomatic_major",          "zygomatic_minor",
-      "triangularis",             "risorius",
-      "depressor_labii",          "mentalis",
-      "orbicularis_oris_funneler", "orbicularis_oris_pressor",
-      "frontalis_medialis",       "frontalis_lateralis",
-      "levator_labii_nasi",       "levator_labii_superioris",
-      "depressor_supercilii",     "corrugator_supercilii",
-      "depressor_glabellae",      "levator_palpebrae_superioris",
-      "orbicularis_oculi_palpebralis", "orbicularis_oculi_orbitalis",
-      "masseter"};
+  static const std::vector<std::string> names(core::kMuscleNames.begin(), core::kMuscleNames.end());
   return names;
 }
 
 bool is_paired_muscle(std::string_view muscle) {
-  // thesis §4.3: every muscle has a left and right instance except the two Orbicularis Oris and
-  // the Masseter.
-  return muscle != "orbicularis_oris_funneler" && muscle != "orbicularis_oris_pressor" &&
-         muscle != "masseter";
+  // Unknown names count as paired, as before (muscle_parameters rejects them).
+  auto i = core::muscle_index(muscle);
+  return !i || core::is_paired_muscle(*i);
 }
 
-const std::vector<std::string>& default_parameter_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const auto& m : muscle_names()) {
-      for (auto& p : muscle_parameters(m)) out.push_back(std::move(p));
-    }
-    for (const char* extra : {"eye_gaze_yaw", "eye_gaze_pitch", "head_yaw", "head_pitch", "head_roll",
-                              "eye_blink_l", "eye_blink_r"})
-      out.emplace_back(extra);
-    return out;
-  }();
-  return names;
-}
+const std::vector<std::string>& default_parameter_names() { return core::parameter_names(); }
 
 bool is_signed_parameter(std::string_view name) {
   return name.rfind("eye_gaze_", 0) == 0 || name.rfind("head_", 0) == 0;

@@ -1,17 +1,17 @@
 #include "emoface/channels/script.hpp"
 
-#include <pugixml.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <pugixml.hpp>
 #include <set>
 
 #include "emoface/channels/parameters.hpp"
 #include "emoface/core/csv.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/rng.hpp"
+#include "emoface/core/vocab.hpp"
 
 namespace emoface::channels {
 
@@ -429,6 +429,19 @@ Timeline build_timeline(const Script& script, const std::vector<std::vector<Phon
     add(Channel::Head, generate_noise(0.0, end, {"head_yaw", "head_pitch", "head_roll"}, options.head, rng, "head noise"));
   }
   return tl;
+}
+
+EmotionMapper side_parameter_mapper(SideParameterFunction to_sides) {
+  static_assert(core::kSideParameterCount == 35);
+  if (!to_sides) throw InvalidInput("side_parameter_mapper: empty function");
+  return [to_sides = std::move(to_sides)](const std::array<double, 6>& esv) {
+    const std::array<double, 35> sides = to_sides(esv);
+    std::vector<Target> out;
+    out.reserve(sides.size());
+    for (std::size_t i = 0; i < sides.size(); ++i)
+      out.push_back({core::side_parameter_names()[i], sides[i]});
+    return out;
+  };
 }
 
 }  // namespace emoface::channels

@@ -8,6 +8,7 @@
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
 
 namespace emoface::channels {
 
@@ -174,47 +175,36 @@ std::string format_timing_tsv(const SpeechTiming& t) {
   return out;
 }
 
+// Through core::JsonReader: a newer minor version (1.1+) may add fields, which are ignored; in 1.0
+// files unknown fields are errors (docs/formats.md).
 SpeechTiming parse_timing_json(std::string_view text, const std::string& file) {
-  const auto doc = core::parse_json(text, file);
-  core::check_envelope(doc, "speech_timing", kTimingVersion, file);
-  for (auto it = doc.begin(); it != doc.end(); ++it)
-    if (it.key() != "format" && it.key() != "version" && it.key() != "generator" &&
-        it.key() != "kind" && it.key() != "segments")
-      fail_json(file, "/" + core::json_pointer_token(it.key()), "unknown field");
+  const core::JsonReader reader(text, file, "speech_timing", kTimingVersion);
+  const core::JsonValue doc = reader.root();
+  doc.only_keys({"kind", "segments"});
   SpeechTiming t;
-  const auto kind = doc.find("kind");
-  if (kind == doc.end() || !kind->is_string())
-    fail_json(file, "/kind", "expected \"phoneme\" or \"viseme\"");
+  const core::JsonValue kind = doc.at("kind");
+  if (!kind.is_string()) kind.fail("expected \"phoneme\" or \"viseme\"");
   try {
-    t.kind = timing_kind_from_string(kind->get<std::string>());
+    t.kind = timing_kind_from_string(kind.string());
   } catch (const InvalidInput& e) {
-    fail_json(file, "/kind", e.what());
+    kind.fail(e.what());
   }
-  const auto seg = doc.find("segments");
-  if (seg == doc.end() || !seg->is_array()) fail_json(file, "/segments", "expected an array");
-  if (seg->size() > kMaxTimingSegments) fail_json(file, "/segments", "too many segments");
-  for (std::size_t i = 0; i < seg->size(); ++i) {
-    const std::string ptr = "/segments/" + std::to_string(i);
-    const auto& s = (*seg)[i];
-    if (!s.is_object()) fail_json(file, ptr, "expected an object");
-    for (auto it = s.begin(); it != s.end(); ++it)
-      if (it.key() != "start" && it.key() != "end" && it.key() != "name")
-        fail_json(file, ptr + "/" + core::json_pointer_token(it.key()), "unknown field");
+  const core::JsonValue seg = doc.at("segments").expect_array();
+  if (seg.size() > kMaxTimingSegments) seg.fail("too many segments");
+  for (const core::JsonValue& s : seg.items()) {
+    s.only_keys({"start", "end", "name"});
     PhonemeTiming p;
-    if (!s.contains("start")) fail_json(file, ptr + "/start", "missing");
-    if (!s.contains("end")) fail_json(file, ptr + "/end", "missing");
-    if (!s.contains("name") || !s["name"].is_string())
-      fail_json(file, ptr + "/name", "expected a string");
-    p.start = json_seconds(s["start"], file, ptr + "/start");
-    p.end = json_seconds(s["end"], file, ptr + "/end");
-    p.phoneme = s["name"].get<std::string>();
+    const core::JsonValue start = s.at("start"), end = s.at("end");
+    p.start = json_seconds(start.json(), file, start.pointer());
+    p.end = json_seconds(end.json(), file, end.pointer());
+    p.phoneme = s.at("name").string();
     try {
       check_segments({p}, false);
     } catch (const InvalidInput& e) {
-      fail_json(file, ptr, e.what());
+      s.fail(e.what());
     }
     if (!t.segments.empty() && p.start < t.segments.back().end)
-      fail_json(file, ptr + "/start", "segment starts before the previous one ends");
+      start.fail("segment starts before the previous one ends");
     t.segments.push_back(std::move(p));
   }
   return t;

@@ -1,5 +1,10 @@
 #include "emoface/core/csv.hpp"
 
+#include <cstdint>
+#include <set>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/core/text.hpp"
 #include "emoface/core/version.hpp"
 
 namespace emoface::core {
@@ -110,6 +115,102 @@ std::string csv_stamp() { return std::string("# ") + kGenerator + "\n"; }
 bool is_csv_comment(std::string_view line) noexcept {
   if (line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
   return !line.empty() && line.front() == '#';
+}
+
+namespace {
+
+bool equal_ignore_case(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    char x = a[i], y = b[i];
+    if (x >= 'A' && x <= 'Z') x = static_cast<char>(x - 'A' + 'a');
+    if (y >= 'A' && y <= 'Z') y = static_cast<char>(y - 'A' + 'a');
+    if (x != y) return false;
+  }
+  return true;
+}
+
+[[noreturn]] void fail_at(const std::string& file, std::size_t line, std::size_t column,
+                          const std::string& message) {
+  SourceLocation where;
+  where.file = file;
+  where.line = line;
+  where.column = column;
+  throw FormatError(where, message);
+}
+
+}  // namespace
+
+CsvTable CsvTable::parse(std::string_view text, std::string file) {
+  CsvTable t;
+  t.file_ = std::move(file);
+  std::size_t bad = 0;
+  if (!is_valid_utf8(text, &bad)) {
+    std::size_t line = 1;
+    for (std::size_t i = 0; i < bad; ++i) line += text[i] == '\n';
+    fail_at(t.file_, line, 0, "not valid UTF-8");
+  }
+  std::vector<std::string> fields;
+  std::string why;
+  bool have_header = false;
+  for (const Line& line : Lines(text)) {
+    if (is_csv_comment(line.text) || trim(line.text).empty()) continue;
+    std::string_view body = line.text;
+    if (!have_header && body.substr(0, 3) == "\xEF\xBB\xBF") body.remove_prefix(3);
+    if (std::size_t col = split_csv_line(body, fields, &why))
+      fail_at(t.file_, line.number, col, "malformed CSV: " + why);
+    if (!have_header) {
+      std::set<std::string> seen;
+      for (std::size_t i = 0; i < fields.size(); ++i) {
+        if (trim(fields[i]).empty()) fail_at(t.file_, line.number, i + 1, "empty column name");
+        if (!seen.insert(fields[i]).second)
+          fail_at(t.file_, line.number, i + 1, "duplicate column \"" + fields[i] + "\"");
+      }
+      t.header_ = fields;
+      t.header_line_ = line.number;
+      have_header = true;
+      continue;
+    }
+    if (fields == t.header_) continue;  // the header of a concatenated shard
+    if (fields.size() != t.header_.size())
+      fail_at(t.file_, line.number, 0,
+              "expected " + std::to_string(t.header_.size()) + " fields (as the header), got " +
+                  std::to_string(fields.size()));
+    t.rows_.push_back(Row{line.number, fields});
+  }
+  if (!have_header) fail_at(t.file_, 1, 0, "no header row");
+  return t;
+}
+
+std::optional<std::size_t> CsvTable::column(std::string_view name, bool ignore_case) const {
+  for (std::size_t i = 0; i < header_.size(); ++i)
+    if (ignore_case ? equal_ignore_case(header_[i], name) : header_[i] == name) return i;
+  return std::nullopt;
+}
+
+std::size_t CsvTable::require_column(std::string_view name, bool ignore_case) const {
+  auto c = column(name, ignore_case);
+  if (!c) fail_at(file_, header_line_, 0, "missing column \"" + std::string(name) + "\"");
+  return *c;
+}
+
+const std::string& CsvTable::field(std::size_t row, std::size_t col) const {
+  if (row >= rows_.size() || col >= header_.size())
+    throw InvalidInput("CsvTable::field: row or column out of range");
+  return rows_[row].fields[col];
+}
+
+double CsvTable::number(std::size_t row, std::size_t col) const {
+  const std::string& f = field(row, col);
+  auto v = parse_number(f);
+  if (!v)
+    fail(row, col, "column \"" + header_[col] + "\": expected a finite number, got \"" + f + "\"");
+  return *v;
+}
+
+void CsvTable::fail(std::size_t row, std::size_t col, const std::string& message) const {
+  if (row >= rows_.size()) throw InvalidInput("CsvTable::fail: row out of range");
+  fail_at(file_, rows_[row].line, col == SIZE_MAX ? 0 : col + 1, message);
 }
 
 }  // namespace emoface::core

@@ -1,100 +1,94 @@
 #include "emoface/core/text.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <cstddef>
-#include <string>
-
-#include "emoface/core/errors.hpp"
+#include <charconv>
+#include <cmath>
+#include <system_error>
 
 namespace emoface::core {
-namespace {
 
-// 3×5 pixel font: each glyph is 5 rows of 3 bits (MSB = left).
-struct Glyph {
-  char c;
-  std::uint8_t rows[5];
-};
-constexpr Glyph kFont[] = {
-    {'0', {7, 5, 5, 5, 7}}, {'1', {2, 6, 2, 2, 7}},  {'2', {7, 1, 7, 4, 7}}, {'3', {7, 1, 7, 1, 7}},
-    {'4', {5, 5, 7, 1, 1}}, {'5', {7, 4, 7, 1, 7}},  {'6', {7, 4, 7, 5, 7}}, {'7', {7, 1, 1, 1, 1}},
-    {'8', {7, 5, 7, 5, 7}}, {'9', {7, 5, 7, 1, 7}},  {'a', {2, 5, 7, 5, 5}}, {'b', {6, 5, 6, 5, 6}},
-    {'c', {7, 4, 4, 4, 7}}, {'d', {6, 5, 5, 5, 6}},  {'e', {7, 4, 6, 4, 7}}, {'f', {7, 4, 6, 4, 4}},
-    {'g', {7, 4, 5, 5, 7}}, {'h', {5, 5, 7, 5, 5}},  {'i', {7, 2, 2, 2, 7}}, {'j', {1, 1, 1, 5, 7}},
-    {'k', {5, 5, 6, 5, 5}}, {'l', {4, 4, 4, 4, 7}},  {'m', {5, 7, 7, 5, 5}}, {'n', {6, 5, 5, 5, 5}},
-    {'o', {7, 5, 5, 5, 7}}, {'p', {7, 5, 7, 4, 4}},  {'q', {7, 5, 5, 7, 1}}, {'r', {7, 5, 6, 5, 5}},
-    {'s', {7, 4, 7, 1, 7}}, {'t', {7, 2, 2, 2, 2}},  {'u', {5, 5, 5, 5, 7}}, {'v', {5, 5, 5, 5, 2}},
-    {'w', {5, 5, 7, 7, 5}}, {'x', {5, 5, 2, 5, 5}},  {'y', {5, 5, 7, 2, 2}}, {'z', {7, 1, 2, 4, 7}},
-    {'-', {0, 0, 7, 0, 0}}, {'_', {0, 0, 0, 0, 7}},  {'.', {0, 0, 0, 0, 2}}, {' ', {0, 0, 0, 0, 0}},
-    {':', {0, 2, 0, 2, 0}}, {'\'', {2, 2, 0, 0, 0}}, {'!', {2, 2, 2, 0, 2}}, {',', {0, 0, 0, 2, 4}},
-    {'/', {1, 1, 2, 4, 4}}, {'+', {0, 2, 7, 2, 0}},  {'(', {1, 2, 2, 2, 1}}, {')', {4, 2, 2, 2, 4}},
-    {'%', {5, 1, 2, 4, 5}}, {'=', {0, 7, 0, 7, 0}},  {'<', {1, 2, 4, 2, 1}}, {'>', {4, 2, 1, 2, 4}},
-};
+Lines::iterator::iterator(std::string_view text) noexcept : text_(text), at_end_(false) { ++*this; }
 
-const Glyph* glyph(char ch) {
-  const char lc = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  for (const auto& g : kFont)
-    if (g.c == lc) return &g;
-  return nullptr;
-}
-
-void check(const std::vector<std::uint8_t>& rgb, int width, int height) {
-  if (width < 0 || height < 0 ||
-      rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3)
-    throw InvalidInput("draw_text: the image buffer does not hold width x height x 3 bytes");
-}
-
-void put(std::vector<std::uint8_t>& rgb, int width, int height, int x, int y, Rgb c) {
-  if (x < 0 || y < 0 || x >= width || y >= height) return;
-  const auto i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                  static_cast<std::size_t>(x)) *
-                 3;
-  rgb[i] = c[0];
-  rgb[i + 1] = c[1];
-  rgb[i + 2] = c[2];
-}
-
-}  // namespace
-
-bool has_glyph(char c) noexcept { return glyph(c) != nullptr; }
-
-int text_width(std::string_view text, int scale) noexcept {
-  return static_cast<int>(text.size()) * 4 * std::max(scale, 1);
-}
-
-void draw_text(std::vector<std::uint8_t>& rgb, int width, int height, int x, int y,
-               std::string_view text, Rgb colour, int scale) {
-  check(rgb, width, height);
-  scale = std::max(scale, 1);
-  for (char ch : text) {
-    if (const Glyph* g = glyph(ch)) {
-      for (int r = 0; r < 5; ++r)
-        for (int b = 0; b < 3; ++b)
-          if (g->rows[r] & (4 >> b))
-            for (int a = 0; a < scale; ++a)
-              for (int d = 0; d < scale; ++d)
-                put(rgb, width, height, x + b * scale + a, y + r * scale + d, colour);
-    }
-    x += 4 * scale;
+Lines::iterator& Lines::iterator::operator++() noexcept {
+  if (at_end_) return *this;
+  if (next_ >= text_.size()) {
+    at_end_ = true;
+    return *this;
   }
+  const std::size_t start = next_;
+  std::size_t nl = text_.find('\n', start);
+  const std::size_t stop = nl == std::string_view::npos ? text_.size() : nl;
+  next_ = nl == std::string_view::npos ? text_.size() : nl + 1;
+  std::string_view line = text_.substr(start, stop - start);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  line_.text = line;
+  ++line_.number;
+  return *this;
 }
 
-void draw_text_vertical(std::vector<std::uint8_t>& rgb, int width, int height, int x, int y,
-                        std::string_view text, Rgb colour, int scale) {
-  check(rgb, width, height);
-  scale = std::max(scale, 1);
-  // a quarter turn counter-clockwise: glyph column b → up (−y), glyph row r → right (+x)
-  for (char ch : text) {
-    if (const Glyph* g = glyph(ch)) {
-      for (int r = 0; r < 5; ++r)
-        for (int b = 0; b < 3; ++b)
-          if (g->rows[r] & (4 >> b))
-            for (int a = 0; a < scale; ++a)
-              for (int d = 0; d < scale; ++d)
-                put(rgb, width, height, x + r * scale + d, y - b * scale - a - 1, colour);
-    }
-    y -= 4 * scale;
+std::string_view trim(std::string_view s) noexcept {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+std::optional<double> parse_number(std::string_view text, bool allow_non_finite) noexcept {
+  text = trim(text);
+  bool negative = false;
+  if (!text.empty() && (text.front() == '+' || text.front() == '-')) {
+    negative = text.front() == '-';
+    text.remove_prefix(1);
   }
+  // from_chars takes its own '-'; a second sign ("+-1", "--1") must fail.
+  if (text.empty() || text.front() == '+' || text.front() == '-') return std::nullopt;
+  double value = 0.0;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  const auto [ptr, ec] = std::from_chars(first, last, value, std::chars_format::general);
+  if (ec != std::errc() || ptr != last) return std::nullopt;
+  if (!allow_non_finite && !std::isfinite(value)) return std::nullopt;
+  return negative ? -value : value;
+}
+
+std::optional<std::int64_t> parse_integer(std::string_view text) noexcept {
+  text = trim(text);
+  bool negative = false;
+  if (!text.empty() && (text.front() == '+' || text.front() == '-')) {
+    negative = text.front() == '-';
+    text.remove_prefix(1);
+  }
+  if (text.empty() || text.front() < '0' || text.front() > '9') return std::nullopt;
+  // Parse the magnitude as unsigned so that INT64_MIN reads.
+  std::uint64_t magnitude = 0;
+  const char* last = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), last, magnitude);
+  if (ec != std::errc() || ptr != last) return std::nullopt;
+  constexpr std::uint64_t kMax = static_cast<std::uint64_t>(INT64_MAX);
+  if (negative) {
+    if (magnitude > kMax + 1) return std::nullopt;
+    if (magnitude == kMax + 1) return INT64_MIN;
+    return -static_cast<std::int64_t>(magnitude);
+  }
+  if (magnitude > kMax) return std::nullopt;
+  return static_cast<std::int64_t>(magnitude);
+}
+
+std::string format_number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buf[32];
+  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value);
+  (void)ec;  // 32 bytes always hold the shortest form of a double
+  return std::string(buf, ptr);
+}
+
+std::string_view to_string(OnError value) noexcept {
+  return value == OnError::Skip ? "skip" : "stop";
+}
+
+std::optional<OnError> on_error_from_string(std::string_view text) noexcept {
+  if (text == "stop") return OnError::Stop;
+  if (text == "skip") return OnError::Skip;
+  return std::nullopt;
 }
 
 }  // namespace emoface::core

@@ -9,6 +9,7 @@
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/text.hpp"
 #include "emoface/faceweights/mapper.hpp"
 #include "emoface/faceweights/names.hpp"
 
@@ -91,7 +92,7 @@ std::optional<double> parse_live_link_timecode(std::string_view text, int fps) {
     for (std::size_t i = 1; i < rest.size(); ++i) {
       if (!std::isdigit(static_cast<unsigned char>(rest[i]))) return std::nullopt;
     }
-    sub = std::strtod(("0" + rest).c_str(), nullptr);
+    sub = core::parse_number("0" + rest).value_or(0.0);  // digits only: always parses
   }
   if (h < 0 || m < 0 || m >= 60 || s < 0 || s >= 60 || f < 0 || f >= fps) return std::nullopt;
   return static_cast<double>((h * 60 + m) * 60 + s) + (static_cast<double>(f) + sub) / fps;
@@ -213,13 +214,14 @@ WeightTrack parse_weight_track(std::string_view text, const WeightSet& set, cons
   auto fail = [&](std::size_t line, std::size_t column, const std::string& message) -> void {
     throw FormatError(SourceLocation{file, "", line, column}, message);
   };
-  std::size_t pos = 0, line_no = 0;
+  std::size_t line_no = 0;
+  const core::Lines lines(text);  // numbered, without '\r'
+  auto next = lines.begin();
   auto next_line = [&](std::string_view& line) {
-    if (pos >= text.size()) return false;
-    const std::size_t end = std::min(text.find('\n', pos), text.size());
-    line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
+    if (next == lines.end()) return false;
+    line = next->text;
+    line_no = next->number;
+    ++next;
     return true;
   };
   std::string_view line;
@@ -306,10 +308,9 @@ WeightTrack parse_weight_track(std::string_view text, const WeightSet& set, cons
         time = *t;
         continue;
       }
-      char* end = nullptr;
-      const double v = std::strtod(fields[c].c_str(), &end);
-      if (fields[c].empty() || end != fields[c].c_str() + fields[c].size())
-        fail(line_no, c + 1, "'" + header[c] + "': not a number: '" + fields[c] + "'");
+      const auto parsed = core::parse_number(fields[c], /*allow_non_finite=*/true);  // locale-free
+      if (!parsed) fail(line_no, c + 1, "'" + header[c] + "': not a number: '" + fields[c] + "'");
+      const double v = *parsed;
       if (!std::isfinite(v)) fail(line_no, c + 1, "'" + header[c] + "': NaN or infinite");
       if (col.kind == kTime) {
         if (v < 0.0) fail(line_no, c + 1, "time must be >= 0");

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
 #include "emoface/faceweights/names.hpp"
 
 namespace emoface::faceweights {
@@ -34,89 +34,39 @@ std::pair<std::string, int> split_input(const std::string& input) {
   return {input, 0};
 }
 
-class Parser {
- public:
-  explicit Parser(std::string file) : file_(std::move(file)) {}
-  [[noreturn]] void fail(const std::string& pointer, const std::string& message) const {
-    throw FormatError(SourceLocation{file_, pointer, 0, 0}, message);
+// Reads a weight set through core::JsonReader: located errors and the unknown-field rule of
+// docs/formats.md at every level (a newer minor version may add fields, which are ignored).
+WeightSet parse_document(const core::JsonValue& doc) {
+  doc.only_keys({"set", "naming", "description", "ranges", "sources", "targets"});
+  WeightSet set;
+  set.set = doc.at("set").string();
+  set.naming = doc.at("naming").string();
+  set.description = doc.string_or("description", "");
+  if (auto ranges = doc.find("ranges"))
+    for (const auto& [name, v] : ranges->members()) set.ranges[name] = v.number();
+  for (const core::JsonValue& s : doc.at("sources").items()) {
+    s.only_keys({"id", "citation"});
+    set.sources.push_back({s.at("id").string(), s.at("citation").string()});
   }
-  std::string string(const Json& obj, const char* key, const std::string& at, bool required) const {
-    auto it = obj.find(key);
-    if (it == obj.end()) {
-      if (required) fail(at, std::string("missing string field \"") + key + "\"");
-      return {};
-    }
-    if (!it->is_string()) fail(at + "/" + key, "expected a string");
-    return it->get<std::string>();
+  for (const core::JsonValue& t : doc.at("targets").items()) {
+    t.only_keys({"name", "terms", "facs", "sources", "note"});
+    Target target;
+    target.name = t.at("name").string();
+    for (const auto& [input, w] : t.at("terms").members())
+      target.terms.push_back({input, w.number()});
+    target.facs = t.string_or("facs", "");
+    target.note = t.string_or("note", "");
+    if (auto s = t.find("sources"))
+      for (const core::JsonValue& id : s->items()) target.sources.push_back(id.string());
+    set.targets.push_back(std::move(target));
   }
-  double number(const Json& v, const std::string& at) const {
-    if (!v.is_number()) fail(at, "expected a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(at, "expected a finite number");
-    return x;
+  try {
+    set.validate();
+  } catch (const InvalidInput& e) {
+    doc.at("targets").fail(e.what());
   }
-  WeightSet parse(const Json& doc) const {
-    core::check_envelope(doc, kWeightSetKind, {kWeightSetMajor, kWeightSetMinor}, file_);
-    static const std::set<std::string> known = {"format", "version", "generator", "set",
-                                                "naming", "description", "ranges", "sources",
-                                                "targets"};
-    const auto version = core::parse_format_version(doc["version"].get<std::string>());
-    for (auto it = doc.begin(); it != doc.end(); ++it) {
-      if (!known.count(it.key()) && version.minor <= kWeightSetMinor)
-        fail("/" + core::json_pointer_token(it.key()), "unknown field \"" + it.key() + "\"");
-    }
-    WeightSet set;
-    set.set = string(doc, "set", "", true);
-    set.naming = string(doc, "naming", "", true);
-    set.description = string(doc, "description", "", false);
-    if (auto it = doc.find("ranges"); it != doc.end()) {
-      if (!it->is_object()) fail("/ranges", "expected an object {parameter: radians}");
-      for (auto r = it->begin(); r != it->end(); ++r)
-        set.ranges[r.key()] = number(r.value(), "/ranges/" + core::json_pointer_token(r.key()));
-    }
-    auto sources = doc.find("sources");
-    if (sources == doc.end() || !sources->is_array()) fail("/sources", "missing array \"sources\"");
-    for (std::size_t i = 0; i < sources->size(); ++i) {
-      const auto& s = (*sources)[i];
-      const std::string at = "/sources/" + std::to_string(i);
-      if (!s.is_object()) fail(at, "expected an object {id, citation}");
-      set.sources.push_back({string(s, "id", at, true), string(s, "citation", at, true)});
-    }
-    auto targets = doc.find("targets");
-    if (targets == doc.end() || !targets->is_array()) fail("/targets", "missing array \"targets\"");
-    for (std::size_t i = 0; i < targets->size(); ++i) {
-      const auto& t = (*targets)[i];
-      const std::string at = "/targets/" + std::to_string(i);
-      if (!t.is_object()) fail(at, "expected an object {name, terms, facs, sources, note}");
-      Target target;
-      target.name = string(t, "name", at, true);
-      auto terms = t.find("terms");
-      if (terms == t.end() || !terms->is_object()) fail(at + "/terms", "expected an object {input: weight}");
-      for (auto it = terms->begin(); it != terms->end(); ++it)
-        target.terms.push_back(
-            {it.key(), number(it.value(), at + "/terms/" + core::json_pointer_token(it.key()))});
-      target.facs = string(t, "facs", at, false);
-      target.note = string(t, "note", at, false);
-      if (auto s = t.find("sources"); s != t.end()) {
-        if (!s->is_array()) fail(at + "/sources", "expected an array of source ids");
-        for (std::size_t k = 0; k < s->size(); ++k) {
-          if (!(*s)[k].is_string()) fail(at + "/sources/" + std::to_string(k), "expected a string");
-          target.sources.push_back((*s)[k].get<std::string>());
-        }
-      }
-      set.targets.push_back(std::move(target));
-    }
-    try {
-      set.validate();
-    } catch (const InvalidInput& e) {
-      fail("/targets", e.what());
-    }
-    return set;
-  }
-
- private:
-  std::string file_;
-};
+  return set;
+}
 
 }  // namespace
 
@@ -180,8 +130,8 @@ void WeightSet::validate() const {
 }
 
 WeightSet parse_weight_set(std::string_view text, const std::string& file) {
-  const Json doc = core::parse_json(text, file);
-  return Parser(file).parse(doc);
+  const core::JsonReader reader(text, file, kWeightSetKind, {kWeightSetMajor, kWeightSetMinor});
+  return parse_document(reader.root());
 }
 
 WeightSet read_weight_set(const std::string& path) {

@@ -432,4 +432,9 @@ double Engine::row_level(const RuleRow& row, double intensity) const noexcept {
   return m.level(c.levels.data(), mu);
 }
 
+std::function<SideParameters(const Esv&)> side_parameter_function(RuleBase rules) {
+  auto engine = std::make_shared<const Engine>(std::move(rules));
+  return [engine](const Esv& esv) { return expand_to_sides(engine->convert(esv)); };
+}
+
 }  // namespace emoface::fuzzyexpr

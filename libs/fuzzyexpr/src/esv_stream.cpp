@@ -9,6 +9,7 @@
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/shard.hpp"
 
 namespace emoface::fuzzyexpr {
 
@@ -441,16 +442,24 @@ std::string FmcvWriter::end() const {
 
 // ---------------------------------------------------------------------------------------------------
 
-std::string_view to_string(OnError v) noexcept { return v == OnError::Stop ? "stop" : "skip"; }
-std::optional<OnError> on_error_from_string(std::string_view s) noexcept {
-  if (s == "stop") return OnError::Stop;
-  if (s == "skip") return OnError::Skip;
-  return std::nullopt;
-}
-
 void BatchOptions::validate() const {
   if (shard_count == 0 || shard_index >= shard_count)
     throw InvalidInput("BatchOptions: shard must satisfy 0 <= index < count");
+  if (shard_count > 1 && total_records == kUnknownTotal)
+    throw InvalidInput("BatchOptions: contiguous shards need total_records (count_records)");
+}
+
+std::size_t count_records(EsvReader& reader) {
+  std::size_t n = 0;
+  EsvRecord record;
+  while (true) {
+    try {
+      if (!reader.next(record)) break;
+    } catch (const FormatError&) {
+    }
+    ++n;
+  }
+  return n;
 }
 
 BatchReport convert_stream(EsvReader& reader, FmcvWriter& writer, const Engine& engine,
@@ -460,6 +469,9 @@ BatchReport convert_stream(EsvReader& reader, FmcvWriter& writer, const Engine& 
   options.validate();
   BatchReport report;
   std::string out = writer.begin();
+  const core::Shard shard{options.shard_index, options.shard_count};
+  const std::size_t total = options.shard_count > 1 ? options.total_records : 0;
+  auto mine = [&](std::size_t idx) { return options.shard_count == 1 || shard.owns(idx, total); };
   EsvRecord record;
   const bool want_selection = static_cast<bool>(observer);
   while (true) {
@@ -467,14 +479,14 @@ BatchReport convert_stream(EsvReader& reader, FmcvWriter& writer, const Engine& 
       if (!reader.next(record)) break;
     } catch (const FormatError& e) {
       const std::size_t idx = report.records_read++;
-      if (idx % options.shard_count != options.shard_index) continue;  // another shard's problem
+      if (!mine(idx)) continue;  // another shard's problem
       if (options.on_error == OnError::Stop) throw;
       ++report.records_skipped;
       if (report.errors.size() < options.max_kept_errors) report.errors.emplace_back(e.what());
       continue;
     }
     ++report.records_read;
-    if (record.index % options.shard_count != options.shard_index) continue;
+    if (!mine(record.index)) continue;
     const Fmcv fmcv = engine.convert(record.esv, record.index);
     writer.append(out, record, fmcv);
     ++report.records_written;

@@ -6,189 +6,141 @@
 #include <set>
 
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
 
 namespace emoface::fuzzyexpr {
 namespace {
 
 using Json = nlohmann::ordered_json;
+using core::JsonValue;
 constexpr core::FormatVersion kVersion{1, 0};
 
+// Reads the rule file through core::JsonReader: located errors, and the unknown-field rule of
+// docs/formats.md (only_keys rejects unknown fields unless the file is of a newer minor version).
 class Parser {
  public:
-  Parser(std::string file, bool strict) : file_(std::move(file)), strict_(strict) {}
-
-  [[noreturn]] void fail(const std::string& pointer, const std::string& message) const {
-    throw FormatError(SourceLocation{file_, pointer, 0, 0}, message);
-  }
-
-  const Json& member(const Json& obj, const std::string& ptr, const char* key) const {
-    auto it = obj.find(key);
-    if (it == obj.end()) fail(ptr, std::string("missing field \"") + key + "\"");
-    return *it;
-  }
-  void expect_object(const Json& j, const std::string& ptr) const {
-    if (!j.is_object()) fail(ptr, "expected an object");
-  }
-  void expect_array(const Json& j, const std::string& ptr) const {
-    if (!j.is_array()) fail(ptr, "expected an array");
-  }
-  std::string string(const Json& j, const std::string& ptr) const {
-    if (!j.is_string()) fail(ptr, "expected a string");
-    return j.get<std::string>();
-  }
-  void only_keys(const Json& obj, const std::string& ptr, std::initializer_list<const char*> keys) const {
-    if (!strict_) return;  // a newer minor version may add fields
-    for (auto it = obj.begin(); it != obj.end(); ++it) {
-      bool known = false;
-      for (const char* k : keys) known = known || it.key() == k;
-      if (!known)
-        fail(ptr + "/" + core::json_pointer_token(it.key()), "unknown field \"" + it.key() + "\"");
-    }
-  }
-
-  std::vector<FuzzySet> sets(const Json& j, const std::string& ptr) const {
-    expect_array(j, ptr);
+  std::vector<FuzzySet> sets(const JsonValue& j) const {
     std::vector<FuzzySet> out;
-    for (std::size_t i = 0; i < j.size(); ++i) {
-      const std::string p = ptr + "/" + std::to_string(i);
-      const Json& s = j[i];
-      expect_object(s, p);
-      only_keys(s, p, {"name", "shape", "points"});
+    for (const JsonValue& s : j.items()) {
+      s.only_keys({"name", "shape", "points"});
       FuzzySet set;
-      set.name = string(member(s, p, "name"), p + "/name");
-      auto shape = set_shape_from_string(string(member(s, p, "shape"), p + "/shape"));
-      if (!shape) fail(p + "/shape", "unknown shape (expected \"triangle\" or \"trapezoid\")");
+      set.name = s.at("name").string();
+      const JsonValue shape_value = s.at("shape");
+      auto shape = set_shape_from_string(shape_value.string());
+      if (!shape) shape_value.fail("unknown shape (expected \"triangle\" or \"trapezoid\")");
       set.shape = *shape;
-      const Json& pts = member(s, p, "points");
+      const JsonValue pts = s.at("points");
       const std::size_t want = set.shape == SetShape::Triangle ? 3 : 4;
       if (!pts.is_array() || pts.size() != want)
-        fail(p + "/points", "expected " + std::to_string(want) + " numbers for a " +
-                                std::string(to_string(set.shape)));
+        pts.fail("expected " + std::to_string(want) + " numbers for a " +
+                 std::string(to_string(set.shape)));
       double v[4];
-      for (std::size_t k = 0; k < want; ++k) {
-        if (!pts[k].is_number()) fail(p + "/points/" + std::to_string(k), "expected a number");
-        v[k] = pts[k].get<double>();
-        if (!std::isfinite(v[k])) fail(p + "/points/" + std::to_string(k), "not a finite number");
-      }
+      for (std::size_t k = 0; k < want; ++k) v[k] = pts[k].number();
       set.points = want == 3 ? std::array<double, 4>{v[0], v[1], v[1], v[2]}
                              : std::array<double, 4>{v[0], v[1], v[2], v[3]};
       try {
         set.validate();
       } catch (const InvalidInput& e) {
-        fail(p + "/points", e.what());
+        pts.fail(e.what());
       }
       out.push_back(std::move(set));
     }
-    if (out.size() < 2 || out.size() > 16) fail(ptr, "need 2 to 16 fuzzy sets");
+    if (out.size() < 2 || out.size() > 16) j.fail("need 2 to 16 fuzzy sets");
     std::set<std::string> names;
     for (std::size_t i = 0; i < out.size(); ++i)
       if (!names.insert(out[i].name).second)
-        fail(ptr + "/" + std::to_string(i) + "/name", "duplicate set name \"" + out[i].name + "\"");
+        j[i].at("name").fail("duplicate set name \"" + out[i].name + "\"");
     return out;
   }
 
-  Emotion emotion(const Json& j, const std::string& ptr) const {
-    auto e = emotion_from_string(string(j, ptr));
-    if (!e) fail(ptr, "unknown emotion \"" + j.get<std::string>() + "\"");
+  static Emotion emotion(const JsonValue& j) {
+    const std::string name = j.string();
+    auto e = emotion_from_string(name);
+    if (!e) j.fail("unknown emotion \"" + name + "\"");
     return *e;
   }
-  std::vector<Muscle> muscles(const Json& j, const std::string& ptr) const {
-    expect_array(j, ptr);
+  static std::vector<Muscle> muscles(const JsonValue& j) {
     std::vector<Muscle> out;
-    for (std::size_t i = 0; i < j.size(); ++i) {
-      const std::string p = ptr + "/" + std::to_string(i);
-      auto m = muscle_from_string(string(j[i], p));
-      if (!m) fail(p, "unknown muscle \"" + j[i].get<std::string>() + "\"");
+    for (const JsonValue& item : j.items()) {
+      const std::string name = item.string();
+      auto m = muscle_from_string(name);
+      if (!m) item.fail("unknown muscle \"" + name + "\"");
       out.push_back(*m);
     }
     return out;
   }
 
-  RuleBase parse(const Json& doc) const {
+  RuleBase parse(const JsonValue& doc) const {
     RuleBase r;
-    only_keys(doc, "", {"format", "version", "generator", "source", "input_sets", "output_sets",
-                        "single", "blend", "no_blend"});
-    r.input_sets = sets(member(doc, "", "input_sets"), "/input_sets");
-    r.output_sets = sets(member(doc, "", "output_sets"), "/output_sets");
+    doc.only_keys({"source", "input_sets", "output_sets", "single", "blend", "no_blend"});
+    r.input_sets = sets(doc.at("input_sets"));
+    r.output_sets = sets(doc.at("output_sets"));
     if (!covers_unit_interval(r.input_sets))
-      fail("/input_sets", "the input sets do not cover [0, 1]: some intensity belongs to no set");
-    const Json& single = member(doc, "", "single");
-    expect_object(single, "/single");
-    for (auto it = single.begin(); it != single.end(); ++it) {
-      const std::string ep = "/single/" + core::json_pointer_token(it.key());
-      auto e = emotion_from_string(it.key());
-      if (!e) fail(ep, "unknown emotion \"" + it.key() + "\"");
-      expect_array(*it, ep);
+      doc.at("input_sets")
+          .fail("the input sets do not cover [0, 1]: some intensity belongs to no set");
+    for (const auto& [key, rows] : doc.at("single").members()) {
+      auto e = emotion_from_string(key);
+      if (!e) rows.fail("unknown emotion \"" + key + "\"");
       std::set<Muscle> seen;
-      for (std::size_t i = 0; i < it->size(); ++i) {
-        const std::string p = ep + "/" + std::to_string(i);
-        const Json& jr = (*it)[i];
-        expect_object(jr, p);
-        only_keys(jr, p, {"muscles", "levels"});
+      for (const JsonValue& jr : rows.items()) {
+        jr.only_keys({"muscles", "levels"});
         RuleRow row;
-        row.muscles = muscles(member(jr, p, "muscles"), p + "/muscles");
-        if (row.muscles.empty()) fail(p + "/muscles", "a row must list at least one muscle");
+        const JsonValue jm = jr.at("muscles");
+        row.muscles = muscles(jm);
+        if (row.muscles.empty()) jm.fail("a row must list at least one muscle");
         for (std::size_t k = 0; k < row.muscles.size(); ++k)
           if (!seen.insert(row.muscles[k]).second)
-            fail(p + "/muscles/" + std::to_string(k),
-                 "muscle already has rules for " + it.key());
-        const Json& lv = member(jr, p, "levels");
+            jm[k].fail("muscle already has rules for " + key);
+        const JsonValue lv = jr.at("levels");
         if (!lv.is_array() || lv.size() != r.input_sets.size())
-          fail(p + "/levels", "expected one level per input set (" +
-                                  std::to_string(r.input_sets.size()) + "), null for no rule");
-        for (std::size_t k = 0; k < lv.size(); ++k) {
-          const std::string lp = p + "/levels/" + std::to_string(k);
-          if (lv[k].is_null()) {
+          lv.fail("expected one level per input set (" + std::to_string(r.input_sets.size()) +
+                  "), null for no rule");
+        for (const JsonValue& level : lv.items()) {
+          if (level.is_null()) {
             row.levels.push_back(kNoRule);
             continue;
           }
-          const std::string name = string(lv[k], lp);
+          const std::string name = level.string();
           int found = kNoRule;
           for (std::size_t o = 0; o < r.output_sets.size(); ++o)
             if (r.output_sets[o].name == name) found = static_cast<int>(o);
-          if (found == kNoRule) fail(lp, "undefined output set \"" + name + "\"");
+          if (found == kNoRule) level.fail("undefined output set \"" + name + "\"");
           row.levels.push_back(found);
         }
         r.single[index(*e)].push_back(std::move(row));
       }
     }
     std::set<std::pair<Emotion, Emotion>> pairs;
-    auto add_pair = [&](Emotion a, Emotion b, const std::string& p) {
-      if (a == b) fail(p, "a pair needs two different emotions");
+    auto add_pair = [&](Emotion a, Emotion b, const JsonValue& at) {
+      if (a == b) at.fail("a pair needs two different emotions");
       auto key = std::minmax(a, b);
       if (!pairs.insert({key.first, key.second}).second)
-        fail(p, "emotion pair listed more than once (in blend or no_blend)");
+        at.fail("emotion pair listed more than once (in blend or no_blend)");
     };
-    const Json& blend = member(doc, "", "blend");
-    expect_array(blend, "/blend");
-    for (std::size_t i = 0; i < blend.size(); ++i) {
-      const std::string p = "/blend/" + std::to_string(i);
-      const Json& jb = blend[i];
-      expect_object(jb, p);
-      only_keys(jb, p, {"emotions", "first", "second"});
-      const Json& em = member(jb, p, "emotions");
-      if (!em.is_array() || em.size() != 2) fail(p + "/emotions", "expected two emotion names");
+    for (const JsonValue& jb : doc.at("blend").items()) {
+      jb.only_keys({"emotions", "first", "second"});
+      const JsonValue em = jb.at("emotions");
+      if (!em.is_array() || em.size() != 2) em.fail("expected two emotion names");
       BlendRule b;
-      b.first = emotion(em[0], p + "/emotions/0");
-      b.second = emotion(em[1], p + "/emotions/1");
-      add_pair(b.first, b.second, p + "/emotions");
-      b.first_muscles = muscles(member(jb, p, "first"), p + "/first");
-      b.second_muscles = muscles(member(jb, p, "second"), p + "/second");
+      b.first = emotion(em[0]);
+      b.second = emotion(em[1]);
+      add_pair(b.first, b.second, em);
+      const JsonValue first = jb.at("first"), second = jb.at("second");
+      b.first_muscles = muscles(first);
+      b.second_muscles = muscles(second);
       std::set<Muscle> seen;
-      for (auto [list, name] : {std::pair{&b.first_muscles, "/first/"}, std::pair{&b.second_muscles, "/second/"}})
+      for (auto [list, where] :
+           {std::pair{&b.first_muscles, &first}, std::pair{&b.second_muscles, &second}})
         for (std::size_t k = 0; k < list->size(); ++k)
           if (!seen.insert((*list)[k]).second)
-            fail(p + name + std::to_string(k), "muscle assigned twice in this blend");
+            (*where)[k].fail("muscle assigned twice in this blend");
       r.blend.push_back(std::move(b));
     }
-    if (auto nb = doc.find("no_blend"); nb != doc.end()) {
-      expect_array(*nb, "/no_blend");
-      for (std::size_t i = 0; i < nb->size(); ++i) {
-        const std::string p = "/no_blend/" + std::to_string(i);
-        const Json& pr = (*nb)[i];
-        if (!pr.is_array() || pr.size() != 2) fail(p, "expected two emotion names");
-        Emotion a = emotion(pr[0], p + "/0"), b = emotion(pr[1], p + "/1");
-        add_pair(a, b, p);
+    if (auto nb = doc.find("no_blend")) {
+      for (const JsonValue& pr : nb->items()) {
+        if (!pr.is_array() || pr.size() != 2) pr.fail("expected two emotion names");
+        Emotion a = emotion(pr[0]), b = emotion(pr[1]);
+        add_pair(a, b, pr);
         r.no_blend.emplace_back(a, b);
       }
     }
@@ -196,21 +148,17 @@ class Parser {
       for (std::size_t a = 0; a < kEmotionCount; ++a)
         for (std::size_t b = a + 1; b < kEmotionCount; ++b)
           if (!pairs.count({emotion_at(a), emotion_at(b)}))
-            fail("/blend", "emotion pair " + std::string(to_string(emotion_at(a))) + "+" +
-                               std::string(to_string(emotion_at(b))) +
-                               " is in neither blend nor no_blend");
+            doc.at("blend").fail("emotion pair " + std::string(to_string(emotion_at(a))) + "+" +
+                                 std::string(to_string(emotion_at(b))) +
+                                 " is in neither blend nor no_blend");
     }
     try {
       r.validate();  // anything the located checks above did not catch
     } catch (const InvalidInput& e) {
-      fail("", e.what());
+      doc.fail(e.what());
     }
     return r;
   }
-
- private:
-  std::string file_;
-  bool strict_;
 };
 
 Json sets_json(const std::vector<FuzzySet>& sets) {
@@ -237,9 +185,8 @@ Json muscles_json(const std::vector<Muscle>& ms) {
 }  // namespace
 
 RuleBase parse_rule_base(std::string_view json_text, const std::string& file) {
-  const Json doc = core::parse_json(json_text, file);
-  const auto version = core::check_envelope(doc, kRuleFileKind, kVersion, file);
-  return Parser(file, version.minor <= kVersion.minor).parse(doc);
+  const core::JsonReader reader(json_text, file, kRuleFileKind, kVersion);
+  return Parser().parse(reader.root());
 }
 
 RuleBase read_rule_base(const std::string& path) {

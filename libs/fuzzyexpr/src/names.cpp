@@ -3,33 +3,16 @@
 #include <cctype>
 #include <string>
 
+#include "emoface/core/vocab.hpp"
+
 namespace emoface::fuzzyexpr {
 namespace {
 
-constexpr std::array<std::string_view, kEmotionCount> kEmotionNames = {
-    "sadness", "happiness", "anger", "fear", "disgust", "surprise"};
-
-constexpr std::array<std::string_view, kMuscleCount> kMuscleNames = {
-    "zygomatic_major",
-    "zygomatic_minor",
-    "triangularis",
-    "risorius",
-    "depressor_labii",
-    "mentalis",
-    "orbicularis_oris_funneler",
-    "orbicularis_oris_pressor",
-    "frontalis_medialis",
-    "frontalis_lateralis",
-    "levator_labii_nasi",
-    "levator_labii_superioris",
-    "depressor_supercilii",
-    "corrugator_supercilii",
-    "depressor_glabellae",
-    "levator_palpebrae_superioris",
-    "orbicularis_oculi_palpebralis",
-    "orbicularis_oculi_orbitalis",
-    "masseter",
-};
+// The names come from the one vocabulary (emoface/core/vocab.hpp); the enums here number them.
+static_assert(kEmotionCount == core::kEmotionCount && kMuscleCount == core::kMuscleCount &&
+              kSideParameterCount == core::kSideParameterCount);
+constexpr const auto& kEmotionNames = core::kEmotionNames;
+constexpr const auto& kMuscleNames = core::kMuscleNames;
 
 bool iequals(std::string_view a, std::string_view b) noexcept {
   if (a.size() != b.size()) return false;
@@ -39,19 +22,10 @@ bool iequals(std::string_view a, std::string_view b) noexcept {
 }
 
 struct SideNames {
-  std::array<std::string, kSideParameterCount> storage;
   std::array<std::string_view, kSideParameterCount> views;
   SideNames() {
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < kMuscleCount; ++i) {
-      if (is_paired(muscle_at(i))) {
-        storage[k++] = std::string(kMuscleNames[i]) + "_l";
-        storage[k++] = std::string(kMuscleNames[i]) + "_r";
-      } else {
-        storage[k++] = std::string(kMuscleNames[i]);
-      }
-    }
-    for (std::size_t j = 0; j < kSideParameterCount; ++j) views[j] = storage[j];
+    for (std::size_t j = 0; j < kSideParameterCount; ++j)
+      views[j] = core::side_parameter_names()[j];
   }
 };
 
@@ -72,10 +46,7 @@ std::optional<Muscle> muscle_from_string(std::string_view name) noexcept {
   return std::nullopt;
 }
 
-bool is_paired(Muscle m) noexcept {
-  return m != Muscle::OrbicularisOrisFunneler && m != Muscle::OrbicularisOrisPressor &&
-         m != Muscle::Masseter;
-}
+bool is_paired(Muscle m) noexcept { return core::is_paired_muscle(index(m)); }
 
 const std::array<std::string_view, kSideParameterCount>& side_parameter_names() noexcept {
   static const SideNames names;

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "emoface/core/errors.hpp"
-#include "emoface/core/text.hpp"
+#include "emoface/core/font.hpp"
 
 namespace emoface::mindmap {
 

@@ -16,7 +16,7 @@
 #include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
-#include "emoface/core/text.hpp"
+#include "emoface/core/font.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/mindmap/chart.hpp"

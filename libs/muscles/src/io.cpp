@@ -1,15 +1,17 @@
 #include "emoface/muscles/io.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
+#include "emoface/core/text.hpp"
 #include "emoface/muscles/parameters.hpp"
 
 namespace emoface::muscles {
@@ -61,18 +63,18 @@ void fill_named(const Json& obj, ParameterFrame& frame, const std::string& sourc
   }
 }
 
-double parse_number(const std::string& field, const std::string& source, std::size_t line, std::size_t column) {
-  if (field.empty()) fail_at(source, line, column, "empty field");
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(field, &used);
-  } catch (const std::exception&) {
-    fail_at(source, line, column, "not a number: '" + field + "'");
-  }
-  if (used != field.size()) fail_at(source, line, column, "not a number: '" + field + "'");
-  if (!std::isfinite(v)) fail_at(source, line, column, "not a finite number: '" + field + "'");
-  return v;
+// One CSV field as a number (core::parse_number: locale-free, finite, whole field).
+double csv_number(const core::CsvTable& table, std::size_t row, std::size_t column) {
+  const std::string& field = table.field(row, column);
+  if (field.empty()) table.fail(row, column, "empty field");
+  auto v = core::parse_number(field);
+  if (!v) table.fail(row, column, "not a finite number: '" + field + "'");
+  return *v;
+}
+
+// A frame's "time" member, if any.
+void read_time(const core::JsonValue& obj, ParameterFrame& f) {
+  if (auto t = obj.find("time")) f.time = t->number();
 }
 
 }  // namespace
@@ -114,26 +116,26 @@ std::vector<ParameterFrame> parse_parameter_frames(std::string_view text, FrameF
     return f;
   };
   if (format == FrameFormat::Json) {
-    const Json doc = core::parse_json(text, source);
+    Json doc = core::parse_json(text, source);
     if (doc.is_object() && doc.contains("format")) {
-      core::check_envelope(doc, "params", {1, 0}, source);
+      // The envelope "emoface.params": core::JsonReader applies the unknown-field rule.
+      const core::JsonReader reader(core::ParsedJson{std::move(doc)}, source, "params", {1, 0});
+      const core::JsonValue root = reader.root();
+      root.only_keys({"fps", "frames"});
       double fps = options.fps;
-      if (doc.contains("fps")) {
-        if (!doc["fps"].is_number() || !(doc["fps"].get<double>() > 0.0) || doc["fps"].get<double>() > 1000.0) fail_ptr(source, 0, "/fps", "fps must be a number in (0, 1000]");
-        fps = doc["fps"].get<double>();
+      if (auto v = root.find("fps")) {
+        fps = v->number();
+        if (!(fps > 0.0 && fps <= 1000.0)) v->fail("fps must be a number in (0, 1000]");
       }
-      if (!doc.contains("frames") || !doc["frames"].is_array()) fail_ptr(source, 0, "/frames", "expected an array of frames");
-      const auto& arr = doc["frames"];
-      for (std::size_t i = 0; i < arr.size(); ++i) {
-        const std::string p = "/frames/" + std::to_string(i);
+      const std::vector<core::JsonValue> items = root.at("frames").items();
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        const core::JsonValue& item = items[i];
+        item.only_keys({"time", "parameters"});
         ParameterFrame f = new_frame();
         f.time = static_cast<double>(i) / fps;
-        if (!arr[i].is_object() || !arr[i].contains("parameters")) fail_ptr(source, 0, p, "expected {\"time\": t, \"parameters\": {...}}");
-        if (arr[i].contains("time")) {
-          if (!arr[i]["time"].is_number() || !std::isfinite(arr[i]["time"].get<double>())) fail_ptr(source, 0, p + "/time", "expected a finite number");
-          f.time = arr[i]["time"].get<double>();
-        }
-        fill_named(arr[i]["parameters"], f, source, 0, p + "/parameters", options);
+        read_time(item, f);
+        fill_named(item.at("parameters").json(), f, source, 0, item.pointer() + "/parameters",
+                   options);
         frames.push_back(std::move(f));
       }
     } else {
@@ -143,90 +145,71 @@ std::vector<ParameterFrame> parse_parameter_frames(std::string_view text, FrameF
     }
     return frames;
   }
-  // Line-oriented formats.
-  std::size_t line_no = 0, pos = 0;
-  std::vector<std::string> header;
-  std::vector<long> column_index;  // -1 ignore, -2 time, else parameter index
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
-    if (format == FrameFormat::Csv && header.empty() && core::is_csv_comment(line)) continue;  // "# emoface x.y.z"
-    if (format == FrameFormat::Ndjson) {
-      const Json obj = [&]() {
+  if (format == FrameFormat::Ndjson) {
+    for (const core::Line& line : core::Lines(text)) {
+      if (core::trim(line.text).empty()) continue;
+      Json obj = [&]() {
         try {
-          return core::parse_json(line, source);
+          return core::parse_json(line.text, source);
         } catch (const FormatError& e) {
-          fail_at(source, line_no, e.where().column, e.message());
+          fail_at(source, line.number, e.where().column, e.message());
         }
       }();
-      if (core::is_stream_header(obj)) continue;  // {"format": "emoface.…", …}: the stream's version stamp
+      if (core::is_stream_header(obj)) continue;  // the stream's version stamp
       ParameterFrame f = new_frame();
-      if (obj.is_object() && obj.contains("parameters")) {
-        if (obj.contains("time")) {
-          if (!obj["time"].is_number() || !std::isfinite(obj["time"].get<double>())) fail_ptr(source, line_no, "/time", "expected a finite number");
-          f.time = obj["time"].get<double>();
-        }
-        fill_named(obj["parameters"], f, source, line_no, "/parameters", options);
-      } else {
-        Json flat = obj;
-        if (flat.is_object() && flat.contains("time")) {
-          if (!flat["time"].is_number() || !std::isfinite(flat["time"].get<double>())) fail_ptr(source, line_no, "/time", "expected a finite number");
-          f.time = flat["time"].get<double>();
+      try {
+        const core::JsonReader record(core::ParsedJson{std::move(obj)}, source, true);
+        const core::JsonValue root = record.root();
+        root.expect_object();
+        read_time(root, f);
+        if (root.has("parameters")) {
+          fill_named(root.at("parameters").json(), f, source, line.number, "/parameters", options);
+        } else {
+          Json flat = root.json();
           flat.erase("time");
+          fill_named(flat, f, source, line.number, "", options);
         }
-        fill_named(flat, f, source, line_no, "", options);
+      } catch (const FormatError& e) {
+        if (e.where().line != 0) throw;
+        fail_ptr(source, line.number, e.where().json_pointer, e.message());  // add the line
       }
       frames.push_back(std::move(f));
+    }
+    return frames;
+  }
+  const core::CsvTable table = core::CsvTable::parse(text, source);
+  std::vector<long> column_index;  // -1 ignore, -2 time, else parameter index
+  for (std::size_t c = 0; c < table.header().size(); ++c) {
+    const std::string& name = table.header()[c];
+    if (name == "time") {
+      column_index.push_back(-2);
       continue;
     }
-    std::vector<std::string> fields;
-    std::string error;
-    if (const auto col = core::split_csv_line(line, fields, &error)) fail_at(source, line_no, col, error);
-    if (header.empty()) {
-      header = fields;
-      std::set<std::string> seen;
-      for (std::size_t c = 0; c < fields.size(); ++c) {
-        const std::string& name = fields[c];
-        if (!seen.insert(name).second) fail_at(source, line_no, c + 1, "duplicate column '" + name + "'");
-        if (name == "time") {
-          column_index.push_back(-2);
-          continue;
-        }
-        try {
-          column_index.push_back(static_cast<long>(parameter_index(name)));
-        } catch (const InvalidInput& e) {
-          if (!options.ignore_unknown_columns && !metadata_columns().count(name)) fail_at(source, line_no, c + 1, e.what());
-          column_index.push_back(-1);
-        }
-      }
-      continue;
+    try {
+      column_index.push_back(static_cast<long>(parameter_index(name)));
+    } catch (const InvalidInput& e) {
+      if (!options.ignore_unknown_columns && !metadata_columns().count(name))
+        fail_at(source, table.header_line(), c + 1, e.what());
+      column_index.push_back(-1);
     }
-    if (fields.size() != header.size()) {
-      fail_at(source, line_no, 0, "expected " + std::to_string(header.size()) + " fields, got " + std::to_string(fields.size()));
-    }
+  }
+  for (std::size_t r = 0; r < table.size(); ++r) {
     ParameterFrame f = new_frame();
-    for (std::size_t c = 0; c < fields.size(); ++c) {
+    for (std::size_t c = 0; c < column_index.size(); ++c) {
       if (column_index[c] == -1) continue;
-      const double v = parse_number(fields[c], source, line_no, c + 1);
-      if (column_index[c] == -2) {
+      const double v = csv_number(table, r, c);
+      if (column_index[c] == -2)
         f.time = v;
-      } else {
+      else
         f.values[static_cast<std::size_t>(column_index[c])] = v;
-      }
     }
     try {
       validate_parameter_vector(f.values);
     } catch (const InvalidInput& e) {
-      fail_at(source, line_no, 0, e.what());
+      table.fail(r, SIZE_MAX, e.what());
     }
     frames.push_back(std::move(f));
   }
-  if (format == FrameFormat::Csv && header.empty()) fail_at(source, 1, 0, "missing CSV header");
   return frames;
 }
 

@@ -3,67 +3,45 @@
 #include <cmath>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/vocab.hpp"
 
 namespace emoface::muscles {
 
+// Every name comes from the one vocabulary (emoface/core/vocab.hpp).
+static_assert(kSideParameterCount == core::kSideParameterCount &&
+              kParameterCount == core::kParameterCount);
+
 const std::array<std::string, 19>& muscle_type_names() {
-  // thesis Table 2.1 order
-  static const std::array<std::string, 19> names = {
-      "zygomatic_major", "zygomatic_minor", "triangularis", "risorius", "depressor_labii", "mentalis",
-      "orbicularis_oris_funneler", "orbicularis_oris_pressor", "frontalis_medialis", "frontalis_lateralis",
-      "levator_labii_nasi", "levator_labii_superioris", "depressor_supercilii", "corrugator_supercilii",
-      "depressor_glabellae", "levator_palpebrae_superioris", "orbicularis_oculi_palpebralis",
-      "orbicularis_oculi_orbitalis", "masseter"};
+  static const std::array<std::string, 19> names = [] {
+    std::array<std::string, 19> out;
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = std::string(core::kMuscleNames[i]);
+    return out;
+  }();
   return names;
 }
 
-namespace {
-bool unpaired(const std::string& n) {
-  return n == "orbicularis_oris_funneler" || n == "orbicularis_oris_pressor" || n == "masseter";
-}
-}  // namespace
-
 const std::vector<std::string>& side_parameter_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const auto& n : muscle_type_names()) {
-      if (unpaired(n)) {
-        out.push_back(n);
-      } else {
-        out.push_back(n + "_l");
-        out.push_back(n + "_r");
-      }
-    }
-    return out;
-  }();
+  static const std::vector<std::string> names(core::side_parameter_names().begin(),
+                                              core::side_parameter_names().end());
   return names;
 }
 
 const std::vector<std::string>& pose_parameter_names() {
-  static const std::vector<std::string> names = {"eye_gaze_yaw", "eye_gaze_pitch", "head_yaw", "head_pitch", "head_roll"};
+  static const std::vector<std::string> names(core::kPoseParameterNames.begin(),
+                                              core::kPoseParameterNames.end());
   return names;
 }
 
 const std::vector<std::string>& eyelid_parameter_names() {
-  static const std::vector<std::string> names = {"eye_blink_l", "eye_blink_r"};
+  static const std::vector<std::string> names(core::kEyelidParameterNames.begin(),
+                                              core::kEyelidParameterNames.end());
   return names;
 }
 
-const std::vector<std::string>& parameter_names() {
-  static const std::vector<std::string> names = [] {
-    auto out = side_parameter_names();
-    for (const auto& n : pose_parameter_names()) out.push_back(n);
-    for (const auto& n : eyelid_parameter_names()) out.push_back(n);
-    return out;
-  }();
-  return names;
-}
+const std::vector<std::string>& parameter_names() { return core::parameter_names(); }
 
 std::size_t parameter_index(std::string_view name) {
-  const auto& names = parameter_names();
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) return i;
-  }
+  if (auto i = core::parameter_index(name)) return *i;
   throw InvalidInput("unknown face parameter '" + std::string(name) + "'");
 }
 

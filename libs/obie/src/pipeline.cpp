@@ -204,16 +204,8 @@ std::string expression_text(const std::array<double, 6>& shown) {
 }
 
 channels::EmotionMapper fuzzy_emotion_mapper() {
-  auto engine = std::make_shared<fuzzyexpr::Engine>(fuzzyexpr::default_rule_base());
-  return [engine](const std::array<double, 6>& e) {
-    fuzzyexpr::Esv esv{};
-    for (std::size_t k = 0; k < 6; ++k) esv[k] = e[k];  // same ESV order (sadness … surprise)
-    const auto sides = fuzzyexpr::expand_to_sides(engine->convert(esv));
-    std::vector<channels::Target> out;
-    for (std::size_t i = 0; i < sides.size(); ++i)
-      out.push_back({std::string(fuzzyexpr::side_parameter_names()[i]), sides[i]});
-    return out;
-  };
+  // The one mapper (issue 18): fuzzyexpr's ESV → side parameters, named by channels.
+  return channels::side_parameter_mapper(fuzzyexpr::side_parameter_function());
 }
 
 std::size_t key_moment_frame(const TimeMap& time_map, double minute, double delay, double fps, std::size_t frames) {

@@ -6,7 +6,7 @@
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/png.hpp"
-#include "emoface/core/text.hpp"
+#include "emoface/core/font.hpp"
 
 namespace emoface::parlee {
 namespace {

@@ -1,6 +1,7 @@
 #pragma once
 // Glue shared by every emoface command-line app (CONVENTIONS.md, "Errors"):
 // fixed exit codes, one-line error messages on stderr, --shard i/N, and outputs written atomically.
+#include <CLI/CLI.hpp>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -8,10 +9,9 @@
 #include <string>
 #include <string_view>
 
-#include <CLI/CLI.hpp>
-
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/shard.hpp"
 
 namespace emoface::cli {
 
@@ -46,14 +46,11 @@ Enum parse_enum(const std::string& text, Parse parse, const char* flag, const ch
   throw UsageError(std::string(flag) + ": unknown value \"" + text + "\" (expected " + accepted + ")");
 }
 
-/// --shard i/N: this process handles the items whose index % N == i (0 <= i < N).
-struct Shard {
-  std::size_t index = 0;
-  std::size_t count = 1;
-  bool owns(std::size_t item) const noexcept { return item % count == index; }
-};
+/// --shard i/N | auto: core::Shard (contiguous blocks: owns(item, total); the Slurm array variables
+/// for "auto"; docs/scale-out.md).
+using core::Shard;
 
-/// Parses "i/N". Throws UsageError with a clear message otherwise.
+/// core::parse_shard, with its errors as UsageError (exit code 1).
 Shard parse_shard(std::string_view text);
 
 /// An output stream that is either stdout ("-") or a file written atomically: nothing appears at

@@ -95,6 +95,13 @@ struct PhonemeTiming {
 /// Emotion intensities (ESV order) → parameter targets (e.g. fuzzyexpr's FMCV expanded to sides).
 using EmotionMapper = std::function<std::vector<Target>(const std::array<double, 6>&)>;
 
+/// The emotion → display mapper of every pipeline (issue 18): `to_sides` maps an ESV to the 35 side
+/// parameters in the order of the one vocabulary (core::side_parameter_names(), e.g.
+/// fuzzyexpr::side_parameter_function()); the mapper names each value. Throws InvalidInput if
+/// `to_sides` is empty.
+using SideParameterFunction = std::function<std::array<double, 35>(const std::array<double, 6>&)>;
+EmotionMapper side_parameter_mapper(SideParameterFunction to_sides);
+
 struct TimelineOptions {
   bool blinks = true;
   bool gaze_noise = true;

@@ -3,6 +3,7 @@
 // Blend Expression Mode fuzzy rule-based systems (Mamdani: min implication, max aggregation) and exact
 // centre-of-area defuzzification. ESV (6 intensities in [0,1]) → FMCV (19 contraction levels in [0,1]).
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -105,5 +106,11 @@ class Engine {
   struct Impl;
   std::shared_ptr<const Impl> impl_;
 };
+
+/// The emotion → face mapping of thesis §6.5 as one function: ESV → FMCV (an Engine compiled once
+/// from `rules`) → the 35 side parameters (expand_to_sides). Copies share the engine; thread-safe
+/// to call. channels::side_parameter_mapper() turns it into a channel EmotionMapper.
+std::function<SideParameters(const Esv&)> side_parameter_function(
+    RuleBase rules = default_rule_base());
 
 }  // namespace emoface::fuzzyexpr

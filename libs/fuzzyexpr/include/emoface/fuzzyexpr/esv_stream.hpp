@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "emoface/core/text.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/fuzzyexpr/names.hpp"
 
@@ -100,19 +101,23 @@ class FmcvWriter {
   std::size_t rows_ = 0;
 };
 
-enum class OnError : std::uint8_t {
-  Stop,  ///< the first bad record ends the batch (its FormatError propagates)
-  Skip,  ///< bad records are counted and skipped; the good ones are converted
-};
-std::string_view to_string(OnError v) noexcept;
-std::optional<OnError> on_error_from_string(std::string_view s) noexcept;
+/// Stop: the first bad record ends the batch (its FormatError propagates); Skip: bad records are
+/// counted and skipped, the good ones converted. The one OnError of core (emoface/core/text.hpp).
+using core::on_error_from_string;
+using core::OnError;
+using core::to_string;
 
 struct BatchOptions {
   OnError on_error = OnError::Stop;
-  /// This process converts the records whose index % shard_count == shard_index, so N processes
-  /// with shards 0/N … N−1/N together convert the stream once. Row r always uses tie-break stream r.
+  /// This process converts the contiguous block of records core::Shard{shard_index, shard_count}
+  /// .block(total_records) gives, so N processes with shards 0/N … N−1/N together convert the
+  /// stream once and their outputs, merged in shard order (core::merge_shard_outputs), are the
+  /// output of one run. Row r always uses tie-break stream r. With shard_count > 1, total_records
+  /// must be the number of records of the stream, bad ones included (count_records()).
   std::size_t shard_index = 0;
   std::size_t shard_count = 1;
+  std::size_t total_records = kUnknownTotal;
+  static constexpr std::size_t kUnknownTotal = static_cast<std::size_t>(-1);
   /// With OnError::Skip: how many error messages the report keeps (the count is always exact).
   std::size_t max_kept_errors = 10;
   void validate() const;
@@ -124,6 +129,10 @@ struct BatchReport {
   std::size_t records_skipped = 0;  ///< bad records of this shard skipped
   std::vector<std::string> errors;  ///< the first max_kept_errors messages
 };
+
+/// The number of records `reader` yields from here to the end, bad ones included (each FormatError
+/// of next() counts as one record, as in convert_stream). Consumes the reader.
+std::size_t count_records(EsvReader& reader);
 
 /// Reads every record, converts the ones of this shard with `engine` (row number = record index) and
 /// hands the formatted text to `sink` in chunks (begin() first, end() last). `observer`, if set, sees each
