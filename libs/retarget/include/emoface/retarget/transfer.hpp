@@ -116,6 +116,13 @@ struct TransferReport {
   /// separate eyeballs); they are turned by gaze like an eyeball (Eye::eyeball_vertices), not moved
   /// by the lids
   std::array<std::size_t, 2> eye_hole_vertices{};
+  /// per eye (0 right, 1 left): how the lid weights were made: "generic" (the generic's weights at
+  /// each vertex's closest point; they give the target's margin full weight), "boundary" or
+  /// "crease" (rebuilt from the target's own lid margin, an open boundary loop or the crease of a
+  /// closed socket), "none" (no margin found: generic weights)
+  std::array<std::string, 2> lid_method{"none", "none"};
+  /// per eye: the target's lid margin found (vertex ids, ascending x, the corners in both)
+  std::array<std::vector<int>, 2> lid_margin_upper, lid_margin_lower;
   bool user_landmarks = false;
   double fit_seconds = 0.0;  ///< wall times (non-deterministic)
   double registration_seconds = 0.0;
