@@ -193,6 +193,34 @@ TEST(Transfer, MakeHumanHeadOpensItsClosedMouthAndClosesItsLids) {
   }
   EXPECT_GT(bag_upper, 10u);
   EXPECT_LT(bag_upper_moved, bag_upper / 5);
+  // The inner-lip points were placed on the head's own slit (the fit alone put the mouth a lip's
+  // height too low), so both lips are bound to the lip surface: lip-bound vertices above and
+  // below the slit, and no lip-coloured vertex beyond the slit's corners (the colour used to
+  // bleed onto the cheeks there). Slit corners: the extreme x of the mouth-bag vertices.
+  EXPECT_EQ(r.report.mouth_slit_points, 8u);
+  std::size_t above = 0, below = 0;
+  const double slit_y = 0.5 * (n.vertices(ib[62], 1) + n.vertices(ib[66], 1));
+  for (const auto& b : r.face.rig.lips.bound) {
+    if (b.weight < 1.0) continue;
+    if (n.vertices(b.vertex, 1) > slit_y + 0.001) ++above;
+    if (n.vertices(b.vertex, 1) < slit_y - 0.001) ++below;
+  }
+  std::printf("  MakeHuman lip-bound vertices: %zu above the slit, %zu below\n", above, below);
+  EXPECT_GT(above, 20u);
+  EXPECT_GT(below, 20u);
+  double bag_lo = 1e9, bag_hi = -1e9, lip_lo = 1e9, lip_hi = -1e9;
+  for (Eigen::Index v = 0; v < n.vertices.rows(); ++v) {
+    const auto m = r.face.rig.materials[static_cast<std::size_t>(v)];
+    if (m == fm::Material::MouthInterior)
+      bag_lo = std::min(bag_lo, n.vertices(v, 0)), bag_hi = std::max(bag_hi, n.vertices(v, 0));
+    if (m == fm::Material::Lip)
+      lip_lo = std::min(lip_lo, n.vertices(v, 0)), lip_hi = std::max(lip_hi, n.vertices(v, 0));
+  }
+  std::printf("  MakeHuman mouth: bag x [%.4f, %.4f], lip colour x [%.4f, %.4f] m\n", bag_lo,
+              bag_hi, lip_lo, lip_hi);
+  const double slack = 0.1 * (bag_hi - bag_lo);
+  EXPECT_GT(lip_lo, bag_lo - slack);
+  EXPECT_LT(lip_hi, bag_hi + slack);
   // blink: the upper lid margin (upper-lid vertices of weight ≥ 0.9) comes down to the lower lid's
   // margin (lower-lid vertices of weight ≥ 0.9): their mean heights, per eye
   const auto blink = solver.deform(

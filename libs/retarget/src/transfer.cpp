@@ -440,6 +440,89 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     if (p.kind == UserLandmarkKind::Point)
       given.push_back({static_cast<int>(k), al.apply(p.point)});
   }
+  // The target's own mouth slit (issue 13): the chapter-3 error function does not pin the mouth's
+  // height (§3.7; on MakeHuman the fitted mouth sits a lip's height too low, so the upper lip was
+  // never bound to the lips). A closed mouth over a bag folds into the head like a closed eye
+  // socket: the slit is the crease between the lips (facing away from the mouth cavity) and the
+  // bag (facing it), found as the lids' margin is (find_lid_margin); an open mouth is a boundary
+  // loop. When the fitted inner-lip iBUG points (60–67) lie off the slit by more than 1 % of the
+  // head height, they are placed on it (corners on its corners, the others on its upper/lower
+  // rows at proportional x) and join the RBF and the registration as landmarks, unless the user
+  // gave them.
+  bool closed_slit = false;  // a closed mouth's crease was found: the bag faces the cavity
+  Eigen::Vector3d mouth_probe = Eigen::Vector3d::Zero();
+  fm::Vertices slit_normals;
+  std::vector<int> slit_upper, slit_lower;
+  double slit_width = 0.0;
+  {
+    const auto& fg = fit.face.mesh.vertices;
+    const auto& ib = srig.ibug68;
+    double hh = 0.0;
+    {
+      int top_v = -1, chin_v = -1;
+      for (const auto& l : srig.retarget_landmarks) {
+        if (l.name == "top_of_head") top_v = l.vertex;
+        if (l.name == "chin") chin_v = l.vertex;
+      }
+      if (top_v >= 0 && chin_v >= 0) hh = fg(top_v, 1) - fg(chin_v, 1);
+    }
+    Eigen::Vector3d probe = Eigen::Vector3d::Zero(), opening = Eigen::Vector3d::Zero();
+    int cavity = 0;
+    for (Eigen::Index v = 0; v < fg.rows(); ++v)
+      if (srig.materials[static_cast<std::size_t>(v)] == fm::Material::MouthInterior)
+        probe += fg.row(v).transpose(), ++cavity;
+    for (int k = 60; k < 68; ++k)
+      opening += fg.row(ib[static_cast<std::size_t>(k)]).transpose() / 8.0;
+    const Eigen::Vector3d f60 = fg.row(ib[60]).transpose(), f64 = fg.row(ib[64]).transpose();
+    const double inner_width = (f64 - f60).norm();
+    bool user_mouth = false;
+    for (const auto& [k, p] : given) user_mouth = user_mouth || (k >= 60 && k < 68);
+    if (cavity > 0 && hh > 0.0 && inner_width > 0.0 && !user_mouth) {
+      probe /= cavity;
+      std::vector<std::vector<int>> adj0(static_cast<std::size_t>(nv));
+      for (int f : head.faces)
+        for (int k = 0; k < 3; ++k) {
+          const int a = target.faces(f, k), b = target.faces(f, (k + 1) % 3);
+          adj0[static_cast<std::size_t>(a)].push_back(b);
+          adj0[static_cast<std::size_t>(b)].push_back(a);
+        }
+      const fm::Vertices n0 = fm::vertex_normals(T, target.faces);
+      const LidMargin slit =
+          find_lid_margin(T, target.faces, n0, adj0, head.vertices,
+                          std::vector<std::uint8_t>(static_cast<std::size_t>(nv), 0), probe,
+                          opening, 0.8 * inner_width);
+      if (slit.ok && slit.width > 0.6 * inner_width && slit.width < 1.6 * inner_width) {
+        closed_slit = slit.kind == "crease";
+        mouth_probe = probe;
+        slit_normals = n0;
+        slit_upper = slit.upper, slit_lower = slit.lower, slit_width = slit.width;
+        const double lo = std::min(f60.x(), f64.x()), hi = std::max(f60.x(), f64.x());
+        const double c0 = T(slit.upper.front(), 0), c1 = T(slit.upper.back(), 0);
+        std::vector<std::pair<int, Eigen::Vector3d>> mouth;
+        for (int k = 60; k < 68; ++k) {
+          const Eigen::Vector3d f = fg.row(ib[static_cast<std::size_t>(k)]).transpose();
+          const double x = c0 + (f.x() - lo) / (hi - lo) * (c1 - c0);
+          const bool upper_row = k >= 61 && k <= 63, lower_row = k >= 65;
+          Eigen::Vector3d q;
+          if (k == 60 || k == 64)
+            q = std::abs(f.x() - lo) < std::abs(f.x() - hi)
+                    ? Eigen::Vector3d(T.row(slit.upper.front()).transpose())
+                    : Eigen::Vector3d(T.row(slit.upper.back()).transpose());
+          else
+            q = polyline_at(T, upper_row ? slit.upper : slit.lower, x);
+          (void)lower_row;
+          mouth.push_back({k, q});
+        }
+        double off = 0.0;
+        for (const auto& [k, q] : mouth)
+          off += (q - fg.row(ib[static_cast<std::size_t>(k)]).transpose()).norm() / 8.0;
+        if (off > 0.01 * hh) {
+          for (const auto& m : mouth) given.push_back(m);
+          rep.mouth_slit_points = mouth.size();
+        }
+      }
+    }
+  }
   if (!given.empty()) {
     // RBF on the fit's landmarks plus the user's points (the user's win where they coincide).
     std::vector<Eigen::Vector3d> src, dst;
@@ -476,7 +559,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
   for (Eigen::Index v = 0; v < ng; ++v) {
     const auto m = srig.materials[static_cast<std::size_t>(v)];
     const Eigen::Vector3d p = source.mesh.vertices.row(v);
-    bool in = !eyeball[static_cast<std::size_t>(v)] && m != fm::Material::MouthInterior;
+    bool in = !eyeball[static_cast<std::size_t>(v)] && m != fm::Material::MouthInterior &&
+              m != fm::Material::Teeth && m != fm::Material::Tongue;
     if (lip_sample(static_cast<int>(v)) &&
         (static_cast<int>(v) - lip_first) / lip_na >= lip_nac - 2)
       in = false;
@@ -485,12 +569,16 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
         in = false, socket[static_cast<std::size_t>(v)] = 1;
     data_mask[static_cast<std::size_t>(v)] = in;
   }
-  // Registration mesh: the generic without its eyeballs (they are not part of the target surface).
+  // Registration mesh: the generic without its eyeballs, teeth and tongue (they are not part of
+  // the target's head surface; a head vertex that took the attributes of the generic's teeth would
+  // be coloured and moved as teeth).
   fm::Mesh gsurf = gen.mesh;
   {
     std::vector<Eigen::Vector3i> keep;
     for (Eigen::Index f = 0; f < gen.mesh.faces.rows(); ++f)
-      if (!eyeball[static_cast<std::size_t>(gen.mesh.faces(f, 0))])
+      if (!eyeball[static_cast<std::size_t>(gen.mesh.faces(f, 0))] &&
+          srig.materials[static_cast<std::size_t>(gen.mesh.faces(f, 0))] != fm::Material::Teeth &&
+          srig.materials[static_cast<std::size_t>(gen.mesh.faces(f, 0))] != fm::Material::Tongue)
         keep.push_back(gen.mesh.faces.row(f).transpose());
     gsurf.faces.resize(static_cast<Eigen::Index>(keep.size()), 3);
     for (std::size_t k = 0; k < keep.size(); ++k)
@@ -695,6 +783,11 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
         if (seen[static_cast<std::size_t>(w)]) continue;
         seen[static_cast<std::size_t>(w)] = 1;
         if (outer[static_cast<std::size_t>(w)] || on_lip[static_cast<std::size_t>(w)]) continue;
+        // behind a closed mouth's crease the bag faces the cavity; the lips' outer surface (where
+        // a coarse registration leaves it off the generic's lips) faces away from it
+        if (closed_slit &&
+            slit_normals.row(w).dot((T.row(w).transpose() - mouth_probe).normalized()) > 0.5)
+          continue;
         if ((T.row(w).transpose() - mouth).norm() > 0.3 * head_height_rig) continue;
         bag[static_cast<std::size_t>(w)] = 1;
         stack.push_back(w);
@@ -784,6 +877,16 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
                            : std::isfinite(b)                                ? 1.0
                                                                              : 0.0;
       jaw_w[static_cast<std::size_t>(v)] = smoothstep(0.35, 0.65, share);
+      if (closed_slit) {
+        // a closed mouth's bag hangs behind a slit the geodesics reach along its whole length,
+        // so most of the bag is about as far from either lip: the height against the slit
+        // decides instead (below it follows the jaw, above it stays; the fold within ±1/8 of the
+        // slit's width)
+        const double ys = 0.5 * (polyline_at(T, slit_upper, T(v, 0)).y() +
+                                 polyline_at(T, slit_lower, T(v, 0)).y());
+        jaw_w[static_cast<std::size_t>(v)] =
+            1.0 - smoothstep(-0.125 * slit_width, 0.125 * slit_width, T(v, 1) - ys);
+      }
       rig.materials[static_cast<std::size_t>(v)] = fm::Material::MouthInterior;
       continue;
     }

@@ -123,6 +123,8 @@ struct TransferReport {
   std::array<std::string, 2> lid_method{"none", "none"};
   /// per eye: the target's lid margin found (vertex ids, ascending x, the corners in both)
   std::array<std::vector<int>, 2> lid_margin_upper, lid_margin_lower;
+  /// inner-lip iBUG points (60–67) placed on the target's own mouth slit (0: the fit's were kept)
+  std::size_t mouth_slit_points = 0;
   bool user_landmarks = false;
   double fit_seconds = 0.0;  ///< wall times (non-deterministic)
   double registration_seconds = 0.0;
