@@ -84,6 +84,29 @@ TEST(Transfer, UserLandmarksAreUsedAndReported) {
   }
   const auto r = rt::transfer_rig(f.source, f.remeshed, {}, quick_options(), lm);
   EXPECT_TRUE(r.report.user_landmarks);
+  // the even iBUG points given name 9 chapter-3 landmarks (8 chin, 30 nose tip, 36 and 42 eye
+  // corners, 24 brow, 48 and 54 mouth corners, 3 jaw... of retarget_landmark_ibug): they replace
+  // the fit's, and the rig's landmark of that name is the user's vertex
+  std::vector<std::string> expected;
+  for (const auto& [name, k] : rt::retarget_landmark_ibug())
+    if (k % 2 == 0) expected.push_back(name);
+  auto got = r.report.replaced_landmarks;
+  std::sort(got.begin(), got.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(got, expected);
+  for (const auto& [name, k] : rt::retarget_landmark_ibug()) {
+    if (k % 2 != 0) continue;
+    for (const auto& l : r.face.rig.retarget_landmarks)
+      if (l.name == name)
+        EXPECT_EQ(l.vertex, r.report.landmarks[static_cast<std::size_t>(k)].vertex) << name;
+    for (std::size_t i = 0; i < r.fit.landmark_names.size(); ++i)
+      if (r.fit.landmark_names[i] == name)
+        EXPECT_LT((r.fit.target_landmarks.row(static_cast<Eigen::Index>(i)).transpose() -
+                   r.face.rig.frame.to_rig(lm.points[static_cast<std::size_t>(k)].point))
+                      .norm(),
+                  1e-12)
+            << name;
+  }
   for (int k = 0; k < 68; ++k) {
     const auto& l = r.report.landmarks[static_cast<std::size_t>(k)];
     EXPECT_EQ(l.source, k % 2 == 0 ? "user" : "fit");

@@ -102,6 +102,7 @@ std::string format_transfer_report(const TransferResult& result, bool include_ti
   t["head_height"] = r.head_height;
   t["head_height_meaning"] = "top of head to chin of the registered generic face, input units";
   t["user_landmarks"] = r.user_landmarks;
+  t["replaced_landmarks"] = r.replaced_landmarks;  // 1.3
   auto& g = t["registration"];
   g["iterations"] = r.registration.iterations;
   g["correspondences"] = r.registration.correspondences;

@@ -322,6 +322,29 @@ void TransferOptions::validate() const {
     throw InvalidInput("TransferOptions::eyeball_tolerance must be in (0, 1]");
 }
 
+const std::vector<std::pair<std::string, int>>& retarget_landmark_ibug() {
+  // iBUG-68 (0-based): 8 chin, 19/24 brow centres, 27 nose root, 30 nose tip, 36/39 right eye
+  // outer/inner corner, 42/45 left eye inner/outer, 48/54 outer mouth corners, 51/57 outer lip
+  // centres, 3/13 jaw (the points the built-in face's chapter-3 landmarks are made from,
+  // facemesh default_face.cpp step 10)
+  static const std::vector<std::pair<std::string, int>> table = {{"chin", 8},
+                                                                 {"nose_root", 27},
+                                                                 {"nose_tip", 30},
+                                                                 {"eye_outer_r", 36},
+                                                                 {"eye_inner_r", 39},
+                                                                 {"eye_inner_l", 42},
+                                                                 {"eye_outer_l", 45},
+                                                                 {"brow_centre_r", 19},
+                                                                 {"brow_centre_l", 24},
+                                                                 {"mouth_corner_r", 48},
+                                                                 {"mouth_corner_l", 54},
+                                                                 {"upper_lip_centre", 51},
+                                                                 {"lower_lip_centre", 57},
+                                                                 {"jaw_r", 3},
+                                                                 {"jaw_l", 13}};
+  return table;
+}
+
 Eigen::Vector3d lip_surface_point(const fm::LipGrid& lips, double u, double v) {
   if (lips.control_points.size() !=
       static_cast<std::size_t>(fm::LipGrid::kAround * fm::LipGrid::kAcross))
@@ -524,15 +547,40 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     }
   }
   if (!given.empty()) {
-    // RBF on the fit's landmarks plus the user's points (the user's win where they coincide).
+    // RBF on the fit's landmarks plus the given points. A chapter-3 landmark with an iBUG
+    // counterpart the user gave (retarget_landmark_ibug) is replaced by the user's point; other
+    // fit landmarks within 4 mm of a given point are dropped (the given point wins).
     std::vector<Eigen::Vector3d> src, dst;
-    for (const auto& [k, p] : given)
-      src.push_back(source.mesh.vertices.row(srig.ibug68[static_cast<std::size_t>(k)]).transpose()),
-          dst.push_back(p);
+    std::vector<std::uint8_t> consumed(68, 0);
+    std::map<int, Eigen::Vector3d> user_point;
+    for (std::size_t k = 0; k < user.points.size(); ++k) {
+      const auto& p = user.points[k];
+      if (p.kind == UserLandmarkKind::Vertex) user_point[static_cast<int>(k)] = T.row(p.vertex);
+      if (p.kind == UserLandmarkKind::Point) user_point[static_cast<int>(k)] = al.apply(p.point);
+    }
+    std::vector<std::uint8_t> replaced(static_cast<std::size_t>(fit.source_landmarks.rows()), 0);
     for (Eigen::Index i = 0; i < fit.source_landmarks.rows(); ++i) {
+      if (static_cast<std::size_t>(i) >= fit.landmark_names.size()) break;
+      for (const auto& [name, k] : retarget_landmark_ibug())
+        if (name == fit.landmark_names[static_cast<std::size_t>(i)] && user_point.count(k)) {
+          src.push_back(fit.source_landmarks.row(i).transpose()), dst.push_back(user_point[k]);
+          fit.target_landmarks.row(i) = user_point[k].transpose();
+          consumed[static_cast<std::size_t>(k)] = 1;
+          replaced[static_cast<std::size_t>(i)] = 1;
+          rep.replaced_landmarks.push_back(name);
+        }
+    }
+    for (const auto& [k, p] : given)
+      if (!consumed[static_cast<std::size_t>(k)])
+        src.push_back(
+            source.mesh.vertices.row(srig.ibug68[static_cast<std::size_t>(k)]).transpose()),
+            dst.push_back(p);
+    const std::size_t fixed_count = src.size();
+    for (Eigen::Index i = 0; i < fit.source_landmarks.rows(); ++i) {
+      if (replaced[static_cast<std::size_t>(i)]) continue;
       const Eigen::Vector3d s = fit.source_landmarks.row(i).transpose();
       bool near = false;
-      for (const auto& q : src) near = near || (q - s).norm() < 0.004;
+      for (std::size_t q = 0; q < fixed_count; ++q) near = near || (src[q] - s).norm() < 0.004;
       if (!near) src.push_back(s), dst.push_back(fit.target_landmarks.row(i).transpose());
     }
     Eigen::MatrixX3d S(static_cast<Eigen::Index>(src.size()), 3),
@@ -1445,7 +1493,11 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
   }
   for (const auto& l : srig.retarget_landmarks) {
     double d = 0.0;
-    rig.retarget_landmarks.push_back({l.name, nearest_head(G.row(l.vertex).transpose(), d)});
+    int vertex = nearest_head(G.row(l.vertex).transpose(), d);
+    for (const auto& [name, k] : retarget_landmark_ibug())  // the user's point where given
+      if (name == l.name && user_vertex[static_cast<std::size_t>(k)] >= 0)
+        vertex = user_vertex[static_cast<std::size_t>(k)];
+    rig.retarget_landmarks.push_back({l.name, vertex});
   }
   // Lid closing angle per eye: the source's angle scaled by the target's own opening, measured
   // about the eye's x axis (thesis §2.4.3 rotates the upper lid about the eye centre) between the
