@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -15,6 +16,7 @@
 #include "emoface/facemesh/bspline.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
+#include "emoface/facemesh/render.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/muscles/parameters.hpp"
 #include "emoface/muscles/solver.hpp"
