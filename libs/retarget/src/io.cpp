@@ -102,6 +102,7 @@ std::string format_transfer_report(const TransferResult& result, bool include_ti
   t["head_height"] = r.head_height;
   t["head_height_meaning"] = "top of head to chin of the registered generic face, input units";
   t["user_landmarks"] = r.user_landmarks;
+  t["replaced_landmarks"] = r.replaced_landmarks;  // 1.3
   auto& g = t["registration"];
   g["iterations"] = r.registration.iterations;
   g["correspondences"] = r.registration.correspondences;
@@ -139,6 +140,18 @@ std::string format_transfer_report(const TransferResult& result, bool include_ti
   c["lip_bound"] = r.lip_bound, c["lip_full"] = r.lip_full, c["jaw"] = r.jaw_vertices, c["mouth_bag"] = r.mouth_bag;
   c["lid_right"] = r.lid_vertices[0], c["lid_left"] = r.lid_vertices[1];
   c["eye_hole_right"] = r.eye_hole_vertices[0], c["eye_hole_left"] = r.eye_hole_vertices[1];
+  c["mouth_slit_points"] = r.mouth_slit_points;  // 1.3
+  auto& lids = t["lids"];  // 1.3
+  lids = nlohmann::ordered_json::array();
+  for (int e = 0; e < 2; ++e) {
+    nlohmann::ordered_json j;
+    j["eye"] = e == 0 ? "right" : "left";
+    j["method"] = r.lid_method[static_cast<std::size_t>(e)];
+    j["margin_upper"] = r.lid_margin_upper[static_cast<std::size_t>(e)];
+    j["margin_lower"] = r.lid_margin_lower[static_cast<std::size_t>(e)];
+    j["close_angle"] = result.face.rig.eyes[static_cast<std::size_t>(e)].close_angle;
+    lids.push_back(j);
+  }
   t["warnings"] = r.warnings;
   if (include_time) {
     t["seconds"]["fit"] = r.fit_seconds;

@@ -165,6 +165,131 @@ double percentile(std::vector<double> v, double p) {
   return v[k];
 }
 
+// The lid margin of one eye on a mesh (issue 13: lids from the target's own geometry). An open eye
+// is a boundary loop of the mesh near the eye's opening; a closed socket (the lid surface folds
+// into the head, as MakeHuman's) has no boundary: there the margin is the crease where the lid
+// skin, facing away from the eyeball centre, meets the socket surface, facing towards it. The
+// margin is split into upper and lower halves at its two corners (extreme x).
+struct LidMargin {
+  bool ok = false;
+  std::string kind;               // "boundary" or "crease"
+  std::vector<int> upper, lower;  // margin vertices, ascending x; the two corners in both
+  std::vector<int> inner;         // socket vertices behind the margin (crease only)
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double width = 0.0;  // corner to corner, along x
+};
+
+LidMargin find_lid_margin(const fm::Vertices& X, const fm::Faces& F, const fm::Vertices& normals,
+                          const std::vector<std::vector<int>>& adjacency,
+                          const std::vector<int>& candidates,
+                          const std::vector<std::uint8_t>& excluded, const Eigen::Vector3d& probe,
+                          const Eigen::Vector3d& opening, double size) {
+  LidMargin out;
+  const auto nv = static_cast<std::size_t>(X.rows());
+  std::vector<std::uint8_t> region(nv, 0);
+  for (int v : candidates)
+    if (!excluded[static_cast<std::size_t>(v)] && (X.row(v).transpose() - opening).norm() < size)
+      region[static_cast<std::size_t>(v)] = 1;
+  auto xy_distance = [&](const Eigen::Vector3d& p) { return (p - opening).head<2>().norm(); };
+  // Components of a vertex set (edges within the set).
+  auto split = [&](const std::vector<std::uint8_t>& in) {
+    std::vector<std::vector<int>> comps;
+    std::vector<std::uint8_t> seen(nv, 0);
+    for (int s : candidates) {
+      if (!in[static_cast<std::size_t>(s)] || seen[static_cast<std::size_t>(s)]) continue;
+      comps.emplace_back();
+      std::vector<int> stack{s};
+      seen[static_cast<std::size_t>(s)] = 1;
+      while (!stack.empty()) {
+        const int v = stack.back();
+        stack.pop_back();
+        comps.back().push_back(v);
+        for (int w : adjacency[static_cast<std::size_t>(v)])
+          if (in[static_cast<std::size_t>(w)] && !seen[static_cast<std::size_t>(w)])
+            seen[static_cast<std::size_t>(w)] = 1, stack.push_back(w);
+      }
+    }
+    return comps;
+  };
+  auto centroid_of = [&](const std::vector<int>& ids) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int v : ids) c += X.row(v).transpose();
+    return Eigen::Vector3d(c / static_cast<double>(std::max<std::size_t>(1, ids.size())));
+  };
+  // 1. a boundary loop around the opening
+  std::map<std::pair<int, int>, int> uses;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      if (region[static_cast<std::size_t>(a)] && region[static_cast<std::size_t>(b)])
+        ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<std::uint8_t> on_boundary(nv, 0);
+  for (const auto& [e, n] : uses)
+    if (n == 1)
+      on_boundary[static_cast<std::size_t>(e.first)] = 1,
+      on_boundary[static_cast<std::size_t>(e.second)] = 1;
+  std::vector<int> margin;
+  double best = 0.5 * size;
+  for (const auto& c : split(on_boundary)) {
+    if (c.size() < 6) continue;
+    const double d = xy_distance(centroid_of(c));
+    if (d < best) best = d, margin = c, out.kind = "boundary";
+  }
+  // 2. else the crease between lid skin (facing away from the eyeball centre) and socket
+  if (margin.empty()) {
+    std::vector<std::uint8_t> facing(nv, 0), inner(nv, 0);
+    for (int v : candidates)
+      if (region[static_cast<std::size_t>(v)]) {
+        const Eigen::Vector3d p = X.row(v).transpose();
+        facing[static_cast<std::size_t>(v)] =
+            normals.row(v).dot((p - probe).normalized()) < -0.3 ? 1 : 0;
+      }
+    for (const auto& c : split(facing)) {
+      if (c.size() < 4 || xy_distance(centroid_of(c)) > 0.4 * size) continue;
+      for (int v : c) inner[static_cast<std::size_t>(v)] = 1, out.inner.push_back(v);
+    }
+    for (int v : out.inner)
+      for (int w : adjacency[static_cast<std::size_t>(v)])
+        if (region[static_cast<std::size_t>(w)] && !inner[static_cast<std::size_t>(w)] &&
+            !facing[static_cast<std::size_t>(w)])
+          margin.push_back(w);
+    std::sort(margin.begin(), margin.end());
+    margin.erase(std::unique(margin.begin(), margin.end()), margin.end());
+    out.kind = "crease";
+  }
+  if (margin.size() < 6) return out;
+  std::sort(margin.begin(), margin.end(), [&](int a, int b) { return X(a, 0) < X(b, 0); });
+  const Eigen::Vector3d c0 = X.row(margin.front()).transpose(),
+                        c1 = X.row(margin.back()).transpose();
+  out.width = c1.x() - c0.x();
+  if (!(out.width > 0.2 * size)) return out;
+  for (int v : margin) {
+    const double t = (X(v, 0) - c0.x()) / out.width;
+    const double chord = c0.y() + t * (c1.y() - c0.y());
+    const bool corner = v == margin.front() || v == margin.back();
+    if (corner || X(v, 1) >= chord) out.upper.push_back(v);
+    if (corner || X(v, 1) < chord) out.lower.push_back(v);
+  }
+  if (out.upper.size() < 3 || out.lower.size() < 3) return out;
+  out.centroid = centroid_of(margin);
+  out.ok = true;
+  return out;
+}
+
+// The point at x of a polyline given by vertex ids in ascending x (linear interpolation; clamped).
+Eigen::Vector3d polyline_at(const fm::Vertices& X, const std::vector<int>& ids, double x) {
+  if (x <= X(ids.front(), 0)) return X.row(ids.front()).transpose();
+  for (std::size_t k = 1; k < ids.size(); ++k) {
+    const double x0 = X(ids[k - 1], 0), x1 = X(ids[k], 0);
+    if (x <= x1) {
+      const double t = x1 > x0 ? (x - x0) / (x1 - x0) : 0.0;
+      return ((1.0 - t) * X.row(ids[k - 1]) + t * X.row(ids[k])).transpose();
+    }
+  }
+  return X.row(ids.back()).transpose();
+}
+
 }  // namespace
 
 void UserLandmarks::validate(std::size_t vertex_count) const {
@@ -195,6 +320,29 @@ void TransferOptions::validate() const {
     throw InvalidInput("TransferOptions::several_heads_area must be in (0, 1]");
   if (!(eyeball_tolerance > 0.0 && eyeball_tolerance <= 1.0))
     throw InvalidInput("TransferOptions::eyeball_tolerance must be in (0, 1]");
+}
+
+const std::vector<std::pair<std::string, int>>& retarget_landmark_ibug() {
+  // iBUG-68 (0-based): 8 chin, 19/24 brow centres, 27 nose root, 30 nose tip, 36/39 right eye
+  // outer/inner corner, 42/45 left eye inner/outer, 48/54 outer mouth corners, 51/57 outer lip
+  // centres, 3/13 jaw (the points the built-in face's chapter-3 landmarks are made from,
+  // facemesh default_face.cpp step 10)
+  static const std::vector<std::pair<std::string, int>> table = {{"chin", 8},
+                                                                 {"nose_root", 27},
+                                                                 {"nose_tip", 30},
+                                                                 {"eye_outer_r", 36},
+                                                                 {"eye_inner_r", 39},
+                                                                 {"eye_inner_l", 42},
+                                                                 {"eye_outer_l", 45},
+                                                                 {"brow_centre_r", 19},
+                                                                 {"brow_centre_l", 24},
+                                                                 {"mouth_corner_r", 48},
+                                                                 {"mouth_corner_l", 54},
+                                                                 {"upper_lip_centre", 51},
+                                                                 {"lower_lip_centre", 57},
+                                                                 {"jaw_r", 3},
+                                                                 {"jaw_l", 13}};
+  return table;
 }
 
 Eigen::Vector3d lip_surface_point(const fm::LipGrid& lips, double u, double v) {
@@ -315,16 +463,124 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     if (p.kind == UserLandmarkKind::Point)
       given.push_back({static_cast<int>(k), al.apply(p.point)});
   }
+  // The target's own mouth slit (issue 13): the chapter-3 error function does not pin the mouth's
+  // height (§3.7; on MakeHuman the fitted mouth sits a lip's height too low, so the upper lip was
+  // never bound to the lips). A closed mouth over a bag folds into the head like a closed eye
+  // socket: the slit is the crease between the lips (facing away from the mouth cavity) and the
+  // bag (facing it), found as the lids' margin is (find_lid_margin); an open mouth is a boundary
+  // loop. When the fitted inner-lip iBUG points (60–67) lie off the slit by more than 1 % of the
+  // head height, they are placed on it (corners on its corners, the others on its upper/lower
+  // rows at proportional x) and join the RBF and the registration as landmarks, unless the user
+  // gave them.
+  bool closed_slit = false;  // a closed mouth's crease was found: the bag faces the cavity
+  Eigen::Vector3d mouth_probe = Eigen::Vector3d::Zero();
+  fm::Vertices slit_normals;
+  std::vector<int> slit_upper, slit_lower;
+  double slit_width = 0.0;
+  {
+    const auto& fg = fit.face.mesh.vertices;
+    const auto& ib = srig.ibug68;
+    double hh = 0.0;
+    {
+      int top_v = -1, chin_v = -1;
+      for (const auto& l : srig.retarget_landmarks) {
+        if (l.name == "top_of_head") top_v = l.vertex;
+        if (l.name == "chin") chin_v = l.vertex;
+      }
+      if (top_v >= 0 && chin_v >= 0) hh = fg(top_v, 1) - fg(chin_v, 1);
+    }
+    Eigen::Vector3d probe = Eigen::Vector3d::Zero(), opening = Eigen::Vector3d::Zero();
+    int cavity = 0;
+    for (Eigen::Index v = 0; v < fg.rows(); ++v)
+      if (srig.materials[static_cast<std::size_t>(v)] == fm::Material::MouthInterior)
+        probe += fg.row(v).transpose(), ++cavity;
+    for (int k = 60; k < 68; ++k)
+      opening += fg.row(ib[static_cast<std::size_t>(k)]).transpose() / 8.0;
+    const Eigen::Vector3d f60 = fg.row(ib[60]).transpose(), f64 = fg.row(ib[64]).transpose();
+    const double inner_width = (f64 - f60).norm();
+    bool user_mouth = false;
+    for (const auto& [k, p] : given) user_mouth = user_mouth || (k >= 60 && k < 68);
+    if (cavity > 0 && hh > 0.0 && inner_width > 0.0 && !user_mouth) {
+      probe /= cavity;
+      std::vector<std::vector<int>> adj0(static_cast<std::size_t>(nv));
+      for (int f : head.faces)
+        for (int k = 0; k < 3; ++k) {
+          const int a = target.faces(f, k), b = target.faces(f, (k + 1) % 3);
+          adj0[static_cast<std::size_t>(a)].push_back(b);
+          adj0[static_cast<std::size_t>(b)].push_back(a);
+        }
+      const fm::Vertices n0 = fm::vertex_normals(T, target.faces);
+      const LidMargin slit =
+          find_lid_margin(T, target.faces, n0, adj0, head.vertices,
+                          std::vector<std::uint8_t>(static_cast<std::size_t>(nv), 0), probe,
+                          opening, 0.8 * inner_width);
+      if (slit.ok && slit.width > 0.6 * inner_width && slit.width < 1.6 * inner_width) {
+        closed_slit = slit.kind == "crease";
+        mouth_probe = probe;
+        slit_normals = n0;
+        slit_upper = slit.upper, slit_lower = slit.lower, slit_width = slit.width;
+        const double lo = std::min(f60.x(), f64.x()), hi = std::max(f60.x(), f64.x());
+        const double c0 = T(slit.upper.front(), 0), c1 = T(slit.upper.back(), 0);
+        std::vector<std::pair<int, Eigen::Vector3d>> mouth;
+        for (int k = 60; k < 68; ++k) {
+          const Eigen::Vector3d f = fg.row(ib[static_cast<std::size_t>(k)]).transpose();
+          const double x = c0 + (f.x() - lo) / (hi - lo) * (c1 - c0);
+          const bool upper_row = k >= 61 && k <= 63, lower_row = k >= 65;
+          Eigen::Vector3d q;
+          if (k == 60 || k == 64)
+            q = std::abs(f.x() - lo) < std::abs(f.x() - hi)
+                    ? Eigen::Vector3d(T.row(slit.upper.front()).transpose())
+                    : Eigen::Vector3d(T.row(slit.upper.back()).transpose());
+          else
+            q = polyline_at(T, upper_row ? slit.upper : slit.lower, x);
+          (void)lower_row;
+          mouth.push_back({k, q});
+        }
+        double off = 0.0;
+        for (const auto& [k, q] : mouth)
+          off += (q - fg.row(ib[static_cast<std::size_t>(k)]).transpose()).norm() / 8.0;
+        if (off > 0.01 * hh) {
+          for (const auto& m : mouth) given.push_back(m);
+          rep.mouth_slit_points = mouth.size();
+        }
+      }
+    }
+  }
   if (!given.empty()) {
-    // RBF on the fit's landmarks plus the user's points (the user's win where they coincide).
+    // RBF on the fit's landmarks plus the given points. A chapter-3 landmark with an iBUG
+    // counterpart the user gave (retarget_landmark_ibug) is replaced by the user's point; other
+    // fit landmarks within 4 mm of a given point are dropped (the given point wins).
     std::vector<Eigen::Vector3d> src, dst;
-    for (const auto& [k, p] : given)
-      src.push_back(source.mesh.vertices.row(srig.ibug68[static_cast<std::size_t>(k)]).transpose()),
-          dst.push_back(p);
+    std::vector<std::uint8_t> consumed(68, 0);
+    std::map<int, Eigen::Vector3d> user_point;
+    for (std::size_t k = 0; k < user.points.size(); ++k) {
+      const auto& p = user.points[k];
+      if (p.kind == UserLandmarkKind::Vertex) user_point[static_cast<int>(k)] = T.row(p.vertex);
+      if (p.kind == UserLandmarkKind::Point) user_point[static_cast<int>(k)] = al.apply(p.point);
+    }
+    std::vector<std::uint8_t> replaced(static_cast<std::size_t>(fit.source_landmarks.rows()), 0);
     for (Eigen::Index i = 0; i < fit.source_landmarks.rows(); ++i) {
+      if (static_cast<std::size_t>(i) >= fit.landmark_names.size()) break;
+      for (const auto& [name, k] : retarget_landmark_ibug())
+        if (name == fit.landmark_names[static_cast<std::size_t>(i)] && user_point.count(k)) {
+          src.push_back(fit.source_landmarks.row(i).transpose()), dst.push_back(user_point[k]);
+          fit.target_landmarks.row(i) = user_point[k].transpose();
+          consumed[static_cast<std::size_t>(k)] = 1;
+          replaced[static_cast<std::size_t>(i)] = 1;
+          rep.replaced_landmarks.push_back(name);
+        }
+    }
+    for (const auto& [k, p] : given)
+      if (!consumed[static_cast<std::size_t>(k)])
+        src.push_back(
+            source.mesh.vertices.row(srig.ibug68[static_cast<std::size_t>(k)]).transpose()),
+            dst.push_back(p);
+    const std::size_t fixed_count = src.size();
+    for (Eigen::Index i = 0; i < fit.source_landmarks.rows(); ++i) {
+      if (replaced[static_cast<std::size_t>(i)]) continue;
       const Eigen::Vector3d s = fit.source_landmarks.row(i).transpose();
       bool near = false;
-      for (const auto& q : src) near = near || (q - s).norm() < 0.004;
+      for (std::size_t q = 0; q < fixed_count; ++q) near = near || (src[q] - s).norm() < 0.004;
       if (!near) src.push_back(s), dst.push_back(fit.target_landmarks.row(i).transpose());
     }
     Eigen::MatrixX3d S(static_cast<Eigen::Index>(src.size()), 3),
@@ -351,7 +607,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
   for (Eigen::Index v = 0; v < ng; ++v) {
     const auto m = srig.materials[static_cast<std::size_t>(v)];
     const Eigen::Vector3d p = source.mesh.vertices.row(v);
-    bool in = !eyeball[static_cast<std::size_t>(v)] && m != fm::Material::MouthInterior;
+    bool in = !eyeball[static_cast<std::size_t>(v)] && m != fm::Material::MouthInterior &&
+              m != fm::Material::Teeth && m != fm::Material::Tongue;
     if (lip_sample(static_cast<int>(v)) &&
         (static_cast<int>(v) - lip_first) / lip_na >= lip_nac - 2)
       in = false;
@@ -360,12 +617,16 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
         in = false, socket[static_cast<std::size_t>(v)] = 1;
     data_mask[static_cast<std::size_t>(v)] = in;
   }
-  // Registration mesh: the generic without its eyeballs (they are not part of the target surface).
+  // Registration mesh: the generic without its eyeballs, teeth and tongue (they are not part of
+  // the target's head surface; a head vertex that took the attributes of the generic's teeth would
+  // be coloured and moved as teeth).
   fm::Mesh gsurf = gen.mesh;
   {
     std::vector<Eigen::Vector3i> keep;
     for (Eigen::Index f = 0; f < gen.mesh.faces.rows(); ++f)
-      if (!eyeball[static_cast<std::size_t>(gen.mesh.faces(f, 0))])
+      if (!eyeball[static_cast<std::size_t>(gen.mesh.faces(f, 0))] &&
+          srig.materials[static_cast<std::size_t>(gen.mesh.faces(f, 0))] != fm::Material::Teeth &&
+          srig.materials[static_cast<std::size_t>(gen.mesh.faces(f, 0))] != fm::Material::Tongue)
         keep.push_back(gen.mesh.faces.row(f).transpose());
     gsurf.faces.resize(static_cast<Eigen::Index>(keep.size()), 3);
     for (std::size_t k = 0; k < keep.size(); ++k)
@@ -570,6 +831,11 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
         if (seen[static_cast<std::size_t>(w)]) continue;
         seen[static_cast<std::size_t>(w)] = 1;
         if (outer[static_cast<std::size_t>(w)] || on_lip[static_cast<std::size_t>(w)]) continue;
+        // behind a closed mouth's crease the bag faces the cavity; the lips' outer surface (where
+        // a coarse registration leaves it off the generic's lips) faces away from it
+        if (closed_slit &&
+            slit_normals.row(w).dot((T.row(w).transpose() - mouth_probe).normalized()) > 0.5)
+          continue;
         if ((T.row(w).transpose() - mouth).norm() > 0.3 * head_height_rig) continue;
         bag[static_cast<std::size_t>(w)] = 1;
         stack.push_back(w);
@@ -659,6 +925,16 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
                            : std::isfinite(b)                                ? 1.0
                                                                              : 0.0;
       jaw_w[static_cast<std::size_t>(v)] = smoothstep(0.35, 0.65, share);
+      if (closed_slit) {
+        // a closed mouth's bag hangs behind a slit the geodesics reach along its whole length,
+        // so most of the bag is about as far from either lip: the height against the slit
+        // decides instead (below it follows the jaw, above it stays; the fold within ±1/8 of the
+        // slit's width)
+        const double ys = 0.5 * (polyline_at(T, slit_upper, T(v, 0)).y() +
+                                 polyline_at(T, slit_lower, T(v, 0)).y());
+        jaw_w[static_cast<std::size_t>(v)] =
+            1.0 - smoothstep(-0.125 * slit_width, 0.125 * slit_width, T(v, 1) - ys);
+      }
       rig.materials[static_cast<std::size_t>(v)] = fm::Material::MouthInterior;
       continue;
     }
@@ -752,6 +1028,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
         in = !in;
     return in;
   };
+  const std::vector<fm::Material> hole_materials = rig.materials;  // before the eye holes
+  const std::vector<fm::Region> hole_regions = rig.regions;
   std::vector<std::uint8_t> eye_hole(static_cast<std::size_t>(nv), 0);
   for (int v : head.vertices) {
     if (on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)]) continue;
@@ -800,6 +1078,232 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       up /= sum, lo /= sum;
       if (up > 1e-3) te.upper_lid.push_back(v), te.upper_lid_weights.push_back(std::min(1.0, up));
       if (lo > 1e-3) te.lower_lid.push_back(v), te.lower_lid_weights.push_back(std::min(1.0, lo));
+    }
+  }
+
+  // Eyelids from the target's own lid margins (issue 13). The generic's lid weights, carried over
+  // by closest points, fit a target whose eye region is shaped like the generic's; where it is not
+  // (MakeHuman: a smaller opening over a deep closed socket), they put full weight on skin far from
+  // the target's margin and none on parts of it, and the lids tear. So per eye: the target's margin
+  // (boundary loop or crease, find_lid_margin); when the generic's weights already give the margin
+  // full weight they are kept; otherwise the lids are rebuilt on the target: margin weight ∝ the
+  // local opening angle (so a blink brings each upper margin point onto its lower partner at the
+  // same x, and the corners, where the opening is zero, do not move), falling off smoothly with
+  // the geodesic distance from the margin (flat to 8 %, zero at 40 % of the eye's width over the
+  // skin, zero at 25 % inside the socket); the rotation centre is the eyeball's (a separate
+  // eyeball) or placed behind the target's margin as the generic's centre lies behind its own.
+  std::array<bool, 2> own_lids{false, false};
+  {
+    std::vector<std::vector<int>> sadj(static_cast<std::size_t>(ng));
+    for (Eigen::Index f = 0; f < source.mesh.faces.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = source.mesh.faces(f, k), b = source.mesh.faces(f, (k + 1) % 3);
+        sadj[static_cast<std::size_t>(a)].push_back(b);
+        sadj[static_cast<std::size_t>(b)].push_back(a);
+      }
+    std::vector<int> scand;
+    for (Eigen::Index v = 0; v < ng; ++v)
+      if (!eyeball[static_cast<std::size_t>(v)]) scand.push_back(static_cast<int>(v));
+    const fm::Vertices snormals = fm::vertex_normals(source.mesh.vertices, source.mesh.faces);
+    std::vector<std::uint8_t> excluded(static_cast<std::size_t>(nv), 0);
+    for (int v : head.vertices)
+      excluded[static_cast<std::size_t>(v)] =
+          on_lip[static_cast<std::size_t>(v)] || bag[static_cast<std::size_t>(v)];
+    // separate eyeballs (as the parts step below finds them): their sphere centres
+    std::array<double, 2> ball_size{0.0, 0.0};
+    std::array<Eigen::Vector3d, 2> ball_centre{};
+    for (std::size_t c = 1; c < comps.size(); ++c) {
+      Eigen::Vector3d sc;
+      double sr = 0.0, srms = 1.0;
+      if (!fit_sphere(T, comps[c].vertices, sc, sr, srms)) continue;
+      const int side = (sc - rig.eyes[0].centre).norm() <= (sc - rig.eyes[1].centre).norm() ? 0 : 1;
+      const double r0 = gen.rig.eyes[static_cast<std::size_t>(side)].radius;
+      if (srms < options.eyeball_tolerance && sr > 0.5 * r0 && sr < 2.0 * r0 &&
+          (sc - rig.eyes[static_cast<std::size_t>(side)].centre).norm() < 2.0 * r0 &&
+          static_cast<double>(comps[c].vertices.size()) > ball_size[static_cast<std::size_t>(side)])
+        ball_size[static_cast<std::size_t>(side)] = static_cast<double>(comps[c].vertices.size()),
+        ball_centre[static_cast<std::size_t>(side)] = sc;
+    }
+    // multi-source Dijkstra that also returns each vertex's nearest source
+    auto geodesic_from = [&](const std::vector<int>& sources, const std::vector<std::uint8_t>& ok,
+                             std::vector<double>& d, std::vector<int>& from) {
+      d.assign(static_cast<std::size_t>(nv), std::numeric_limits<double>::infinity());
+      from.assign(static_cast<std::size_t>(nv), -1);
+      using Item = std::pair<double, int>;
+      std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
+      for (int s : sources)
+        d[static_cast<std::size_t>(s)] = 0.0, from[static_cast<std::size_t>(s)] = s,
+        q.push({0.0, s});
+      while (!q.empty()) {
+        const auto [dist, v] = q.top();
+        q.pop();
+        if (dist > d[static_cast<std::size_t>(v)]) continue;
+        for (int w : adjacency[static_cast<std::size_t>(v)]) {
+          if (!ok[static_cast<std::size_t>(w)]) continue;
+          const double nd = dist + (T.row(v) - T.row(w)).norm();
+          if (nd < d[static_cast<std::size_t>(w)])
+            d[static_cast<std::size_t>(w)] = nd,
+            from[static_cast<std::size_t>(w)] = from[static_cast<std::size_t>(v)], q.push({nd, w});
+        }
+      }
+    };
+    for (int e = 0; e < 2; ++e) {
+      const auto& se = srig.eyes[static_cast<std::size_t>(e)];
+      auto& te = rig.eyes[static_cast<std::size_t>(e)];
+      const LidMargin sm = find_lid_margin(
+          source.mesh.vertices, source.mesh.faces, snormals, sadj, scand, eyeball, se.centre,
+          se.centre + Eigen::Vector3d(0.0, 0.0, se.radius), 2.6 * se.radius);
+      if (!sm.ok) continue;
+      Eigen::Vector3d opening = Eigen::Vector3d::Zero();
+      double lo_x = 1e300, hi_x = -1e300;
+      for (const auto* side : {&sm.upper, &sm.lower})
+        for (int v : *side)
+          opening += G.row(v).transpose(), lo_x = std::min(lo_x, G(v, 0)),
+                                           hi_x = std::max(hi_x, G(v, 0));
+      opening /= static_cast<double>(sm.upper.size() + sm.lower.size());
+      const bool ball = ball_size[static_cast<std::size_t>(e)] > 0.0;
+      const Eigen::Vector3d probe = ball ? ball_centre[static_cast<std::size_t>(e)] : te.centre;
+      const LidMargin tm = find_lid_margin(T, target.faces, tnormals, adjacency, head.vertices,
+                                           excluded, probe, opening, 1.3 * (hi_x - lo_x));
+      if (!tm.ok) {
+        rep.warnings.push_back(std::string("no lid margin found on the target for the ") +
+                               (e == 0 ? "right" : "left") +
+                               " eye: the generic's lid weights are used");
+        continue;
+      }
+      // keep the generic's weights when they give most of the target's margin full weight (a
+      // copy of the generic: 80-90 %; MakeHuman: none)
+      std::map<int, double> old_up, old_lo;
+      for (std::size_t k = 0; k < te.upper_lid.size(); ++k)
+        old_up[te.upper_lid[k]] = te.upper_lid_weights[k];
+      for (std::size_t k = 0; k < te.lower_lid.size(); ++k)
+        old_lo[te.lower_lid[k]] = te.lower_lid_weights[k];
+      std::size_t full = 0, all = 0;
+      for (std::size_t k = 1; k + 1 < tm.upper.size(); ++k, ++all)
+        full += old_up.count(tm.upper[k]) && old_up[tm.upper[k]] >= 0.95;
+      for (std::size_t k = 1; k + 1 < tm.lower.size(); ++k, ++all)
+        full += old_lo.count(tm.lower[k]) && old_lo[tm.lower[k]] >= 0.95;
+      rep.lid_margin_upper[static_cast<std::size_t>(e)] = tm.upper;
+      rep.lid_margin_lower[static_cast<std::size_t>(e)] = tm.lower;
+      rep.lid_method[static_cast<std::size_t>(e)] = "generic";
+      if (all > 0 && static_cast<double>(full) >= 0.6 * static_cast<double>(all)) continue;
+      rep.lid_method[static_cast<std::size_t>(e)] = tm.kind;
+      own_lids[static_cast<std::size_t>(e)] = true;
+      const Eigen::Vector3d c =
+          ball ? ball_centre[static_cast<std::size_t>(e)]
+               : Eigen::Vector3d(tm.centroid + (se.centre - sm.centroid) * (tm.width / sm.width));
+      auto angle = [&](const Eigen::Vector3d& p) {
+        return std::atan2(p.y() - c.y(), p.z() - c.z());
+      };
+      std::map<int, double> alpha_up, alpha_lo;
+      double alpha_max = 0.0;
+      for (int v : tm.upper) {
+        const double a =
+            std::max(0.0, angle(T.row(v).transpose()) - angle(polyline_at(T, tm.lower, T(v, 0))));
+        alpha_up[v] = a, alpha_max = std::max(alpha_max, a);
+      }
+      for (int v : tm.lower) {
+        const double a =
+            std::max(0.0, angle(polyline_at(T, tm.upper, T(v, 0))) - angle(T.row(v).transpose()));
+        alpha_lo[v] = a, alpha_max = std::max(alpha_max, a);
+      }
+      alpha_up[tm.upper.front()] = alpha_up[tm.upper.back()] = 0.0;
+      alpha_lo[tm.lower.front()] = alpha_lo[tm.lower.back()] = 0.0;
+      if (!(alpha_max > 1e-3)) {
+        own_lids[static_cast<std::size_t>(e)] = false;
+        rep.lid_method[static_cast<std::size_t>(e)] = "generic";
+        continue;
+      }
+      const double W = tm.width;
+      std::vector<std::uint8_t> inner(static_cast<std::size_t>(nv), 0), skin_ok = excluded;
+      for (int v : tm.inner) inner[static_cast<std::size_t>(v)] = 1;
+      for (auto& x : skin_ok) x = 0;
+      for (int v : head.vertices)
+        skin_ok[static_cast<std::size_t>(v)] =
+            !excluded[static_cast<std::size_t>(v)] && !inner[static_cast<std::size_t>(v)] &&
+            (T.row(v).transpose() - tm.centroid).norm() < 1.2 * W;
+      std::vector<std::uint8_t> inner_ok = inner;
+      for (const auto* side : {&tm.upper, &tm.lower})
+        for (int v : *side) inner_ok[static_cast<std::size_t>(v)] = 1;
+      std::vector<double> du_s, dl_s, du_i, dl_i;
+      std::vector<int> fu_s, fl_s, fu_i, fl_i;
+      geodesic_from(tm.upper, skin_ok, du_s, fu_s);
+      geodesic_from(tm.lower, skin_ok, dl_s, fl_s);
+      geodesic_from(tm.upper, inner_ok, du_i, fu_i);
+      geodesic_from(tm.lower, inner_ok, dl_i, fl_i);
+      te.upper_lid.clear(), te.upper_lid_weights.clear(), te.lower_lid.clear(),
+          te.lower_lid_weights.clear();
+      // the eye-hole vertices of the generic's opening are decided again: socket vertices only
+      for (int v : te.eyeball_vertices) {
+        eye_hole[static_cast<std::size_t>(v)] = 0;
+        rig.materials[static_cast<std::size_t>(v)] = hole_materials[static_cast<std::size_t>(v)];
+        rig.regions[static_cast<std::size_t>(v)] = hole_regions[static_cast<std::size_t>(v)];
+      }
+      te.eyeball_vertices.clear();
+      // Weights per side: the margin weight of the nearest margin vertex of that side, falling off
+      // with the geodesic distance; near the corners, where both margins are about as near, the
+      // two sides share (so no weight jumps from one side to the other); then smoothed over the
+      // mesh (4 Jacobi rounds; the margin keeps its own weights, which close the eye exactly).
+      std::vector<double> wu(static_cast<std::size_t>(nv), 0.0),
+          wl(static_cast<std::size_t>(nv), 0.0);
+      std::vector<std::uint8_t> lid_area(static_cast<std::size_t>(nv), 0),
+          fixed(static_cast<std::size_t>(nv), 0);
+      for (const auto* side : {&tm.upper, &tm.lower})
+        for (int v : *side) fixed[static_cast<std::size_t>(v)] = 1;
+      for (int v : head.vertices) {
+        const auto i = static_cast<std::size_t>(v);
+        const bool in = inner[i];
+        const double a = in ? du_i[i] : du_s[i], b = in ? dl_i[i] : dl_s[i];
+        if (!std::isfinite(a) && !std::isfinite(b)) continue;
+        lid_area[i] = 1;
+        auto fall = [&](double d) {
+          return in ? 1.0 - smoothstep(0.0, 0.25 * W, d) : 1.0 - smoothstep(0.08 * W, 0.4 * W, d);
+        };
+        const double share = std::isfinite(a) && std::isfinite(b) && a + b > 0.0
+                                 ? smoothstep(0.3, 0.7, b / (a + b))
+                                 : (std::isfinite(a) ? 1.0 : 0.0);
+        if (std::isfinite(a))
+          wu[i] = share * alpha_up[in ? fu_i[i] : fu_s[i]] / alpha_max * fall(a);
+        if (std::isfinite(b))
+          wl[i] = (1.0 - share) * alpha_lo[in ? fl_i[i] : fl_s[i]] / alpha_max * fall(b);
+      }
+      for (int v : tm.upper)
+        wu[static_cast<std::size_t>(v)] = alpha_up[v] / alpha_max,
+        wl[static_cast<std::size_t>(v)] = 0.0;
+      for (int v : tm.lower)
+        wl[static_cast<std::size_t>(v)] = alpha_lo[v] / alpha_max,
+        wu[static_cast<std::size_t>(v)] = 0.0;
+      for (int round = 0; round < 4; ++round) {
+        const auto pu = wu, pl = wl;
+        for (int v : head.vertices) {
+          const auto i = static_cast<std::size_t>(v);
+          if (!lid_area[i] || fixed[i]) continue;
+          double su = pu[i], sl = pl[i];
+          int c = 1;
+          for (int w : adjacency[i])
+            if (lid_area[static_cast<std::size_t>(w)] && !excluded[static_cast<std::size_t>(w)])
+              su += pu[static_cast<std::size_t>(w)], sl += pl[static_cast<std::size_t>(w)], ++c;
+          wu[i] = su / c, wl[i] = sl / c;
+        }
+      }
+      for (int v : head.vertices) {
+        const auto i = static_cast<std::size_t>(v);
+        if (!lid_area[i]) continue;
+        const double w = std::max(wu[i], wl[i]);
+        if (inner[i] && w < 0.5) {
+          rig.materials[i] = fm::Material::EyeWhite;
+          rig.regions[i] = fm::Region::Rest;
+          jaw_w[i] = 0.0;
+          if (!ball && w < 1e-3) te.eyeball_vertices.push_back(v), eye_hole[i] = 1;
+        }
+        if (wu[i] > 1e-3)
+          te.upper_lid.push_back(v), te.upper_lid_weights.push_back(std::min(1.0, wu[i]));
+        if (wl[i] > 1e-3)
+          te.lower_lid.push_back(v), te.lower_lid_weights.push_back(std::min(1.0, wl[i]));
+      }
+      te.close_angle = std::min(1.5, 0.97 * alpha_max / 1.2);
+      te.centre = c;
+      rep.eye_hole_vertices[static_cast<std::size_t>(e)] = te.eyeball_vertices.size();
     }
   }
 
@@ -989,7 +1493,11 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
   }
   for (const auto& l : srig.retarget_landmarks) {
     double d = 0.0;
-    rig.retarget_landmarks.push_back({l.name, nearest_head(G.row(l.vertex).transpose(), d)});
+    int vertex = nearest_head(G.row(l.vertex).transpose(), d);
+    for (const auto& [name, k] : retarget_landmark_ibug())  // the user's point where given
+      if (name == l.name && user_vertex[static_cast<std::size_t>(k)] >= 0)
+        vertex = user_vertex[static_cast<std::size_t>(k)];
+    rig.retarget_landmarks.push_back({l.name, vertex});
   }
   // Lid closing angle per eye: the source's angle scaled by the target's own opening, measured
   // about the eye's x axis (thesis §2.4.3 rotates the upper lid about the eye centre) between the
@@ -1017,6 +1525,7 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     for (int e = 0; e < 2; ++e) {
       double src = 0.0, dst = 0.0;
       auto& te = rig.eyes[static_cast<std::size_t>(e)];
+      if (own_lids[static_cast<std::size_t>(e)]) continue;  // set from the target's margin
       if (opening(source.mesh.vertices, srig.eyes[static_cast<std::size_t>(e)], src) &&
           opening(T, te, dst) && src > 1e-3 && dst > 1e-3)
         te.close_angle =

@@ -27,6 +27,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "emoface/facemesh/io.hpp"
@@ -116,6 +117,17 @@ struct TransferReport {
   /// separate eyeballs); they are turned by gaze like an eyeball (Eye::eyeball_vertices), not moved
   /// by the lids
   std::array<std::size_t, 2> eye_hole_vertices{};
+  /// per eye (0 right, 1 left): how the lid weights were made: "generic" (the generic's weights at
+  /// each vertex's closest point; they give the target's margin full weight), "boundary" or
+  /// "crease" (rebuilt from the target's own lid margin, an open boundary loop or the crease of a
+  /// closed socket), "none" (no margin found: generic weights)
+  std::array<std::string, 2> lid_method{"none", "none"};
+  /// per eye: the target's lid margin found (vertex ids, ascending x, the corners in both)
+  std::array<std::vector<int>, 2> lid_margin_upper, lid_margin_lower;
+  /// inner-lip iBUG points (60–67) placed on the target's own mouth slit (0: the fit's were kept)
+  std::size_t mouth_slit_points = 0;
+  /// chapter-3 retargeting landmarks replaced by the user's iBUG points (retarget_landmark_ibug)
+  std::vector<std::string> replaced_landmarks;
   bool user_landmarks = false;
   double fit_seconds = 0.0;  ///< wall times (non-deterministic)
   double registration_seconds = 0.0;
@@ -142,6 +154,11 @@ TransferResult transfer_rig(const facemesh::Face& source, const facemesh::Mesh& 
                             const TransferOptions& options = {},
                             const UserLandmarks& landmarks = {},
                             const std::function<void(const GaProgress&)>& progress = {});
+
+/// The chapter-3 retargeting landmarks (Rig::retarget_landmarks names) that have an iBUG-68
+/// counterpart, with its 0-based index: a user's iBUG point replaces the fit's landmark of that
+/// name.
+const std::vector<std::pair<std::string, int>>& retarget_landmark_ibug();
 
 /// Position on the lip B-spline surface of `lips` (thesis §2.3.2): u ∈ [0, 1) around the mouth from
 /// column 0, v ∈ [0, 1] across (0 = outer border row), as LipSampler samples it.
