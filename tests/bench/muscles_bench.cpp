@@ -57,7 +57,7 @@ fm::Face subdivided(const fm::Face& f, std::vector<std::pair<int, int>>* parents
 // Subdivided `levels` times with every lip vertex (the samples and midpoints between two of them) bound
 // to the lip surface through LipBinding at its own (u, v): a transferred rig's lips.
 fm::Face bound_lips(int levels) {
-  fm::Face f = fm::make_default_face();
+  fm::Face f = fm::make_generic_face();
   const auto& lips = f.rig.lips;
   std::vector<Eigen::Vector2d> uv(f.mesh.vertex_count(), Eigen::Vector2d(-1.0, -1.0));
   for (int j = 0; j < lips.samples_across; ++j) {
@@ -106,7 +106,7 @@ const fm::Face& bound_face(int levels) {
 }
 
 const fm::Face& face(bool big) {
-  static const fm::Face small = fm::make_default_face();
+  static const fm::Face small = fm::make_generic_face();
   static const fm::Face large = subdivided(small);
   return big ? large : small;
 }

@@ -72,7 +72,7 @@ std::string slurp(const fs::path& p) {
 // The built-in face as a user would hand it in: OBJ with cylindrical UVs, a material library, an
 // object, groups for the head and the eyeballs, and comment lines.
 void write_user_obj(const fs::path& path) {
-  const auto face = emoface::facemesh::make_default_face();
+  const auto face = emoface::facemesh::make_generic_face();
   std::ostringstream o;
   o << "# a user's head\nmtllib head.mtl\no head\n";
   o.precision(9);
@@ -109,7 +109,7 @@ TEST(RetargetApp, TransferKeepsTheUsersFileAndRigsIt) {
   EXPECT_EQ(slurp(out / "head.mtl"), slurp(in / "head.mtl"));
   for (const char* f : {"face.rig", "report.json", "emotions.png"}) EXPECT_TRUE(fs::exists(out / f)) << f;
   const auto face = emoface::facemesh::load_face((out / "face.rig").string());
-  EXPECT_EQ(face.mesh.vertex_count(), emoface::facemesh::make_default_face().mesh.vertex_count());
+  EXPECT_EQ(face.mesh.vertex_count(), emoface::facemesh::make_generic_face().mesh.vertex_count());
   EXPECT_FALSE(face.rig.lips.samples_in_mesh);
   EXPECT_FALSE(face.rig.lips.bound.empty());
   EXPECT_EQ(face.rig.mesh_file, "face.obj");
@@ -158,7 +158,7 @@ TEST(RetargetApp, TransferWritesNothingOnBadInput) {
 
 TEST(RetargetApp, TransferOfGltfWritesGlb) {
   TempDir t;
-  const auto face = emoface::facemesh::make_default_face();
+  const auto face = emoface::facemesh::make_generic_face();
   const auto in = t.path / "head.gltf";
   emoface::facemesh::write_animated_gltf(in.string(), face.mesh, {face.mesh.vertices}, {0.0});
   const auto out = t.path / "out";
