@@ -404,6 +404,28 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
               [](const fm::LipBinding& x, const fm::LipBinding& y) { return x.vertex < y.vertex; });
   }
 
+  // ---- Colours around the mouth (stop-gap, like the two above): the transfer leaves lip material on
+  // skin vertices that the lip surface does not drive, and mouth-bag material on vertices of the
+  // face's outside at the mouth corners — dark and pink spikes around the lips. Lip colour only where
+  // the lip surface drives the vertex (weight ≥ 0.5); bag colour only where the surface does not face
+  // forward (n_z ≤ 0.3) or lies more than 6 mm behind the lips' front.
+  {
+    std::vector<double> lip_w(static_cast<std::size_t>(nh), 0.0);
+    double front = -1e9;
+    for (const auto& lb : rig.lips.bound) {
+      if (lb.vertex < nh) lip_w[static_cast<std::size_t>(lb.vertex)] = lb.weight;
+      if (std::abs(b.v[static_cast<std::size_t>(lb.vertex)].x()) < 0.01)
+        front = std::max(front, b.v[static_cast<std::size_t>(lb.vertex)].z());
+    }
+    for (int v = 0; v < nh; ++v) {
+      auto& m = b.mat[static_cast<std::size_t>(v)];
+      if (m == fm::Material::Lip && lip_w[static_cast<std::size_t>(v)] < 0.5) m = fm::Material::Skin;
+      if (m == fm::Material::MouthInterior && in_mouth[static_cast<std::size_t>(v)] &&
+          head_normals(v, 2) > 0.3 && b.v[static_cast<std::size_t>(v)].z() > front - 0.006)
+        m = fm::Material::Skin;
+    }
+  }
+
   // ---- Teeth: the generic's slabs, carried by the similarity that takes the generic's mouth region
   // onto its registration on the head (Umeyama), so they sit where the generic's sit behind its lips.
   const auto& gl = generic.rig.lips;
