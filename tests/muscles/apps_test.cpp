@@ -40,7 +40,7 @@ class Apps : public ::testing::Test {
 TEST_F(Apps, FaceanimWritesFramesAndGltf) {
   emoface::core::write_file_atomic(p("p.csv"), "id,masseter,zygomatic_major_l,zygomatic_major_r\nneutral,0,0,0\nsmile,0,1,1\nopen,0.8,0,0\n");
   ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --params " + p("p.csv") + " --out " + p("out") + " --gltf " + p("a.gltf")), 0);
-  const auto face = emoface::facemesh::make_generic_face();
+  const auto face = emoface::facemesh::make_default_face();  // faceanim's face without --rig
   for (const char* name : {"frame_0000.obj", "frame_0001.obj", "frame_0002.obj"}) {
     const auto mesh = emoface::facemesh::read_mesh(p("out/") + name);
     EXPECT_EQ(mesh.vertex_count(), face.mesh.vertex_count());

@@ -35,7 +35,7 @@ struct TempDir {
 
 TEST(RetargetApp, FitsTheDefaultFaceOntoItself) {
   TempDir t;
-  const std::string target = std::string(EMOFACE_SOURCE_DIR) + "/data/face/default_face.obj";
+  const std::string target = std::string(EMOFACE_SOURCE_DIR) + "/data/face/generic_face.obj";  // the source itself
   const auto out = t.path / "out";
   ASSERT_EQ(run("--mode deform-source --target " + target + " --out " + out.string() + " --generations 2 --population 6 --quiet"), 0);
   for (const char* f : {"face.rig", "face.obj", "target_aligned.obj", "report.json", "overlay.png", "error_curve.png", "emotions.png"})
