@@ -23,11 +23,12 @@ namespace mu = emoface::muscles;
 int main(int argc, char** argv) {
   CLI::App app{"Deform a face by muscle parameters, one mesh per frame (thesis ch. 2 muscle model).\n"
                "Example: faceanim --params expressions.csv --out frames --gltf anim.gltf\n"
-               "         faceanim --write-default-face data/face   (regenerates the built-in face files)"};
+               "         faceanim --write-generic-face DIR   (the procedural generic face, --rig generic)"};
   std::string rig_path, params, out_dir, format, gltf, default_dir, shard_text, weights;
   double fps = 25.0, delta_c = 0.2;
   bool no_wrinkles = false, ignore_unknown = false, blendshapes = false;
-  app.add_option("--rig", rig_path, "Rig file (emoface.rig JSON); default: the built-in face");
+  app.add_option("--rig", rig_path, "Rig file (emoface.rig JSON), or 'generic' for the procedural generic face; "
+                 "default: the built-in default face (the rigged MakeHuman head)");
   app.add_option("--params", params, "Parameter frames: .csv, .ndjson/.jsonl or .json");
   app.add_option("--weights", weights,
                  "arkit|facs: --params is a CSV of ARKit blend-shape (or FACS) weights, fitted to the "
@@ -55,17 +56,20 @@ int main(int argc, char** argv) {
   app.add_option("--shard", shard_text,
                  "i/N: only the i-th of N contiguous blocks of frames (files keep their global "
                  "numbers); auto: from a Slurm job array");
-  app.add_option("--write-default-face", default_dir, "Write default_face.obj + default.rig into DIR and exit");
+  app.add_option("--write-generic-face", default_dir, "Write generic_face.obj + generic.rig (the procedural generic "
+                 "face) into DIR and exit (all of data/face: retarget --make-default-face data/face)");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("faceanim", [&]() {
     if (!default_dir.empty()) {
       std::filesystem::create_directories(default_dir);
-      fm::save_face((std::filesystem::path(default_dir) / "default.rig").string(), fm::make_default_face());
+      fm::save_face((std::filesystem::path(default_dir) / "generic.rig").string(), fm::make_generic_face());
       return 0;
     }
     if (params.empty() || (out_dir.empty() && gltf.empty())) throw emoface::InvalidInput("give --params FILE and --out DIR and/or --gltf FILE");
     const auto shard = shard_text.empty() ? emoface::cli::Shard{} : emoface::cli::parse_shard(shard_text);
-    fm::Face face = rig_path.empty() ? fm::make_default_face() : fm::load_face(rig_path);
+    fm::Face face = rig_path.empty()          ? fm::make_default_face()
+                    : rig_path == "generic" ? fm::make_generic_face()
+                                            : fm::load_face(rig_path);
     if (format.empty()) {
       const bool gltf_doc = face.document && (face.document->format() == fm::MeshFormat::Gltf ||
                                               face.document->format() == fm::MeshFormat::Glb);

@@ -33,8 +33,9 @@ int main(int argc, char** argv) {
   app.add_option("--view", view, "front or threequarter")->check(CLI::IsMember({"front", "threequarter"}));
   app.add_option("--sheet", sheet, "Tile all meshes into one contact sheet with this many columns")->check(CLI::Range(1, 64));
   app.add_option("--rig", rig_path,
-                 "Rig for material colours and its mesh frame (default: the built-in face when the vertex count\n"
-                 "matches; otherwise the mesh's own vertex colours, else uniform skin)");
+                 "Rig for material colours and its mesh frame, or 'generic' (default: the built-in default face, or\n"
+                 "the generic face, when the vertex count matches; otherwise the mesh's own vertex colours, else\n"
+                 "uniform skin)");
   app.add_option("--width", width, "Image width in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--height", height, "Image height in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--yaw", yaw, "Extra camera yaw in radians")->check(CLI::Range(-3.14159, 3.14159));
@@ -49,7 +50,9 @@ int main(int argc, char** argv) {
   return emoface::cli::run("facerender", [&]() {
     if (out.empty() && video.empty()) throw emoface::InvalidInput("give --out FILE.png and/or --video FILE.mp4");
     if (!audio.empty() && video.empty()) throw emoface::InvalidInput("--audio needs --video");
-    const fm::Rig rig = rig_path.empty() ? fm::make_default_face().rig : fm::read_rig(rig_path);
+    fm::Rig rig = rig_path.empty()          ? fm::make_default_face().rig
+                  : rig_path == "generic" ? fm::make_generic_face().rig
+                                          : fm::read_rig(rig_path);
     std::vector<Eigen::Vector3f> colors;  // from the first mesh that fits the rig (same topology)
     fm::RenderOptions options;
     options.view = fm::view_from_string(view);
@@ -61,6 +64,14 @@ int main(int argc, char** argv) {
       std::vector<Eigen::Vector3f> colors;
       const fm::Paint* paint = nullptr;  // brows and hairline of the built-in face
     };
+    if (rig_path.empty() && !meshes.empty()) {
+      // meshes of the generic face (e.g. faceanim --rig generic) get the generic face's colours
+      const fm::Rig generic = fm::make_generic_face().rig;
+      const fm::MeshDocument first = fm::read_mesh_document(meshes.front());
+      if (first.triangles().vertex_count() != rig.vertex_count &&
+          first.triangles().vertex_count() == generic.vertex_count)
+        rig = generic;
+    }
     const fm::Paint* paint = no_paint ? nullptr : fm::paint_for(rig);
     std::vector<Input> inputs;
     fm::Vertices box(2, 3);  // bounding box of all meshes (rows: min, max)

@@ -125,7 +125,9 @@ int simulate(Args& a) {
   std::unique_ptr<emoface::bridge::LandmarkFitter> fitter;
   if (a.muscles) {
     if (!graph) throw cli::UsageError("--muscles needs --graph");
-    auto f = a.rig.empty() ? emoface::facemesh::make_default_face() : emoface::facemesh::load_face(a.rig);
+    auto f = a.rig.empty()          ? emoface::facemesh::make_default_face()
+             : a.rig == "generic" ? emoface::facemesh::make_generic_face()
+                                  : emoface::facemesh::load_face(a.rig);
     face = std::make_unique<emoface::muscles::FaceSolver>(std::move(f.mesh), std::move(f.rig));
     fitter = std::make_unique<emoface::bridge::LandmarkFitter>(*face);
   }

@@ -178,7 +178,9 @@ int main(int argc, char** argv) {
     std::string rig_file = rig_path;
     if (!rig_file.empty() && fs::is_directory(rig_file)) rig_file = (fs::path(rig_file) / "face.rig").string();
     const emoface::facemesh::Face face =
-        rig_file.empty() ? emoface::facemesh::make_default_face() : emoface::facemesh::load_face(rig_file);
+        rig_file.empty()            ? emoface::facemesh::make_default_face()
+        : rig_file == "generic" ? emoface::facemesh::make_generic_face()
+                                : emoface::facemesh::load_face(rig_file);
     fs::create_directories(out_dir);
     const auto file = [&](const char* name) { return (fs::path(out_dir) / name).string(); };
 

@@ -11,6 +11,7 @@
 #include "emoface/facemesh/render.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/muscles/solver.hpp"
+#include "emoface/retarget/default_head.hpp"
 #include "emoface/retarget/io.hpp"
 #include "emoface/retarget/plot.hpp"
 #include "emoface/retarget/retarget.hpp"
@@ -138,9 +139,13 @@ int main(int argc, char** argv) {
   int tile = 320;
   std::string mode = "transfer", landmarks_path;
   bool transfer_flag = false;
-  app.add_option("--target", target_path, "Target head mesh (OBJ/PLY/OFF; glTF/GLB in --mode transfer)")->required();
+  std::string make_default;
+  app.add_option("--target", target_path, "Target head mesh (OBJ/PLY/OFF; glTF/GLB in --mode transfer)");
   app.add_option("--out", out_dir, "Output directory (transfer: face.<ext>, face.rig, report.json, emotions.png; "
-                 "deform-source: face.rig, face.obj, target_aligned.obj, report.json, PNGs)")->required();
+                 "deform-source: face.rig, face.obj, target_aligned.obj, report.json, PNGs)");
+  app.add_option("--make-default-face", make_default,
+                 "Regenerate the shipped faces in DIR (data/face): generic_face.obj + generic.rig (--rig generic) "
+                 "and default_face.obj + default.rig (DIR/makehuman_head.obj rigged by transfer) and exit");
   app.add_option("--mode", mode, "transfer (rig the target mesh itself, default) or deform-source (thesis export)")
       ->check(CLI::IsMember({"transfer", "deform-source"}));
   app.add_flag("--transfer", transfer_flag, "Short for --mode transfer");
@@ -178,6 +183,17 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "No progress on stderr");
   if (auto code = emoface::cli::parse(app, argc, argv)) return *code;
   return emoface::cli::run("retarget", [&]() {
+    if (!make_default.empty()) {
+      const rt::DefaultHeadReport rep = rt::write_default_face_files(make_default);
+      if (!quiet)
+        std::fprintf(stderr, "retarget: default face: %zu head vertices, eyeballs %zu + %zu (sockets %zu + %zu), "
+                     "teeth %zu + %zu, tongue %zu, lashes %zu, neck caps %zu; wrote %s\n",
+                     rep.head_vertices, rep.eyeball_vertices[0], rep.eyeball_vertices[1], rep.socket_vertices[0],
+                     rep.socket_vertices[1], rep.upper_teeth, rep.lower_teeth, rep.tongue, rep.lashes, rep.neck_cap,
+                     make_default.c_str());
+      return 0;
+    }
+    if (target_path.empty() || out_dir.empty()) throw emoface::cli::UsageError("--target and --out are required");
     o.align.mode = rt::align_mode_from_string(align_mode);
     o.clean.enabled = !keep_all;
     if (!up.empty()) o.align.up = rt::axis_from_string(up);
@@ -185,7 +201,7 @@ int main(int argc, char** argv) {
     o.ga.projection = rt::projection_mode_from_string(projection);
     if (rt::to_string(o.align.up.value_or(rt::Axis::PosY)).substr(1) == rt::to_string(o.align.front.value_or(rt::Axis::PosZ)).substr(1))
       throw emoface::cli::UsageError("--up and --front must be perpendicular axes");
-    const fm::Face source = source_rig.empty() ? fm::make_default_face() : fm::load_face(source_rig);
+    const fm::Face source = source_rig.empty() ? fm::make_generic_face() : fm::load_face(source_rig);
     if (transfer_flag) mode = "transfer";
     if (mode == "transfer") return run_transfer(source, target_path, out_dir, landmarks_path, o, no_png, quiet, tile);
     if (!landmarks_path.empty()) throw emoface::cli::UsageError("--landmarks needs --mode transfer");

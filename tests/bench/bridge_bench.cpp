@@ -14,7 +14,7 @@
 namespace {
 
 void BM_BridgeFitFrame(benchmark::State& state) {
-  auto face = emoface::facemesh::make_default_face();
+  auto face = emoface::facemesh::make_generic_face();
   const emoface::muscles::FaceSolver solver(std::move(face.mesh), std::move(face.rig));
   const emoface::bridge::LandmarkFitter fitter(solver);
   std::vector<double> truth(emoface::muscles::kSideParameterCount, 0.0);
@@ -33,7 +33,7 @@ BENCHMARK(BM_BridgeFitFrame)->Unit(benchmark::kMillisecond);
 // A track: 60 frames ramping three muscles up and down, each frame warm-started from the previous fit
 // (how mindmap simulate --muscles runs). One item = one frame.
 void BM_BridgeFitTrack(benchmark::State& state) {
-  auto face = emoface::facemesh::make_default_face();
+  auto face = emoface::facemesh::make_generic_face();
   const emoface::muscles::FaceSolver solver(std::move(face.mesh), std::move(face.rig));
   const emoface::bridge::LandmarkFitter fitter(solver);
   std::vector<Eigen::MatrixXd> targets;
@@ -51,7 +51,7 @@ void BM_BridgeFitTrack(benchmark::State& state) {
 BENCHMARK(BM_BridgeFitTrack)->Unit(benchmark::kMillisecond);
 
 void BM_MuscleModelDeform(benchmark::State& state) {  // for comparison: one full-model evaluation
-  auto face = emoface::facemesh::make_default_face();
+  auto face = emoface::facemesh::make_generic_face();
   const emoface::muscles::FaceSolver solver(std::move(face.mesh), std::move(face.rig));
   std::vector<double> v(emoface::muscles::kParameterCount, 0.0);
   v[0] = v[1] = 0.6;

@@ -10,7 +10,7 @@ namespace {
 namespace fm = emoface::facemesh;
 
 const fm::Face& face() {
-  static const fm::Face f = fm::make_default_face();
+  static const fm::Face f = fm::make_generic_face();
   return f;
 }
 

@@ -21,7 +21,7 @@ const std::string kSrc = EMOFACE_SOURCE_DIR;
 struct Fixture {
   ob::MatchScript match = ob::read_match_file(kSrc + "/data/obie/match_7_4.json");
   emoface::parlee::AgentConfig agent = emoface::parlee::read_agent_file(kSrc + "/data/parlee/agents/neutral.json");
-  fm::Face face = fm::make_default_face();
+  fm::Face face = fm::make_generic_face();
   ob::ObieOptions options() const {
     ob::ObieOptions o;
     o.speech = false;  // espeak-ng is measured by channels_bench; its timing varies within a process

@@ -18,7 +18,7 @@ namespace fm = emoface::facemesh;
 namespace rt = emoface::retarget;
 
 const fm::Face& face() {
-  static const fm::Face f = fm::make_default_face();
+  static const fm::Face f = fm::make_generic_face();
   return f;
 }
 

@@ -97,7 +97,7 @@ BENCHMARK(BM_Baseline_OfflineMixPerFrame)->Unit(benchmark::kMillisecond);
 
 // Baseline: FaceSolver::deform alone on a smile (the floor of BM_RuntimeUpdateDeform).
 void BM_Baseline_Deform(benchmark::State& state) {
-  emoface::facemesh::Face face = emoface::facemesh::make_default_face();
+  emoface::facemesh::Face face = emoface::facemesh::make_generic_face();
   const emoface::muscles::FaceSolver solver(face.mesh, face.rig);
   std::vector<double> v(emoface::muscles::kParameterCount, 0.0);
   v[0] = v[1] = 0.6;

@@ -19,7 +19,7 @@ struct Fixture {
   br::LandmarkFitter fitter;
   Fixture() : solver(make_solver()), fitter(solver) {}
   static ms::FaceSolver make_solver() {
-    auto face = emoface::facemesh::make_default_face();
+    auto face = emoface::facemesh::make_generic_face();
     return ms::FaceSolver(std::move(face.mesh), std::move(face.rig));
   }
 };

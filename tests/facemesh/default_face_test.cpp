@@ -16,7 +16,7 @@ namespace emoface::facemesh {
 namespace {
 
 const Face& face() {
-  static const Face f = make_default_face();
+  static const Face f = make_generic_face();
   return f;
 }
 
@@ -97,13 +97,13 @@ TEST(DefaultFace, MusclesMirrored) {
 }
 
 TEST(DefaultFace, DeterministicAndMatchesCheckedInData) {
-  const Face again = make_default_face();
+  const Face again = make_generic_face();
   EXPECT_EQ(again.mesh.vertices, face().mesh.vertices);
   EXPECT_EQ(format_rig(again.rig), format_rig(face().rig));
-  const std::string rig_path = std::string(EMOFACE_SOURCE_DIR) + "/data/face/default.rig";
+  const std::string rig_path = std::string(EMOFACE_SOURCE_DIR) + "/data/face/generic.rig";
   if (!std::filesystem::exists(rig_path)) GTEST_SKIP() << "data/face not present";
   const Face disk = load_face(rig_path);
-  EXPECT_EQ(format_rig(disk.rig), format_rig(face().rig)) << "regenerate with: faceanim --write-default-face data/face";
+  EXPECT_EQ(format_rig(disk.rig), format_rig(face().rig)) << "regenerate with: retarget --make-default-face data/face";
   EXPECT_EQ(disk.mesh.faces, face().mesh.faces);
   EXPECT_TRUE(disk.mesh.vertices.isApprox(face().mesh.vertices, 1e-7));
 }

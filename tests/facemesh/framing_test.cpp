@@ -12,7 +12,7 @@ namespace emoface::facemesh {
 namespace {
 
 const Face& face() {
-  static const Face f = make_default_face();
+  static const Face f = make_generic_face();
   return f;
 }
 

@@ -20,7 +20,7 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 const Face& default_face() {
-  static const Face face = make_default_face();
+  static const Face face = make_generic_face();
   return face;
 }
 

@@ -108,10 +108,10 @@ TEST_F(MeshDocumentTest, IdenticalPositionsGiveAByteIdenticalFile) {
     EXPECT_EQ(core::read_file(path("out.obj")), text);
     // and the default face written by OpenMesh
   }
-  save_face(path("face.rig"), make_default_face());
-  const MeshDocument face = read_mesh_document(path("default_face.obj"));
+  save_face(path("face.rig"), make_generic_face());
+  const MeshDocument face = read_mesh_document(path("generic_face.obj"));
   face.write(path("again.obj"), face.triangles().vertices);
-  EXPECT_EQ(core::read_file(path("again.obj")), core::read_file(path("default_face.obj")));
+  EXPECT_EQ(core::read_file(path("again.obj")), core::read_file(path("generic_face.obj")));
 }
 
 TEST_F(MeshDocumentTest, WritesOnlyTheNumbersOfMovedVerticesAndTheirNormals) {
@@ -582,7 +582,7 @@ TEST_F(MeshDocumentTest, AddsTargetsAndAnimationToAUsersCharacter) {
 }
 
 TEST_F(MeshDocumentTest, RoundTripsOurOwnAnimatedGltf) {
-  const Face face = make_default_face();
+  const Face face = make_generic_face();
   Vertices moved = face.mesh.vertices;
   moved.col(2).array() += 0.01;
   write_animated_gltf(path("anim.glb"), face.mesh, {face.mesh.vertices, moved}, {0.0, 1.0});
@@ -652,23 +652,23 @@ TEST_F(MeshDocumentTest, RejectsBadGltf) {
 }
 
 TEST_F(MeshDocumentTest, LoadFaceReadsObjThroughTheDocument) {
-  save_face(path("face.rig"), make_default_face());
+  save_face(path("face.rig"), make_generic_face());
   const Face face = load_face(path("face.rig"));
   ASSERT_TRUE(face.document != nullptr);
   EXPECT_EQ(face.document->format(), MeshFormat::Obj);
-  EXPECT_EQ(face.mesh.faces, make_default_face().mesh.faces);
+  EXPECT_EQ(face.mesh.faces, make_generic_face().mesh.faces);
   // same order as OpenMesh's reader, which parses single precision; ours keeps every digit
-  EXPECT_TRUE(face.mesh.vertices.isApprox(read_mesh(path("default_face.obj")).vertices, 1e-7));
-  const std::string text = core::read_file(path("default_face.obj"));
+  EXPECT_TRUE(face.mesh.vertices.isApprox(read_mesh(path("generic_face.obj")).vertices, 1e-7));
+  const std::string text = core::read_file(path("generic_face.obj"));
   const std::size_t v0 = text.find("\nv ") + 3;
   EXPECT_EQ(face.mesh.vertices(0, 0), std::strtod(text.c_str() + v0, nullptr));
 }
 
 TEST_F(MeshDocumentTest, SaveFaceWritesTheDocumentBackInTheMeshFrame) {
-  Face face = make_default_face();
+  Face face = make_generic_face();
   save_face(path("face.rig"), face);
   // the user's file: decimetres, a comment and a group the loader must keep
-  const MeshDocument plain = read_mesh_document(path("default_face.obj"));
+  const MeshDocument plain = read_mesh_document(path("generic_face.obj"));
   Vertices dm = plain.triangles().vertices * 10.0;
   plain.write(path("dm.obj"), dm);
   core::write_file_atomic(path("user.obj"), "# made by the user\ng head\n" + core::read_file(path("dm.obj")));

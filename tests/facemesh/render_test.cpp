@@ -22,7 +22,7 @@ std::size_t non_background(const Image& im, const RenderOptions& o) {
 }
 
 TEST(Render, DrawsTheDefaultFaceInBothViews) {
-  const Face f = make_default_face();
+  const Face f = make_generic_face();
   RenderOptions o;
   o.width = 96;
   o.height = 112;
@@ -169,7 +169,7 @@ TEST(Render, PaintIsSampledAtTheInterpolatedCoordinates) {
 }
 
 TEST(Render, DefaultFacePaint) {
-  const Face f = make_default_face();
+  const Face f = make_generic_face();
   const Paint* p = paint_for(f.rig);
   ASSERT_NE(p, nullptr);
   EXPECT_NO_THROW(p->validate(f.mesh.vertex_count()));
@@ -219,7 +219,7 @@ namespace emoface::facemesh {
 namespace {
 
 TEST(Render, SoftenedMaterialColours) {
-  const Face f = make_default_face();
+  const Face f = make_generic_face();
   const auto crisp = material_colors(f.rig);
   const auto soft = material_colors(f.rig, f.mesh, 2);
   ASSERT_EQ(soft.size(), crisp.size());

@@ -21,7 +21,7 @@ namespace emoface::faceweights {
 namespace {
 
 const facemesh::Face& face() {
-  static const facemesh::Face f = facemesh::make_default_face();
+  static const facemesh::Face f = facemesh::make_generic_face();
   return f;
 }
 const muscles::FaceSolver& solver() {

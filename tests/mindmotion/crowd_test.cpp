@@ -45,7 +45,7 @@ struct Face {
 };
 const Face& default_face() {
   static const Face face = [] {
-    auto f = fm::make_default_face();
+    auto f = fm::make_generic_face();
     Face out;
     out.solver = std::make_unique<emoface::muscles::FaceSolver>(std::move(f.mesh), std::move(f.rig));
     out.fitter = std::make_unique<emoface::bridge::LandmarkFitter>(*out.solver);
@@ -450,7 +450,7 @@ TEST(CrowdFaces, RigSpecsAssignFacesPerCharacter) {
   const std::string dir = ::testing::TempDir() + "emoface_crowd_faces";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  emoface::facemesh::save_face(dir + "/face.rig", emoface::facemesh::make_default_face());
+  emoface::facemesh::save_face(dir + "/face.rig", emoface::facemesh::make_generic_face());
   const mo::CrowdFaces one(maps, {"tim=" + dir + "/face.rig"});
   ASSERT_EQ(one.rigs().size(), 3u);  // per character, map order: hot, tim, zen
   EXPECT_EQ(one.rigs()[0].solver, one.rigs()[2].solver);  // hot and zen share the default face

@@ -41,7 +41,7 @@ class Apps : public ::testing::Test {
 TEST_F(Apps, FaceanimWritesFramesAndGltf) {
   emoface::core::write_file_atomic(p("p.csv"), "id,masseter,zygomatic_major_l,zygomatic_major_r\nneutral,0,0,0\nsmile,0,1,1\nopen,0.8,0,0\n");
   ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --params " + p("p.csv") + " --out " + p("out") + " --gltf " + p("a.gltf")), 0);
-  const auto face = emoface::facemesh::make_default_face();
+  const auto face = emoface::facemesh::make_default_face();  // faceanim's face without --rig
   for (const char* name : {"frame_0000.obj", "frame_0001.obj", "frame_0002.obj"}) {
     const auto mesh = emoface::facemesh::read_mesh(p("out/") + name);
     EXPECT_EQ(mesh.vertex_count(), face.mesh.vertex_count());
@@ -92,11 +92,11 @@ TEST_F(Apps, FaceanimFitsArkitWeights) {
 }
 
 TEST_F(Apps, FaceanimRegeneratesTheCheckedInFace) {
-  ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --write-default-face " + p("face")), 0);
+  ASSERT_EQ(run(std::string(FACEANIM_EXE) + " --write-generic-face " + p("face")), 0);
   const std::string data = std::string(EMOFACE_SOURCE_DIR) + "/data/face/";
-  if (!fs::exists(data + "default.rig")) GTEST_SKIP();
-  EXPECT_EQ(emoface::core::read_file(p("face/default.rig")), emoface::core::read_file(data + "default.rig"));
-  EXPECT_EQ(emoface::core::read_file(p("face/default_face.obj")), emoface::core::read_file(data + "default_face.obj"));
+  if (!fs::exists(data + "generic.rig")) GTEST_SKIP();
+  EXPECT_EQ(emoface::core::read_file(p("face/generic.rig")), emoface::core::read_file(data + "generic.rig"));
+  EXPECT_EQ(emoface::core::read_file(p("face/generic_face.obj")), emoface::core::read_file(data + "generic_face.obj"));
 }
 
 TEST_F(Apps, FaceanimErrors) {
@@ -108,7 +108,7 @@ TEST_F(Apps, FaceanimErrors) {
 }
 
 TEST_F(Apps, FacerenderPngAndSheet) {
-  const auto face = emoface::facemesh::make_default_face();
+  const auto face = emoface::facemesh::make_generic_face();
   emoface::facemesh::write_mesh(p("a.obj"), face.mesh);
   ASSERT_EQ(run(std::string(FACERENDER_EXE) + " " + p("a.obj") + " " + p("a.obj") + " --sheet 2 --width 64 --height 72 --out " + p("s.png")), 0);
   EXPECT_EQ(emoface::core::read_file(p("s.png")).substr(1, 3), "PNG");
@@ -123,7 +123,7 @@ namespace fm = emoface::facemesh;
 
 // A user's rig: the built-in face's rig on an OBJ in decimetres with UVs, a group, a material library.
 std::string user_obj_rig(const std::string& dir) {
-  const auto face = fm::make_default_face();
+  const auto face = fm::make_generic_face();
   std::string obj = "# the user's head\nmtllib head.mtl\no head\n";
   char line[160];
   for (long v = 0; v < face.mesh.vertices.rows(); ++v) {
@@ -208,7 +208,7 @@ TEST_F(Apps, FaceanimWritesFramesThroughTheUsersObjInItsOwnFrame) {
 }
 
 TEST_F(Apps, FaceanimWritesGlbFramesForAGltfRig) {
-  const auto face = fm::make_default_face();
+  const auto face = fm::make_generic_face();
   fm::write_animated_gltf(p("head.glb"), face.mesh, {face.mesh.vertices}, {0.0});
   fm::Rig rig = face.rig;
   rig.mesh_file = "head.glb";
@@ -233,7 +233,7 @@ std::size_t blank_png_size(int w, int h) {
 }
 
 TEST_F(Apps, FacerenderFramesAMeshInAnyFrame) {
-  const auto face = fm::make_default_face();
+  const auto face = fm::make_generic_face();
   fm::Mesh far = face.mesh;
   far.vertices *= 10.0;  // decimetres, moved off the default view
   far.vertices.col(1).array() += 15.0;

@@ -19,7 +19,7 @@ namespace fm = facemesh;
 namespace fx = fuzzyexpr;
 
 const fm::Face& face() {
-  static const fm::Face f = fm::make_default_face();
+  static const fm::Face f = fm::make_generic_face();
   return f;
 }
 const FaceSolver& solver() {

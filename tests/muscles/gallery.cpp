@@ -19,7 +19,7 @@ using Named = std::map<std::string, double>;
 namespace {
 
 const fm::Face& face() {
-  static const fm::Face f = fm::make_default_face();
+  static const fm::Face f = fm::make_generic_face();
   return f;
 }
 

@@ -15,7 +15,7 @@ namespace {
 namespace fm = facemesh;
 
 const fm::Face& face() {
-  static const fm::Face f = fm::make_default_face();
+  static const fm::Face f = fm::make_generic_face();
   return f;
 }
 

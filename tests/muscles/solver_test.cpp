@@ -20,7 +20,7 @@ namespace fm = facemesh;
 constexpr double kPi = 3.14159265358979323846;
 
 const fm::Face& face() {
-  static const fm::Face f = fm::make_default_face();
+  static const fm::Face f = fm::make_generic_face();
   return f;
 }
 const FaceSolver& solver() {

@@ -139,7 +139,7 @@ TEST_F(ObieApp, ConvertWritesAMatchScriptThatRuns) {
 TEST_F(ObieApp, RunsOnARigDirectory) {
   // a rig directory as `retarget --out DIR` leaves it: DIR/face.rig + the mesh it names
   std::filesystem::create_directories(path("rig"));
-  emoface::facemesh::save_face(path("rig/face.rig"), emoface::facemesh::make_default_face());
+  emoface::facemesh::save_face(path("rig/face.rig"), emoface::facemesh::make_generic_face());
   auto r = run_tool(kExe, "--match " + match() + " --agent " + agent() + " --out " + path("o") + kSmall +
                               " --no-video -q --rig " + path("rig"));
   ASSERT_EQ(r.code, 0) << r.err;

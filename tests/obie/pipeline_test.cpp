@@ -33,7 +33,7 @@ ObieOptions small_options() {
 }
 
 const facemesh::Face& face() {
-  static const facemesh::Face f = facemesh::make_default_face();
+  static const facemesh::Face f = facemesh::make_generic_face();
   return f;
 }
 

@@ -20,7 +20,7 @@ namespace rt = emoface::retarget;
 
 namespace {
 const fm::Face& face() {
-  static const fm::Face f = fm::make_default_face();
+  static const fm::Face f = fm::make_generic_face();
   return f;
 }
 Eigen::Vector3d top() { return rt::landmark_position(face(), "top_of_head"); }

@@ -37,7 +37,7 @@ struct TempDir {
 
 TEST(RetargetApp, FitsTheDefaultFaceOntoItself) {
   TempDir t;
-  const std::string target = std::string(EMOFACE_SOURCE_DIR) + "/data/face/default_face.obj";
+  const std::string target = std::string(EMOFACE_SOURCE_DIR) + "/data/face/generic_face.obj";  // the source itself
   const auto out = t.path / "out";
   ASSERT_EQ(run("--mode deform-source --target " + target + " --out " + out.string() + " --generations 2 --population 6 --quiet"), 0);
   for (const char* f : {"face.rig", "face.obj", "target_aligned.obj", "report.json", "overlay.png", "error_curve.png", "emotions.png"})
@@ -74,7 +74,7 @@ std::string slurp(const fs::path& p) {
 // The built-in face as a user would hand it in: OBJ with cylindrical UVs, a material library, an
 // object, groups for the head and the eyeballs, and comment lines.
 void write_user_obj(const fs::path& path) {
-  const auto face = emoface::facemesh::make_default_face();
+  const auto face = emoface::facemesh::make_generic_face();
   std::ostringstream o;
   o << "# a user's head\nmtllib head.mtl\no head\n";
   o.precision(9);
@@ -111,7 +111,7 @@ TEST(RetargetApp, TransferKeepsTheUsersFileAndRigsIt) {
   EXPECT_EQ(slurp(out / "head.mtl"), slurp(in / "head.mtl"));
   for (const char* f : {"face.rig", "report.json", "emotions.png"}) EXPECT_TRUE(fs::exists(out / f)) << f;
   const auto face = emoface::facemesh::load_face((out / "face.rig").string());
-  EXPECT_EQ(face.mesh.vertex_count(), emoface::facemesh::make_default_face().mesh.vertex_count());
+  EXPECT_EQ(face.mesh.vertex_count(), emoface::facemesh::make_generic_face().mesh.vertex_count());
   EXPECT_FALSE(face.rig.lips.samples_in_mesh);
   EXPECT_FALSE(face.rig.lips.bound.empty());
   EXPECT_EQ(face.rig.mesh_file, "face.obj");
@@ -160,7 +160,7 @@ TEST(RetargetApp, TransferWritesNothingOnBadInput) {
 
 TEST(RetargetApp, TransferOfGltfWritesGlb) {
   TempDir t;
-  const auto face = emoface::facemesh::make_default_face();
+  const auto face = emoface::facemesh::make_generic_face();
   const auto in = t.path / "head.gltf";
   emoface::facemesh::write_animated_gltf(in.string(), face.mesh, {face.mesh.vertices}, {0.0});
   const auto out = t.path / "out";

@@ -120,7 +120,7 @@ std::vector<ParameterError> compare(const fm::Face& source, const fm::Mesh& targ
 // The transfers are made on first use (gtest_discover_tests runs every test in its own process, so
 // a test pays only for the transfers it uses).
 struct Fixtures {
-  fm::Face source = fm::make_default_face();
+  fm::Face source = fm::make_generic_face();
   fm::Mesh remeshed;  // half-edge-collapse decimation: a different triangulation, vertices on the
                       // built-in surface
   Fixtures() { remeshed = rt::decimate(source.mesh, 0.6, true); }

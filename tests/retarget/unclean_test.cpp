@@ -18,7 +18,7 @@ namespace rt = emoface::retarget;
 
 namespace {
 const fm::Face& face() {
-  static const fm::Face f = fm::make_default_face();
+  static const fm::Face f = fm::make_generic_face();
   return f;
 }
 

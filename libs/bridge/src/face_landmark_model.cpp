@@ -18,7 +18,7 @@ namespace {
 constexpr Eigen::Index kLandmarks = 68;
 
 muscles::FaceSolver default_solver() {
-  facemesh::Face face = facemesh::make_default_face();
+  facemesh::Face face = facemesh::make_generic_face();
   return muscles::FaceSolver(std::move(face.mesh), std::move(face.rig));
 }
 

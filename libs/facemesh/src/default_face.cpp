@@ -202,7 +202,7 @@ double hair_line(double x, double z) {
 
 }  // namespace
 
-Face make_default_face() {
+Face make_generic_face() {
   // ---- 1. grid ----
   const int nu = 84, nv = 52;
   auto du = [](double u) { return 1.0 + 3.2 * std::exp(-std::pow(u / 0.75, 2)); };
@@ -558,7 +558,7 @@ Face make_default_face() {
   for (std::size_t k = 0; k < pts.size(); ++k) face.mesh.vertices.row(static_cast<long>(k)) = pts[k];
   face.mesh.faces.resize(static_cast<long>(tris.size()), 3);
   for (std::size_t f = 0; f < tris.size(); ++f) face.mesh.faces.row(static_cast<long>(f)) << tris[f][0], tris[f][1], tris[f][2];
-  rig.mesh_file = "default_face.obj";
+  rig.mesh_file = "generic_face.obj";
   rig.vertex_count = pts.size();
 
   // ---- 6. regions (thesis §2.3.1) ----
@@ -951,8 +951,8 @@ const Eigen::Vector3f kPaintSkin(0.87f, 0.69f, 0.58f);
 const Eigen::Vector3f kPaintBrow(0.17f, 0.115f, 0.085f);
 const Eigen::Vector3f kPaintHair(0.25f, 0.17f, 0.115f);
 
-Paint build_default_face_paint() {
-  const Face face = make_default_face();
+Paint build_generic_face_paint() {
+  const Face face = make_generic_face();
   Paint paint;
   paint.width = static_cast<int>(std::lround((kPaintX1 - kPaintX0) / kPaintTexel));
   paint.height = static_cast<int>(std::lround((kPaintY1 - kPaintY0) / kPaintTexel));
@@ -1032,15 +1032,9 @@ Paint build_default_face_paint() {
 
 }  // namespace
 
-const Paint& default_face_paint() {
-  static const Paint paint = build_default_face_paint();
+const Paint& generic_face_paint() {
+  static const Paint paint = build_generic_face_paint();
   return paint;
-}
-
-const Paint* paint_for(const Rig& rig) {
-  static const std::vector<Material> materials = make_default_face().rig.materials;
-  return rig.vertex_count == materials.size() && rig.materials == materials ? &default_face_paint()
-                                                                            : nullptr;
 }
 
 }  // namespace emoface::facemesh

@@ -1036,4 +1036,15 @@ MeshDocument read_mesh_document(const std::string& path) {
   return document;
 }
 
+MeshDocument parse_obj_document(std::string text, const std::string& source) {
+  MeshDocument document;
+  MeshDocument::Impl& doc = *document.impl_;
+  doc.path = source;
+  doc.format = MeshFormat::Obj;
+  doc.text = std::move(text);
+  ObjParser parser(doc);
+  parser.parse();
+  return document;
+}
+
 }  // namespace emoface::facemesh

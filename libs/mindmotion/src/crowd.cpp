@@ -57,7 +57,9 @@ CrowdFaces::CrowdFaces(const std::vector<mindmap::MindMap>& maps, const std::vec
   std::map<std::string, CrowdRig> by_file;
   for (const auto& f : file_of) {
     if (by_file.count(f)) continue;
-    auto face = f.empty() ? fm::make_default_face() : fm::load_face(f);
+    auto face = f.empty()          ? fm::make_default_face()
+                 : f == "generic" ? fm::make_generic_face()
+                                  : fm::load_face(f);
     solvers_.push_back(std::make_unique<muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig)));
     fitters_.push_back(std::make_unique<bridge::LandmarkFitter>(*solvers_.back()));
     by_file[f] = {solvers_.back().get(), fitters_.back().get()};
@@ -328,7 +330,7 @@ Box bounding_box(const fm::Vertices& v) {
 // face, not the skull, stays in the picture.
 fm::RenderOptions framing(const fm::Mesh& neutral, const Eigen::MatrixXd& landmarks, fm::View view, int width,
                           int height, double zoom) {
-  static const Box reference = bounding_box(fm::make_default_face().mesh.vertices);
+  static const Box reference = bounding_box(fm::make_generic_face().mesh.vertices);
   fm::RenderOptions o;
   o.view = view;
   o.width = width;

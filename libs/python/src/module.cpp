@@ -127,7 +127,9 @@ class Face {
  public:
   explicit Face(const std::string& rig) {
     emoface::facemesh::Face f =
-        rig.empty() ? emoface::facemesh::make_default_face() : emoface::facemesh::load_face(rig);
+        rig.empty()          ? emoface::facemesh::make_default_face()
+        : rig == "generic" ? emoface::facemesh::make_generic_face()
+                           : emoface::facemesh::load_face(rig);
     faces_ = f.mesh.faces;
     solver_ = std::make_unique<emoface::muscles::FaceSolver>(std::move(f.mesh), std::move(f.rig));
   }

@@ -148,7 +148,9 @@ Character::Impl::Impl(CharacterConfig c) : config(std::move(c)) {
   params_out.assign(ch::default_parameter_names().size(), 0.0);
   if (!config.face.empty()) {
     facemesh::Face face =
-        config.face == "default" ? facemesh::make_default_face() : facemesh::load_face(config.face);
+        config.face == "default"   ? facemesh::make_default_face()
+        : config.face == "generic" ? facemesh::make_generic_face()
+                                   : facemesh::load_face(config.face);
     solver = std::make_unique<muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig));
   }
 }

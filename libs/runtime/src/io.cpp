@@ -108,7 +108,7 @@ CharacterConfig parse_character_config(std::string_view text, const std::string&
   }
   if (doc.contains("face")) {
     r.get(doc, "", "face", c.face);
-    if (!c.face.empty() && c.face != "default") c.face = resolve(base_dir, c.face);
+    if (!c.face.empty() && c.face != "default" && c.face != "generic") c.face = resolve(base_dir, c.face);
   }
   r.get(doc, "", "fps", o.fps);
   r.get(doc, "", "lookahead", o.lookahead);

@@ -46,7 +46,7 @@ int main() {
   emoface::parlee::parse_domain_text("(define (domain tiny))", "<consumer>", domain);
   check(domain.name == "tiny", "parlee: domain parsed");
 
-  const auto face = emoface::facemesh::make_default_face();
+  const auto face = emoface::facemesh::make_generic_face();
   check(face.mesh.vertex_count() > 1000, "facemesh: default face");
 
   const emoface::muscles::FaceSolver solver(face.mesh, face.rig);

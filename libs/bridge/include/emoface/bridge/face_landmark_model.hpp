@@ -60,7 +60,7 @@ std::vector<double> contempt_parameters(double intensity);
 
 class FaceLandmarkModel : public motiongraph::LandmarkModel {
  public:
-  /// The built-in default face (facemesh::make_default_face) and the default rule base.
+  /// The built-in default face (facemesh::make_generic_face) and the default rule base.
   explicit FaceLandmarkModel(FaceLandmarkModelOptions options = {});
   /// Any rigged face with 68 iBUG landmarks (InvalidInput otherwise) and any rule base.
   FaceLandmarkModel(muscles::FaceSolver solver, fuzzyexpr::Engine engine,

@@ -118,11 +118,20 @@ class MeshDocument {
  private:
   std::unique_ptr<Impl> impl_;
   friend MeshDocument read_mesh_document(const std::string& path);
+
+/// An OBJ document from text in memory (the built-in default face); `source` names it in errors and
+/// is the document's path (material libraries are looked up beside it). Errors as read_mesh_document.
+MeshDocument parse_obj_document(std::string text, const std::string& source);
+  friend MeshDocument parse_obj_document(std::string text, const std::string& source);
 };
 
 /// Reads a mesh document. Throws IoError if unreadable, FormatError naming the file and line (OBJ) or
 /// JSON pointer / accessor (glTF) for malformed content, NaN/inf, ids out of range, no triangle at all,
 /// an edge shared by more than two triangles of one part, or counts the file cannot hold.
 MeshDocument read_mesh_document(const std::string& path);
+
+/// An OBJ document from text in memory (the built-in default face); `source` names it in errors and
+/// is the document's path (material libraries are looked up beside it). Errors as read_mesh_document.
+MeshDocument parse_obj_document(std::string text, const std::string& source);
 
 }  // namespace emoface::facemesh

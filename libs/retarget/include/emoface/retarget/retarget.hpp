@@ -4,7 +4,7 @@
 // them with the GA (§3.6) on the error function (§3.5), then deform the source face — mesh, muscles, lip
 // grid, jaw pivot, eyes, head pivot — with the final RBF networks (§3.4, §3.7).
 //
-//   facemesh::Face source = facemesh::make_default_face();
+//   facemesh::Face source = facemesh::make_generic_face();
 //   facemesh::Mesh target = facemesh::read_mesh("head.obj");
 //   RetargetResult r = retarget_face(source, target, options);
 //   facemesh::save_face("out/face.rig", r.face);

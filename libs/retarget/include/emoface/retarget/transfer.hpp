@@ -19,7 +19,7 @@
 // The rig lives in the rig (thesis) frame; Rig::frame maps the input frame into it (p_rig =
 // scale·R·p_mesh + t), so the mesh file stays in the input's own frame and units.
 //
-//   TransferResult r = transfer_rig(facemesh::make_default_face(), doc.triangles(), doc.groups());
+//   TransferResult r = transfer_rig(facemesh::make_generic_face(), doc.triangles(), doc.groups());
 //   r.face.mesh   // the target's triangles in the rig frame; r.face.rig.frame maps the file into
 //   it
 #include <Eigen/Core>

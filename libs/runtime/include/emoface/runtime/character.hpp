@@ -91,7 +91,8 @@ struct CharacterConfig {
   parlee::AgentConfig agent;  ///< Parlee
   mindmap::MindMap map;       ///< MindMap: the character's map
   CharacterOptions options;
-  /// Face for vertices(): "" = none, "default" = the built-in face, otherwise a rig file path.
+  /// Face for vertices(): "" = none, "default" = the built-in default face (the rigged MakeHuman
+  /// head), "generic" = the procedural generic face, otherwise a rig file path.
   std::string face;
   void validate() const;
 };

@@ -1,0 +1,599 @@
+// emoface's default face: the MakeHuman head rigged by transfer from the generic face, plus eyeballs,
+// teeth, tongue, lashes and a closed neck end (default_head.hpp, docs/facemesh.md "The default face").
+#include "emoface/retarget/default_head.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/facemesh/default_face.hpp"
+
+namespace emoface::retarget {
+namespace fm = facemesh;
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+// A mesh under construction: positions (rig frame) and triangles, appended part by part.
+struct Builder {
+  std::vector<Vec3> v;
+  std::vector<Eigen::Vector3i> f;
+  std::vector<fm::Material> mat;
+  int add(const Vec3& p, fm::Material m) {
+    v.push_back(p);
+    mat.push_back(m);
+    return static_cast<int>(v.size()) - 1;
+  }
+};
+
+// Copies the faces of `source` whose three corners are all in `ids` (and those vertices) into `b`,
+// transformed by `map`; returns the new ids (ascending in the source's order).
+template <class Map>
+std::vector<int> copy_component(const fm::Face& source, const std::vector<int>& ids, const Map& map,
+                                Builder& b) {
+  std::map<int, int> to_new;
+  std::vector<int> sorted(ids);
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<int> out;
+  for (int s : sorted) {
+    const int n = b.add(map(source.mesh.vertices.row(s).transpose()),
+                        source.rig.materials[static_cast<std::size_t>(s)]);
+    to_new[s] = n;
+    out.push_back(n);
+  }
+  for (long t = 0; t < source.mesh.faces.rows(); ++t) {
+    Eigen::Vector3i nf;
+    bool all = true;
+    for (int k = 0; k < 3 && all; ++k) {
+      const auto it = to_new.find(source.mesh.faces(t, k));
+      all = it != to_new.end();
+      if (all) nf[k] = it->second;
+    }
+    if (all) b.f.push_back(nf);
+  }
+  return out;
+}
+
+// A closed, flattened half-ellipsoid-like tongue: a UV ellipsoid of semi-axes `a` around `c`, its
+// lower half squashed (it lies on the floor of the mouth). Returns the new vertex ids.
+std::vector<int> add_tongue(const Vec3& c, const Vec3& a, Builder& b) {
+  constexpr int kAround = 20, kRings = 10;
+  std::vector<int> ids;
+  // pole along z (tip forward, root back), rings around it
+  const int tip = b.add(c + Vec3(0, 0, a.z()), fm::Material::Tongue);
+  ids.push_back(tip);
+  for (int r = 1; r < kRings; ++r) {
+    const double th = M_PI * r / kRings;  // 0 at the tip (+z), π at the root (−z)
+    for (int i = 0; i < kAround; ++i) {
+      const double ph = 2.0 * M_PI * i / kAround;
+      double y = std::sin(ph);
+      y = y > 0 ? 0.55 * y : 0.35 * y;  // flat top with a slight dome, flatter underside
+      // a shallow groove along the middle of the top
+      const double groove = y > 0 ? 0.15 * std::exp(-std::pow(std::cos(ph) / 0.25, 2)) : 0.0;
+      ids.push_back(b.add(c + Vec3(a.x() * std::sin(th) * std::cos(ph),
+                                   a.y() * std::sin(th) * (y - groove), a.z() * std::cos(th)),
+                          fm::Material::Tongue));
+    }
+  }
+  const int root = b.add(c + Vec3(0, 0, -a.z()), fm::Material::Tongue);
+  ids.push_back(root);
+  auto ring = [&](int r, int i) { return tip + 1 + (r - 1) * kAround + (i % kAround); };
+  for (int i = 0; i < kAround; ++i) b.f.push_back({tip, ring(1, i + 1), ring(1, i)});
+  for (int r = 1; r + 1 < kRings; ++r)
+    for (int i = 0; i < kAround; ++i) {
+      b.f.push_back({ring(r, i), ring(r, i + 1), ring(r + 1, i + 1)});
+      b.f.push_back({ring(r, i), ring(r + 1, i + 1), ring(r + 1, i)});
+    }
+  for (int i = 0; i < kAround; ++i) b.f.push_back({root, ring(kRings - 1, i), ring(kRings - 1, i + 1)});
+  return ids;
+}
+
+// Outward-facing orientation check for a closed part: flips every face when the signed volume is
+// negative.
+void orient_outward(Builder& b, std::size_t first_face) {
+  double vol = 0.0;
+  for (std::size_t t = first_face; t < b.f.size(); ++t)
+    vol += b.v[b.f[t][0]].dot(b.v[b.f[t][1]].cross(b.v[b.f[t][2]]));
+  if (vol < 0)
+    for (std::size_t t = first_face; t < b.f.size(); ++t) std::swap(b.f[t][1], b.f[t][2]);
+}
+
+// Boundary loops of a triangle set (directed edges without their opposite), each in walking order.
+std::vector<std::vector<int>> boundary_loops(const std::vector<Eigen::Vector3i>& faces) {
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : faces)
+    for (int k = 0; k < 3; ++k) edges.insert({t[k], t[(k + 1) % 3]});
+  std::map<int, int> next;
+  for (const auto& [a, b] : edges)
+    if (!edges.count({b, a})) next[b] = a;  // walk the boundary reversed: the cap's winding
+  std::vector<std::vector<int>> loops;
+  std::set<int> seen;
+  for (const auto& [start, unused] : next) {
+    (void)unused;
+    if (seen.count(start)) continue;
+    std::vector<int> loop;
+    int v = start;
+    while (!seen.count(v) && next.count(v)) {
+      seen.insert(v);
+      loop.push_back(v);
+      v = next[v];
+    }
+    if (v == start && loop.size() >= 3) loops.push_back(loop);
+  }
+  return loops;
+}
+
+}  // namespace
+
+TransferOptions default_head_transfer_options() {
+  TransferOptions o;
+  o.fit.ga.seed = 7;
+  return o;
+}
+
+fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& head,
+                            DefaultHeadReport* report) {
+  const TransferResult r =
+      transfer_rig(generic, head.triangles(), head.groups(), default_head_transfer_options());
+  const fm::Face& t = r.face;
+  const fm::Rig& tr = t.rig;
+  const int nh = static_cast<int>(t.mesh.vertices.rows());
+  DefaultHeadReport rep;
+  rep.transfer = r.report;
+  rep.head_vertices = static_cast<std::size_t>(nh);
+
+  Builder b;
+  for (int i = 0; i < nh; ++i) {
+    fm::Material m = tr.materials[static_cast<std::size_t>(i)];
+    // the head keeps lips and the mouth bag; everything the generic painted (hair, brows) or had as
+    // parts (eyes, teeth) is skin here (brows are painted by facemesh, the parts are added below)
+    if (m == fm::Material::Teeth || m == fm::Material::Tongue) m = fm::Material::MouthInterior;
+    if (m != fm::Material::Lip && m != fm::Material::MouthInterior) m = fm::Material::Skin;
+    b.add(t.mesh.vertices.row(i).transpose(), m);
+  }
+  for (long i = 0; i < t.mesh.faces.rows(); ++i)
+    b.f.push_back(t.mesh.faces.row(i).transpose());
+
+  fm::Rig rig = tr;
+  rig.frame = fm::Frame{};
+  rig.mesh_file = "default_face.obj";
+  rig.parts.clear();
+  {
+    fm::Part p;
+    p.name = "head";
+    p.kind = fm::PartKind::Head;
+    for (int i = 0; i < nh; ++i) p.vertices.push_back(i);
+    rig.parts.push_back(p);
+  }
+
+  // ---- Eyeballs. The head's eye sockets are closed: the lid skin folds in at the margin and lines a
+  // shallow cup. The lid margin is that fold (vertices facing forward or sideways next to ones facing
+  // backwards, n_z < −0.3, around
+  // the transferred eye centre); the eyeball (the generic's sphere, sclera/iris/pupil, scaled to the
+  // transferred radius) is centred on the opening and moved along z until the margin lies 0.6 mm
+  // outside it, so the lids rest on the eyeball; every head vertex seen through the opening (inside
+  // the margin polygon, in front) is pulled onto a sphere just inside the eyeball, out of sight.
+  const fm::Vertices head_normals = fm::vertex_normals(t.mesh.vertices, t.mesh.faces);
+  std::vector<std::vector<int>> adjacent(static_cast<std::size_t>(nh));
+  for (long i = 0; i < t.mesh.faces.rows(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int p = t.mesh.faces(i, k), q = t.mesh.faces(i, (k + 1) % 3);
+      adjacent[static_cast<std::size_t>(p)].push_back(q);
+      adjacent[static_cast<std::size_t>(q)].push_back(p);
+    }
+  // the transfer's mouth bag: MouthInterior, and the generic's teeth/tongue where they were nearest
+  auto in_bag = [&](int v) {
+    const fm::Material m = tr.materials[static_cast<std::size_t>(v)];
+    return m == fm::Material::MouthInterior || m == fm::Material::Teeth || m == fm::Material::Tongue;
+  };
+  std::vector<char> in_mouth(static_cast<std::size_t>(nh), 0);
+  for (const auto& lb : tr.lips.bound) in_mouth[static_cast<std::size_t>(lb.vertex)] = 1;
+  for (int v = 0; v < nh; ++v)
+    if (in_bag(v)) in_mouth[static_cast<std::size_t>(v)] = 1;
+  std::array<std::vector<int>, 2> margins;
+  for (int e = 0; e < 2; ++e) {
+    auto& eye = rig.eyes[static_cast<std::size_t>(e)];
+    const auto& ge = generic.rig.eyes[static_cast<std::size_t>(e)];
+    const Vec3 c_old = eye.centre;
+    const double r = eye.radius;
+    auto& margin = margins[static_cast<std::size_t>(e)];
+    for (int v = 0; v < nh; ++v) {
+      const Vec3& p = b.v[static_cast<std::size_t>(v)];
+      if (in_mouth[static_cast<std::size_t>(v)] || head_normals(v, 2) < 0.0 || p.z() < c_old.z() ||
+          (p - c_old).head<2>().norm() > 2.5 * r)
+        continue;
+      for (int w : adjacent[static_cast<std::size_t>(v)])
+        if (head_normals(w, 2) < -0.3) {
+          margin.push_back(v);
+          break;
+        }
+    }
+    if (margin.size() < 8)
+      throw InvalidInput("default head: no lid margin found around the " +
+                         std::string(e == 0 ? "right" : "left") + " eye");
+    Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+    for (int v : margin)
+      lo = lo.cwiseMin(b.v[static_cast<std::size_t>(v)].head<2>()),
+      hi = hi.cwiseMax(b.v[static_cast<std::size_t>(v)].head<2>());
+    const Eigen::Vector2d o = 0.5 * (lo + hi);
+    // z of the centre: median over the margin of (distance − r) = 0.6 mm, by bisection (monotone)
+    auto median_gap = [&](double cz) {
+      std::vector<double> g;
+      for (int v : margin) g.push_back((b.v[static_cast<std::size_t>(v)] - Vec3(o.x(), o.y(), cz)).norm() - r);
+      std::nth_element(g.begin(), g.begin() + static_cast<long>(g.size() / 2), g.end());
+      return g[g.size() / 2];
+    };
+    double za = c_old.z() - 2 * r, zb = c_old.z() + 2 * r;  // gap falls as the centre comes forward
+    for (int it = 0; it < 60; ++it) {
+      const double zm = 0.5 * (za + zb);
+      (median_gap(zm) > 0.0006 ? za : zb) = zm;
+    }
+    const Vec3 c(o.x(), o.y(), 0.5 * (za + zb));
+    // the lids now turn about the new centre: keep the closing angle's share of the opening
+    auto opening = [&](const Vec3& centre) {
+      Vec3 up = Vec3::Zero(), dn = Vec3::Zero();
+      int nu = 0, nd = 0;
+      for (int v : margin) {
+        const Vec3& p = b.v[static_cast<std::size_t>(v)];
+        ((p.y() > o.y()) ? (++nu, up) : (++nd, dn)) += p;
+      }
+      if (nu == 0 || nd == 0) return 0.0;
+      up = up / nu - centre, dn = dn / nd - centre;
+      return std::atan2(up.y(), up.z()) - std::atan2(dn.y(), dn.z());
+    };
+    const double open_old = opening(c_old), open_new = opening(c);
+    if (open_old > 1e-6 && open_new > 1e-6)
+      eye.close_angle = 1.05 * open_new / 1.2;  // upper down by it, lower up by 0.2 of it: they meet
+    eye.centre = c;
+    // the margin polygon (sorted by angle about o) and the head vertices seen through it
+    std::vector<std::pair<double, int>> around;
+    for (int v : margin) {
+      const Vec3& p = b.v[static_cast<std::size_t>(v)];
+      around.push_back({std::atan2(p.y() - o.y(), p.x() - o.x()), v});
+    }
+    std::sort(around.begin(), around.end());
+    std::vector<Eigen::Vector2d> poly;
+    for (const auto& [ang, v] : around) {
+      (void)ang;
+      poly.push_back(b.v[static_cast<std::size_t>(v)].head<2>());
+    }
+    auto inside = [&](const Eigen::Vector2d& q) {
+      bool in = false;
+      for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+        if ((poly[i].y() > q.y()) != (poly[j].y() > q.y()) &&
+            q.x() < (poly[j].x() - poly[i].x()) * (q.y() - poly[i].y()) / (poly[j].y() - poly[i].y()) +
+                        poly[i].x())
+          in = !in;
+      return in;
+    };
+    std::vector<char> is_margin(static_cast<std::size_t>(nh), 0);
+    for (int v : margin) is_margin[static_cast<std::size_t>(v)] = 1;
+    std::size_t pulled = 0;
+    std::vector<char> socket(static_cast<std::size_t>(nh), 0);
+    for (int v = 0; v < nh; ++v) {
+      Vec3& p = b.v[static_cast<std::size_t>(v)];
+      if (is_margin[static_cast<std::size_t>(v)] || in_mouth[static_cast<std::size_t>(v)] ||
+          (p - c).norm() > 2.5 * r || !inside(p.head<2>()))
+        continue;
+      socket[static_cast<std::size_t>(v)] = 1;  // the cup behind the fold
+      const Vec3 d = p - c;
+      if (p.z() < c.z() || d.norm() < 0.95 * r) continue;  // hidden behind or inside the eyeball
+      p = c + 0.95 * r * d.normalized();
+      b.mat[static_cast<std::size_t>(v)] = fm::Material::MouthInterior;  // dark if ever seen
+      ++pulled;
+    }
+    rep.socket_vertices[static_cast<std::size_t>(e)] = pulled;
+    // Lid weights from the margin found here (stop-gap: the transfer's weights, carried from the
+    // generic's smaller eye opening, peak 1 cm above this head's margin; the transfer's own
+    // target-side margin detection replaces this once merged). Upper lid: the vertices above the
+    // line through the eye corners, 1 at the upper margin falling (smoothstep) to 0 at 9 mm from it;
+    // lower lid likewise below the line, 0 at 5 mm; both fade to 0 at the corners (smoothstep over the
+    // outer 30 % of the eye's width at each end) so the corners stay put. The cup behind the fold (inside the margin, or behind the
+    // eye centre) is hidden by the eyeball and moves with neither lid.
+    {
+      const auto [lo_it, hi_it] = std::minmax_element(margin.begin(), margin.end(), [&](int p, int q) {
+        return b.v[static_cast<std::size_t>(p)].x() < b.v[static_cast<std::size_t>(q)].x();
+      });
+      const Vec3 k0 = b.v[static_cast<std::size_t>(*lo_it)], k1 = b.v[static_cast<std::size_t>(*hi_it)];
+      auto along = [&](const Vec3& p) { return std::clamp((p.x() - k0.x()) / (k1.x() - k0.x()), 0.0, 1.0); };
+      auto above = [&](const Vec3& p) { return p.y() > k0.y() + along(p) * (k1.y() - k0.y()); };
+      std::vector<int> upper_margin, lower_margin;
+      for (int v : margin) (above(b.v[static_cast<std::size_t>(v)]) ? upper_margin : lower_margin).push_back(v);
+      eye.upper_lid.clear(), eye.upper_lid_weights.clear();
+      eye.lower_lid.clear(), eye.lower_lid_weights.clear();
+      for (int v = 0; v < nh; ++v) {
+        const Vec3& p = b.v[static_cast<std::size_t>(v)];
+        if (in_mouth[static_cast<std::size_t>(v)] || (p - c).norm() > 3.0 * r) continue;
+        if (!is_margin[static_cast<std::size_t>(v)] && (socket[static_cast<std::size_t>(v)] || p.z() < c.z()))
+          continue;
+        const bool up = above(p);
+        const auto& ring = up ? upper_margin : lower_margin;
+        double d = 1e9;
+        for (int m : ring) d = std::min(d, (b.v[static_cast<std::size_t>(m)] - p).norm());
+        const double reach = up ? 0.009 : 0.005;
+        const double t = std::clamp(d / reach, 0.0, 1.0);
+        const double a = along(p), ea = std::clamp(a / 0.3, 0.0, 1.0), eb = std::clamp((1.0 - a) / 0.3, 0.0, 1.0);
+        const double corner = ea * ea * (3.0 - 2.0 * ea) * eb * eb * (3.0 - 2.0 * eb);
+        const double w = (1.0 - t * t * (3.0 - 2.0 * t)) * corner;
+        if (w < 1e-3) continue;
+        (up ? eye.upper_lid : eye.lower_lid).push_back(v);
+        (up ? eye.upper_lid_weights : eye.lower_lid_weights).push_back(std::min(1.0, w));
+      }
+    }
+    eye.eyeball_vertices.clear();  // the transfer's eye-hole vertices: the sphere turns instead
+    const double s = r / ge.radius;
+    const auto ids = copy_component(
+        generic, ge.eyeball_vertices,
+        [&](const Vec3& p) { return Vec3(c + s * (p - ge.centre)); }, b);
+    rep.eyeball_vertices[static_cast<std::size_t>(e)] = ids.size();
+    eye.eyeball_vertices = ids;
+    fm::Part p;
+    p.name = e == 0 ? "eyeball_r" : "eyeball_l";
+    p.kind = fm::PartKind::Eyeball;
+    p.side = e;
+    p.vertices = ids;
+    rig.parts.push_back(p);
+  }
+
+  // ---- Mouth bag (stop-gap until the transfer classifies MakeHuman's lower lip itself: today it
+  // takes the front of the lower lip for mouth bag, which gives it jaw weights about 0.5 from the
+  // geodesic share and a curtain across the opened mouth). The bag and the lower lip's front get jaw
+  // weights from their height against the lips' contact line instead: 1 below, 0 above, blended over
+  // ±1.5 mm at the lips widening by 10 % of the depth behind them (a soft fold at the back of the
+  // bag); the bag's forward-facing front (the lower lip) is bound to the lip surface (below).
+  {
+    // the lips' front at the middle, and the contact line: 1 mm below the front vertex bound
+    // deepest into the lips (largest v) there — the lips meet at it
+    double front = -1e9;
+    for (const auto& lb : tr.lips.bound) {
+      const Vec3& p = b.v[static_cast<std::size_t>(lb.vertex)];
+      if (std::abs(p.x()) < 0.01) front = std::max(front, p.z());
+    }
+    double contact = 0.0, deepest = -1.0;
+    for (const auto& lb : tr.lips.bound) {
+      const Vec3& p = b.v[static_cast<std::size_t>(lb.vertex)];
+      if (std::abs(p.x()) < 0.01 && p.z() > front - 0.003 && lb.v > deepest) deepest = lb.v, contact = p.y() - 0.001;
+    }
+    if (deepest < 0.0) throw InvalidInput("default head: no lip vertex at the middle of the mouth");
+    std::map<int, std::size_t> jaw_index;
+    for (std::size_t k = 0; k < rig.jaw.vertices.size(); ++k) jaw_index[rig.jaw.vertices[k]] = k;
+    for (int v = 0; v < nh; ++v) {
+      if (!in_bag(v)) continue;
+      const Vec3& p = b.v[static_cast<std::size_t>(v)];
+      const double band = 0.0015 + 0.1 * std::max(0.0, front - p.z());
+      const double t = std::clamp((contact + band - p.y()) / (2.0 * band), 0.0, 1.0);
+      const double w = t * t * (3.0 - 2.0 * t);
+      const auto it = jaw_index.find(v);
+      if (it != jaw_index.end()) {
+        rig.jaw.weights[it->second] = w;
+      } else if (w > 0.0) {
+        jaw_index[v] = rig.jaw.vertices.size();
+        rig.jaw.vertices.push_back(v), rig.jaw.weights.push_back(w);
+      }
+      // the lower lip's outside (not facing far down, within 9 mm of the lips' front, up to 2 cm
+      // below the contact line): lip-coloured, and bound to the lower half of the lip B-spline
+      // surface like the transfer binds lips, by the closest of 192×48 samples of S(u, v) (u in the
+      // lower lip's half, u ∈ (0.5, 1)), weight 1 within 3 mm of the surface fading to 0 at 8 mm
+      // (MakeHuman's lower lip is fuller than the generic's; no seam with the chin)
+      if (head_normals(v, 2) > -0.5 && p.z() > front - 0.009 && p.y() < contact && p.y() > contact - 0.02) {
+        b.mat[static_cast<std::size_t>(v)] = fm::Material::Lip;
+        double best = 1e9, bu = 0.0, bv = 0.0;
+        for (int i = 0; i <= 192; ++i)
+          for (int j = 0; j <= 48; ++j) {
+            const double u = 0.5 + 0.5 * i / 192.0 - (i == 192 ? 1e-9 : 0.0), vv = j / 48.0;
+            const double d = (lip_surface_point(rig.lips, u, vv) - p).norm();
+            if (d < best) best = d, bu = u, bv = vv;
+          }
+        const double tl = std::clamp((best - 0.003) / 0.005, 0.0, 1.0);
+        const double wl = 1.0 - tl * tl * (3.0 - 2.0 * tl);
+        if (wl > 0.0) {
+          fm::LipBinding lb;
+          lb.vertex = v, lb.u = bu, lb.v = bv, lb.weight = wl;
+          lb.offset = p - lip_surface_point(rig.lips, bu, bv);
+          rig.lips.bound.push_back(lb);
+          ++rep.lower_lip_bound;
+        }
+      }
+    }
+    std::sort(rig.lips.bound.begin(), rig.lips.bound.end(),
+              [](const fm::LipBinding& x, const fm::LipBinding& y) { return x.vertex < y.vertex; });
+  }
+
+  // ---- Colours around the mouth (stop-gap, like the two above): the transfer leaves lip material on
+  // skin vertices that the lip surface does not drive, and mouth-bag material on vertices of the
+  // face's outside at the mouth corners — dark and pink spikes around the lips. Lip colour only where
+  // the lip surface drives the vertex (weight ≥ 0.5); bag colour only where the surface does not face
+  // forward (n_z ≤ 0.3) or lies more than 6 mm behind the lips' front.
+  {
+    std::vector<double> lip_w(static_cast<std::size_t>(nh), 0.0);
+    double front = -1e9;
+    for (const auto& lb : rig.lips.bound) {
+      if (lb.vertex < nh) lip_w[static_cast<std::size_t>(lb.vertex)] = lb.weight;
+      if (std::abs(b.v[static_cast<std::size_t>(lb.vertex)].x()) < 0.01)
+        front = std::max(front, b.v[static_cast<std::size_t>(lb.vertex)].z());
+    }
+    for (int v = 0; v < nh; ++v) {
+      auto& m = b.mat[static_cast<std::size_t>(v)];
+      if (m == fm::Material::Lip && lip_w[static_cast<std::size_t>(v)] < 0.5) m = fm::Material::Skin;
+      if (m == fm::Material::MouthInterior && in_mouth[static_cast<std::size_t>(v)] &&
+          head_normals(v, 2) > 0.3 && b.v[static_cast<std::size_t>(v)].z() > front - 0.006)
+        m = fm::Material::Skin;
+    }
+  }
+
+  // ---- Teeth: the generic's slabs, carried by the similarity that takes the generic's mouth region
+  // onto its registration on the head (Umeyama), so they sit where the generic's sit behind its lips.
+  const auto& gl = generic.rig.lips;
+  const int lip_end = gl.first_vertex + gl.samples_around * gl.samples_across;
+  std::vector<int> mouth_ids;
+  for (int v = 0; v < static_cast<int>(generic.mesh.vertices.rows()); ++v) {
+    const Vec3 p = generic.mesh.vertices.row(v).transpose();
+    const bool lip_outer = v >= gl.first_vertex && v < lip_end &&
+                           (v - gl.first_vertex) / gl.samples_around < 4;
+    const bool skin_near = generic.rig.materials[static_cast<std::size_t>(v)] == fm::Material::Skin &&
+                           (p - gl.centre).norm() < 0.04 && p.z() > gl.centre.z() - 0.01;
+    if (lip_outer || skin_near) mouth_ids.push_back(v);
+  }
+  Eigen::Matrix3Xd src(3, static_cast<long>(mouth_ids.size())), dst(3, src.cols());
+  for (std::size_t k = 0; k < mouth_ids.size(); ++k) {
+    src.col(static_cast<long>(k)) = generic.mesh.vertices.row(mouth_ids[k]).transpose();
+    dst.col(static_cast<long>(k)) = r.registered.row(mouth_ids[k]).transpose();
+  }
+  const Eigen::Matrix4d sim = Eigen::umeyama(src, dst, true);
+  auto mouth_map = [&](const Vec3& p) { return Vec3((sim * p.homogeneous()).head<3>()); };
+  std::vector<int> upper_src, lower_src;
+  std::map<int, double> gjaw;
+  for (std::size_t k = 0; k < generic.rig.jaw.vertices.size(); ++k)
+    gjaw[generic.rig.jaw.vertices[k]] = generic.rig.jaw.weights[k];
+  for (int v = 0; v < static_cast<int>(generic.mesh.vertices.rows()); ++v)
+    if (generic.rig.materials[static_cast<std::size_t>(v)] == fm::Material::Teeth)
+      (gjaw.count(v) && gjaw[v] > 0.999 ? lower_src : upper_src).push_back(v);
+  const auto upper = copy_component(generic, upper_src, mouth_map, b);
+  const auto lower = copy_component(generic, lower_src, mouth_map, b);
+  rep.upper_teeth = upper.size(), rep.lower_teeth = lower.size();
+
+  // ---- Tongue: behind the lower teeth, on the floor of the mouth.
+  Vec3 lo_min = Vec3::Constant(1e9), lo_max = Vec3::Constant(-1e9);
+  for (int v : lower) lo_min = lo_min.cwiseMin(b.v[v]), lo_max = lo_max.cwiseMax(b.v[v]);
+  const double half_w = 0.5 * (lo_max.x() - lo_min.x());
+  const Vec3 tongue_a(0.8 * half_w, 0.006, 0.022);
+  const Vec3 tongue_c(0.5 * (lo_min.x() + lo_max.x()), lo_max.y() - 0.004,
+                      lo_min.z() - 0.001 - tongue_a.z() * 0.55);
+  const std::size_t tongue_first_face = b.f.size();
+  const auto tongue = add_tongue(tongue_c, tongue_a, b);
+  orient_outward(b, tongue_first_face);
+  rep.tongue = tongue.size();
+
+  for (int v : lower) rig.jaw.vertices.push_back(v), rig.jaw.weights.push_back(1.0);
+  for (int v : tongue) rig.jaw.vertices.push_back(v), rig.jaw.weights.push_back(1.0);
+  for (auto [ids, kind, name] :
+       {std::tuple{&upper, fm::PartKind::UpperTeeth, "upper_teeth"},
+        std::tuple{&lower, fm::PartKind::LowerTeeth, "lower_teeth"},
+        std::tuple{&tongue, fm::PartKind::Tongue, "tongue"}}) {
+    fm::Part p;
+    p.name = name;
+    p.kind = kind;
+    p.vertices = *ids;
+    std::sort(p.vertices.begin(), p.vertices.end());
+    rig.parts.push_back(p);
+  }
+
+  // ---- Lashes: a ribbon on each lid margin (found above), split at the eye corners (lowest and
+  // highest x) into upper and lower, each ribbon vertex in the lid list with its margin vertex's lid
+  // weight (the lashes follow the lid).
+  for (int e = 0; e < 2; ++e) {
+    auto& eye = rig.eyes[static_cast<std::size_t>(e)];
+    const std::vector<int>& ring = margins[static_cast<std::size_t>(e)];
+    const auto [lo_it, hi_it] = std::minmax_element(
+        ring.begin(), ring.end(), [&](int a, int c) { return b.v[a].x() < b.v[c].x(); });
+    const Vec3 c0 = b.v[static_cast<std::size_t>(*lo_it)], c1 = b.v[static_cast<std::size_t>(*hi_it)];
+    for (int lid = 0; lid < 2; ++lid) {
+      auto& ids = lid == 0 ? eye.upper_lid : eye.lower_lid;
+      auto& ws = lid == 0 ? eye.upper_lid_weights : eye.lower_lid_weights;
+      std::map<int, double> weight;
+      for (std::size_t k = 0; k < ids.size(); ++k) weight[ids[k]] = ws[k];
+      std::vector<std::pair<double, int>> margin;  // (x, id)
+      for (int v : ring) {
+        const Vec3& p = b.v[static_cast<std::size_t>(v)];
+        const double a = std::clamp((p.x() - c0.x()) / (c1.x() - c0.x()), 0.0, 1.0);
+        const double line_y = c0.y() + a * (c1.y() - c0.y());
+        if ((lid == 0) == (p.y() > line_y)) margin.push_back({p.x(), v});
+      }
+      if (margin.size() < 3)
+        throw InvalidInput("default head: too few lid-margin vertices for lashes");
+      std::sort(margin.begin(), margin.end());
+      const double length = lid == 0 ? 0.0032 : 0.0013;
+      const double up = lid == 0 ? 1.0 : -1.0;
+      const int first = static_cast<int>(b.v.size());
+      const int n = static_cast<int>(margin.size());
+      for (int k = 0; k < n; ++k) {
+        const Vec3 m = b.v[static_cast<std::size_t>(margin[k].second)];
+        const double along = n > 1 ? static_cast<double>(k) / (n - 1) : 0.5;
+        const double fall = std::sin(M_PI * std::clamp(along, 0.0, 1.0));  // shorter at the corners
+        const Vec3 radial = (m - eye.centre).normalized();
+        const Vec3 dir = (radial + Vec3(0, 0.5 * up, 0)).normalized();
+        const double len = length * (0.35 + 0.65 * fall);
+        const int base = b.add(m + 0.0006 * radial, fm::Material::Lash);
+        const int tip = b.add(m + 0.0006 * radial + len * dir,
+                              fm::Material::Lash);
+        // the margin vertex's own lid weight, else that of the nearest vertex of the lid list
+        double w = 0.0;
+        if (weight.count(margin[k].second)) {
+          w = weight[margin[k].second];
+        } else {
+          double best = 1e9;
+          for (const auto& [id, wt] : weight) {
+            if (id >= nh) continue;
+            const double d = (b.v[static_cast<std::size_t>(id)] - m).norm();
+            if (d < best) best = d, w = wt;
+          }
+        }
+        ids.push_back(base), ws.push_back(w);
+        ids.push_back(tip), ws.push_back(w);
+      }
+      for (int k = 0; k + 1 < n; ++k) {
+        const int a0 = first + 2 * k, a1 = a0 + 1, b0 = a0 + 2, b1 = a0 + 3;
+        b.f.push_back({a0, b0, b1});
+        b.f.push_back({a0, b1, a1});
+      }
+      rep.lashes += static_cast<std::size_t>(2 * n);
+      fm::Part p;
+      p.name = std::string(lid == 0 ? "upper" : "lower") + "_lashes_" + (e == 0 ? "r" : "l");
+      p.kind = fm::PartKind::Lashes;
+      p.side = e;
+      for (int v = first; v < static_cast<int>(b.v.size()); ++v) p.vertices.push_back(v);
+      rig.parts.push_back(p);
+    }
+  }
+
+  // ---- Neck end: the head's open boundary at the shoulders closed by a flat fan (skin).
+  {
+    std::vector<Eigen::Vector3i> head_faces(b.f.begin(), b.f.begin() + t.mesh.faces.rows());
+    for (const auto& loop : boundary_loops(head_faces)) {
+      Vec3 c = Vec3::Zero();
+      for (int v : loop) c += b.v[static_cast<std::size_t>(v)];
+      c /= static_cast<double>(loop.size());
+      if (c.y() > rig.lips.centre.y()) continue;  // only the neck's end, below the mouth
+      const int centre = b.add(c, fm::Material::Skin);
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        b.f.push_back({centre, loop[k], loop[(k + 1) % loop.size()]});
+      rep.neck_cap += 1;
+    }
+  }
+
+  // ---- Assemble.
+  fm::Face face;
+  const int nv = static_cast<int>(b.v.size());
+  face.mesh.vertices.resize(nv, 3);
+  for (int i = 0; i < nv; ++i) face.mesh.vertices.row(i) = b.v[static_cast<std::size_t>(i)].transpose();
+  face.mesh.faces.resize(static_cast<long>(b.f.size()), 3);
+  for (std::size_t i = 0; i < b.f.size(); ++i) face.mesh.faces.row(static_cast<long>(i)) = b.f[i].transpose();
+  rig.vertex_count = static_cast<std::size_t>(nv);
+  rig.materials = b.mat;
+  rig.regions.resize(static_cast<std::size_t>(nv), fm::Region::Rest);
+  std::sort(rig.parts.begin(), rig.parts.end(),
+            [](const fm::Part& a, const fm::Part& c) { return a.vertices.front() < c.vertices.front(); });
+  face.rig = std::move(rig);
+  fm::validate_mesh(face.mesh, "default head");
+  fm::validate_rig(face.rig, "default head");
+  if (report) *report = rep;
+  return face;
+}
+
+DefaultHeadReport write_default_face_files(const std::string& dir) {
+  namespace fs = std::filesystem;
+  const fm::Face generic = fm::make_generic_face();
+  const fm::MeshDocument doc = fm::read_mesh_document((fs::path(dir) / "makehuman_head.obj").string());
+  DefaultHeadReport rep;
+  const fm::Face face = build_default_head(generic, doc, &rep);
+  fm::save_face((fs::path(dir) / "generic.rig").string(), generic);
+  fm::save_face((fs::path(dir) / "default.rig").string(), face);
+  return rep;
+}
+
+}  // namespace emoface::retarget

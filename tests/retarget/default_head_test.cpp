@@ -1,0 +1,218 @@
+// The default face (issue 14 part 1): data/face regenerates byte for byte from the MakeHuman head
+// with one command; make_default_face() is those files; the parts added to the head (eyeballs, teeth,
+// tongue, lashes) are bound through the rig so that the solver moves them; bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "emoface/core/errors.hpp"
+#include "emoface/core/io.hpp"
+#include "emoface/facemesh/default_face.hpp"
+#include "emoface/facemesh/render.hpp"
+#include "emoface/muscles/solver.hpp"
+#include "emoface/retarget/default_head.hpp"
+
+namespace fs = std::filesystem;
+namespace fm = emoface::facemesh;
+namespace rt = emoface::retarget;
+namespace mu = emoface::muscles;
+
+namespace {
+
+const std::string kData = std::string(EMOFACE_SOURCE_DIR) + "/data/face/";
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("emoface_default_head_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+const fm::Part& part(const fm::Rig& rig, const std::string& name) {
+  for (const auto& p : rig.parts)
+    if (p.name == name) return p;
+  throw std::runtime_error("no part " + name);
+}
+
+// Pixels of a front render that show the teeth: the teeth are coloured pure green, everything else
+// keeps its material colour (none of which is green-dominant).
+int teeth_pixels(const fm::Image& img) {
+  int n = 0;
+  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3)
+    if (img.rgb[i + 1] > 60 && img.rgb[i + 1] > 2 * img.rgb[i] && img.rgb[i + 1] > 2 * img.rgb[i + 2]) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(DefaultFace, DataFaceRegeneratesByteForByte) {
+  const fs::path dir = temp_dir("regen");
+  fs::copy_file(kData + "makehuman_head.obj", dir / "makehuman_head.obj");
+  const rt::DefaultHeadReport rep = rt::write_default_face_files(dir.string());
+  for (const char* f : {"generic.rig", "generic_face.obj", "default.rig", "default_face.obj"})
+    EXPECT_EQ(emoface::core::read_file((dir / f).string()), emoface::core::read_file(kData + f))
+        << f << " differs: regenerate with  retarget --make-default-face data/face";
+  EXPECT_EQ(rep.head_vertices, 4459u);
+  fs::remove_all(dir);
+}
+
+TEST(DefaultFace, IsTheCompiledInFiles) {
+  const fm::Face disk = fm::load_face(kData + "default.rig");
+  const fm::Face face = fm::make_default_face();
+  EXPECT_EQ(fm::format_rig(face.rig), fm::format_rig(disk.rig));
+  EXPECT_EQ(face.mesh.faces, disk.mesh.faces);
+  EXPECT_EQ(face.mesh.vertices, disk.mesh.vertices);
+  EXPECT_TRUE(face.rig.frame.is_identity());
+  EXPECT_EQ(face.rig.mesh_file, "default_face.obj");
+  // the human head, not the generic face
+  EXPECT_NE(face.mesh.vertex_count(), fm::make_generic_face().mesh.vertex_count());
+  EXPECT_NO_THROW(fm::validate_mesh(face.mesh, "default"));
+  // the default face has its own paint (brows); the generic keeps its own
+  EXPECT_EQ(fm::paint_for(face.rig), &fm::default_face_paint());
+  EXPECT_EQ(fm::paint_for(fm::make_generic_face().rig), &fm::generic_face_paint());
+}
+
+TEST(DefaultFace, HasEveryPartBoundThroughTheRig) {
+  const fm::Face face = fm::make_default_face();
+  const auto& rig = face.rig;
+  std::map<int, double> jaw;
+  for (std::size_t k = 0; k < rig.jaw.vertices.size(); ++k) jaw[rig.jaw.vertices[k]] = rig.jaw.weights[k];
+  for (const char* name : {"lower_teeth", "tongue"}) {
+    const auto& p = part(rig, name);
+    EXPECT_GT(p.vertices.size(), 50u) << name;
+    for (int v : p.vertices) ASSERT_EQ(jaw.count(v) ? jaw[v] : 0.0, 1.0) << name << " vertex " << v;
+  }
+  for (int v : part(rig, "upper_teeth").vertices) EXPECT_EQ(jaw.count(v), 0u);
+  for (int e = 0; e < 2; ++e) {
+    const auto& eye = rig.eyes[static_cast<std::size_t>(e)];
+    const auto& ball = part(rig, e == 0 ? "eyeball_r" : "eyeball_l");
+    EXPECT_EQ(eye.eyeball_vertices, ball.vertices);
+    int iris = 0, pupil = 0;
+    for (int v : ball.vertices) {
+      // on the sphere around the eye centre
+      EXPECT_NEAR((face.mesh.vertices.row(v).transpose() - eye.centre).norm(), eye.radius, 1e-6);
+      iris += rig.materials[static_cast<std::size_t>(v)] == fm::Material::Iris;
+      pupil += rig.materials[static_cast<std::size_t>(v)] == fm::Material::Pupil;
+    }
+    EXPECT_GT(iris, 10);
+    EXPECT_GT(pupil, 0);
+    // lashes: every lash vertex is in its lid's list (they follow the lid)
+    for (int lid = 0; lid < 2; ++lid) {
+      const auto& p = part(rig, std::string(lid == 0 ? "upper" : "lower") + "_lashes_" + (e == 0 ? "r" : "l"));
+      const auto& list = lid == 0 ? eye.upper_lid : eye.lower_lid;
+      EXPECT_GT(p.vertices.size(), 10u);
+      for (int v : p.vertices) {
+        EXPECT_NE(std::find(list.begin(), list.end(), v), list.end());
+        EXPECT_EQ(rig.materials[static_cast<std::size_t>(v)], fm::Material::Lash);
+      }
+    }
+  }
+}
+
+TEST(DefaultFace, SolverMovesTheParts) {
+  const fm::Face face = fm::make_default_face();
+  const mu::FaceSolver solver(face.mesh, face.rig);
+  const auto& rig = face.rig;
+  // gaze turns the eyeballs about their centres (radius kept); the head does not move
+  const mu::Deformation gaze = solver.deform(std::map<std::string, double>{{"eye_gaze_yaw", 0.3}});
+  for (int e = 0; e < 2; ++e) {
+    const auto& eye = rig.eyes[static_cast<std::size_t>(e)];
+    double moved = 0.0;
+    for (int v : eye.eyeball_vertices) {
+      EXPECT_NEAR((gaze.vertices.row(v).transpose() - eye.centre).norm(), eye.radius, 1e-9);
+      moved = std::max(moved, (gaze.vertices.row(v) - face.mesh.vertices.row(v)).norm());
+    }
+    EXPECT_GT(moved, 0.5 * 0.3 * eye.radius);
+  }
+  for (int v : part(rig, "head").vertices)
+    ASSERT_LT((gaze.vertices.row(v) - face.mesh.vertices.row(v)).norm(), 1e-8);
+  // the jaw turns the lower teeth and the tongue rigidly, the upper teeth stay
+  const mu::Deformation open = solver.deform(std::map<std::string, double>{{"masseter", 1.0}});
+  const auto& lower = part(rig, "lower_teeth").vertices;
+  EXPECT_GT((open.vertices.row(lower[0]) - face.mesh.vertices.row(lower[0])).norm(), 0.003);
+  for (std::size_t k = 1; k < lower.size(); k += 7) {
+    const double d0 = (face.mesh.vertices.row(lower[0]) - face.mesh.vertices.row(lower[k])).norm();
+    const double d1 = (open.vertices.row(lower[0]) - open.vertices.row(lower[k])).norm();
+    EXPECT_NEAR(d0, d1, 1e-9);
+  }
+  for (int v : part(rig, "upper_teeth").vertices)
+    ASSERT_LT((open.vertices.row(v) - face.mesh.vertices.row(v)).norm(), 1e-8);
+  // the lashes follow a blink
+  const mu::Deformation blink = solver.deform(std::map<std::string, double>{{"eye_blink_r", 1.0}});
+  double lash = 0.0;
+  for (int v : part(rig, "upper_lashes_r").vertices)
+    lash = std::max(lash, (blink.vertices.row(v) - face.mesh.vertices.row(v)).norm());
+  EXPECT_GT(lash, 0.004);
+  // the blink closes the eye: the aperture falls to a small fraction of the open one
+  EXPECT_LT(mu::eye_aperture(rig, blink.vertices, 0), 0.25 * mu::eye_aperture(rig, face.mesh.vertices, 0));
+}
+
+// Rendered with the teeth pure green: closed lips hide them.
+TEST(DefaultFace, TeethHiddenBehindClosedLips) {
+  const fm::Face face = fm::make_default_face();
+  fm::RenderOptions o;
+  auto colors = fm::material_colors(face.rig, face.mesh);
+  for (std::size_t v = 0; v < colors.size(); ++v)
+    if (face.rig.materials[v] == fm::Material::Teeth) colors[v] = Eigen::Vector3f(0.0f, 1.0f, 0.0f);
+  const fm::Image closed = fm::render(face.mesh, colors, {}, o, fm::paint_for(face.rig));
+  EXPECT_LT(teeth_pixels(closed), 40) << "teeth show through the closed lips";
+  // the teeth and the tongue lie at least 5 mm behind the front of the lips at the middle
+  double lips_front = -1.0, parts_front = -1.0;
+  for (const auto& b : face.rig.lips.bound)
+    if (std::abs(face.mesh.vertices(b.vertex, 0)) < 0.01)
+      lips_front = std::max(lips_front, face.mesh.vertices(b.vertex, 2));
+  for (const char* name : {"upper_teeth", "lower_teeth", "tongue"})
+    for (int v : part(face.rig, name).vertices) parts_front = std::max(parts_front, face.mesh.vertices(v, 2));
+  EXPECT_LT(parts_front, lips_front - 0.005);
+}
+
+// KNOWN DEFECT (disabled, docs/facemesh.md "The default face"): the transfer binds the inside of
+// MakeHuman's lower lip to the upper lip's part of the lip surface, so an opened jaw stretches a
+// curtain of lip triangles across the mouth and hides the teeth (0 teeth pixels at masseter 1).
+// Enable once the transfer's lip classification on MakeHuman is fixed (branch s2-transfer).
+TEST(DefaultFace, DISABLED_TeethShowWhenTheMouthOpens) {
+  const fm::Face face = fm::make_default_face();
+  const mu::FaceSolver solver(face.mesh, face.rig);
+  fm::RenderOptions o;
+  auto colors = fm::material_colors(face.rig, face.mesh);
+  for (std::size_t v = 0; v < colors.size(); ++v)
+    if (face.rig.materials[v] == fm::Material::Teeth) colors[v] = Eigen::Vector3f(0.0f, 1.0f, 0.0f);
+  const mu::Deformation d = solver.deform(std::map<std::string, double>{{"masseter", 1.0}});
+  const fm::Image open = fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, o,
+                                    fm::paint_for(face.rig));
+  EXPECT_GT(teeth_pixels(open), 300) << "the open mouth shows no teeth";
+}
+
+TEST(DefaultFace, BadInputWritesNothing) {
+  const fs::path dir = temp_dir("bad");
+  // no head file
+  EXPECT_THROW(rt::write_default_face_files(dir.string()), emoface::IoError);
+  EXPECT_FALSE(fs::exists(dir / "default.rig"));
+  EXPECT_FALSE(fs::exists(dir / "generic.rig"));
+  // a truncated head: the OBJ error names the file and line
+  std::string text = emoface::core::read_file(kData + "makehuman_head.obj");
+  text = text.substr(0, text.size() / 2);
+  text.resize(text.rfind('\n'));
+  text += "\nf 1 2 99999\n";
+  emoface::core::write_file_atomic((dir / "makehuman_head.obj").string(), text);
+  try {
+    rt::write_default_face_files(dir.string());
+    ADD_FAILURE() << "no error";
+  } catch (const emoface::FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("makehuman_head.obj"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "default.rig"));
+  // NaN in a coordinate
+  emoface::core::write_file_atomic((dir / "makehuman_head.obj").string(),
+                                   "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_THROW(rt::write_default_face_files(dir.string()), emoface::FormatError);
+  // a mesh that is no head (a single triangle): the transfer refuses it
+  emoface::core::write_file_atomic((dir / "makehuman_head.obj").string(),
+                                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_ANY_THROW(rt::write_default_face_files(dir.string()));
+  EXPECT_FALSE(fs::exists(dir / "default.rig"));
+  EXPECT_FALSE(fs::exists(dir / "default_face.obj"));
+  fs::remove_all(dir);
+}
