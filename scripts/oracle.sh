@@ -11,7 +11,7 @@
 # targets baked by muscles::bake_rig, posed as an engine poses them (neutral + Σ weight · target,
 # `faceanim --weights arkit --blendshapes`) — rendered and named the same way (OUT_DIR out/oracle_arkit).
 # Usage: scripts/oracle.sh [--no-build] [--arkit]   Env: BUILD_DIR (build), OUT_DIR (out/oracle), MIN (6),
-#        JOBS (2), EMOTIONS (tests/oracle/emotions.csv)
+#        JOBS (2), EMOTIONS (tests/oracle/emotions.csv), RIG (a rig file or "generic"; default face)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR=${BUILD_DIR:-build}
@@ -19,6 +19,9 @@ OUT_DIR=${OUT_DIR:-}
 MIN=${MIN:-6}
 JOBS=${JOBS:-2}
 EMOTIONS=${EMOTIONS:-tests/oracle/emotions.csv}
+RIG=${RIG:-}  # a rig file or "generic"; empty: the built-in default face
+rig_args=()
+if [ -n "$RIG" ]; then rig_args=(--rig "$RIG"); fi
 build=1
 arkit=0
 for a in "$@"; do
@@ -58,9 +61,9 @@ if [ "$arkit" = 1 ]; then
     --out "$OUT_DIR"/frames
 else
   "$bin"/emo2muscle/emo2muscle "$EMOTIONS" --sides -o "$OUT_DIR"/muscles.csv
-  "$bin"/faceanim/faceanim --params "$OUT_DIR"/muscles.csv --out "$OUT_DIR"/frames
+  "$bin"/faceanim/faceanim "${rig_args[@]}" --params "$OUT_DIR"/muscles.csv --out "$OUT_DIR"/frames
 fi
-"$bin"/facerender/facerender "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
+"$bin"/facerender/facerender "${rig_args[@]}" "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
   --out "$OUT_DIR"/face.png
 args=()
 i=0
