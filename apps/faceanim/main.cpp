@@ -82,19 +82,22 @@ int main(int argc, char** argv) {
     mu::FrameReadOptions read;
     read.fps = fps;
     read.ignore_unknown_columns = ignore_unknown;
-    if (blendshapes) {
-      if (weights.empty() || out_dir.empty() || !gltf.empty())
-        throw emoface::cli::UsageError("--blendshapes needs --weights and --out (and no --gltf)");
-      namespace fw = emoface::faceweights;
-      const fw::Mapper mapper(fw::builtin_weight_set(weights), mu::parameter_names());
+    namespace fw = emoface::faceweights;
+    auto read_weights = [&](const fw::Mapper& mapper) {  // --weights: an ARKit/FACS weight CSV
       fw::WeightTrackReadOptions wopt;
       wopt.fps = fps;
       wopt.ignore_unknown_columns = ignore_unknown;
-      const fw::WeightTrack track = fw::read_weight_track(params, mapper.set(), wopt);
+      return fw::read_weight_track(params, mapper.set(), wopt);
+    };
+    if (blendshapes) {
+      if (weights.empty() || out_dir.empty() || !gltf.empty())
+        throw emoface::cli::UsageError("--blendshapes needs --weights and --out (and no --gltf)");
+      const fw::Mapper mapper(fw::builtin_weight_set(weights), mu::parameter_names());
+      const fw::WeightTrack track = read_weights(mapper);
       const mu::BakedRig rig = mu::bake_rig(solver, face.mesh.faces, {&mapper});
       std::filesystem::create_directories(out_dir);
       for (std::size_t i = 0; i < track.weights.size(); ++i) {
-        if (!shard.owns(i)) continue;
+        if (!shard.owns(i, track.weights.size())) continue;  // contiguous block, global indices
         char name[64];
         std::snprintf(name, sizeof name, "frame_%04zu.%s", i, format.c_str());
         fm::write_face_mesh((std::filesystem::path(out_dir) / name).string(), face,
@@ -106,12 +109,8 @@ int main(int argc, char** argv) {
     if (weights.empty()) {
       frames = mu::read_parameter_frames(params, read);
     } else {
-      namespace fw = emoface::faceweights;
       const fw::Mapper mapper(fw::builtin_weight_set(weights), mu::parameter_names());
-      fw::WeightTrackReadOptions wopt;
-      wopt.fps = fps;
-      wopt.ignore_unknown_columns = ignore_unknown;
-      const fw::WeightTrack track = fw::read_weight_track(params, mapper.set(), wopt);
+      const fw::WeightTrack track = read_weights(mapper);
       const auto fitted = fw::fit_weight_track(track, mapper);
       for (std::size_t i = 0; i < fitted.size(); ++i) frames.push_back({track.times[i], fitted[i]});
     }

@@ -83,8 +83,14 @@ TEST_F(SplitRigidParts, NodesReproduceTheMuscleModelAndTheSkinIsTheRest) {
     EXPECT_EQ(colors[k], all_colors[static_cast<std::size_t>(v)]);
     EXPECT_EQ(rig.targets[0].position_deltas.row(static_cast<long>(k)),
               whole_->targets[0].position_deltas.row(v));
+    // the last target by name: with both eyes as nodes the split rig has no gaze targets, so the
+    // two rigs' lists differ in length
+    const auto same_name = std::find_if(
+        whole_->targets.begin(), whole_->targets.end(),
+        [&](const auto& t) { return t.name == rig.targets.back().name; });
+    ASSERT_NE(same_name, whole_->targets.end()) << rig.targets.back().name;
     EXPECT_EQ(rig.targets.back().position_deltas.row(static_cast<long>(k)),
-              whole_->targets.back().position_deltas.row(v));
+              same_name->position_deltas.row(v));
   }
   EXPECT_LE(rig.neutral.faces.maxCoeff(), rig.neutral.vertices.rows() - 1);
   // both eyes as nodes: the gaze halves are gone and the weights follow

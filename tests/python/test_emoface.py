@@ -92,7 +92,9 @@ def test_face_deformation_arrays():
     neutral = face.neutral
     assert neutral.ndim == 2 and neutral.shape[1] == 3 and face.faces.shape[1] == 3
     zero = np.zeros(42)
-    np.testing.assert_array_equal(face.deform(zero), neutral)
+    # the default (MakeHuman) head rebuilds its lip-bound vertices from the lip surface: equal to
+    # ~5e-10 m, not bit for bit (the generic face is exact)
+    np.testing.assert_allclose(face.deform(zero), neutral, rtol=0, atol=1e-8)
     params = np.zeros((3, 42))
     params[1, 0] = params[1, 1] = 1.0  # zygomatic major, both sides
     params[2, emoface.parameter_names().index("masseter")] = 0.8
