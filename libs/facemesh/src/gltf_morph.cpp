@@ -50,6 +50,31 @@ std::vector<float> to_floats(const Vertices& v) {
   return out;
 }
 
+// A triangle primitive: POSITION (`positions`), NORMAL from `normal_source` (same rows, its own
+// frame: normals do not change under the translation to a part's pivot), COLOR_0, indices.
+tinygltf::Primitive triangle_primitive(Builder& b, const Vertices& positions,
+                                       const Vertices& normal_source, const Faces& faces,
+                                       const std::vector<Eigen::Vector3f>& colors, bool normals) {
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] = b.vec3(to_floats(positions), true);
+  if (normals) prim.attributes["NORMAL"] = b.vec3(to_floats(vertex_normals(normal_source, faces)), false);
+  if (!colors.empty()) {
+    std::vector<float> rgb;
+    for (const auto& c : colors) {
+      for (int k = 0; k < 3; ++k) rgb.push_back(std::clamp(c[k], 0.0f, 1.0f));
+    }
+    prim.attributes["COLOR_0"] = b.vec3(rgb, false);
+  }
+  std::vector<std::uint32_t> idx;
+  for (long f = 0; f < faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) idx.push_back(static_cast<std::uint32_t>(faces(f, k)));
+  }
+  const int iv = b.view(idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  prim.indices = b.accessor(iv, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, idx.size(), TINYGLTF_TYPE_SCALAR);
+  return prim;
+}
+
 }  // namespace
 
 void MorphGltfOptions::validate() const {
@@ -141,23 +166,8 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
 
   Builder b;
   MorphGltfReport report;
-  tinygltf::Primitive prim;
-  prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.attributes["POSITION"] = b.vec3(to_floats(neutral.vertices), true);
-  if (options.normals) prim.attributes["NORMAL"] = b.vec3(to_floats(vertex_normals(neutral.vertices, neutral.faces)), false);
-  if (!options.colors.empty()) {
-    std::vector<float> rgb;
-    for (const auto& c : options.colors) {
-      for (int k = 0; k < 3; ++k) rgb.push_back(std::clamp(c[k], 0.0f, 1.0f));
-    }
-    prim.attributes["COLOR_0"] = b.vec3(rgb, false);
-  }
-  std::vector<std::uint32_t> idx;
-  for (long f = 0; f < neutral.faces.rows(); ++f) {
-    for (int k = 0; k < 3; ++k) idx.push_back(static_cast<std::uint32_t>(neutral.faces(f, k)));
-  }
-  const int iv = b.view(idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  prim.indices = b.accessor(iv, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, idx.size(), TINYGLTF_TYPE_SCALAR);
+  tinygltf::Primitive prim = triangle_primitive(b, neutral.vertices, neutral.vertices, neutral.faces,
+                                                options.colors, options.normals);
   for (const auto& t : targets) {
     std::map<std::string, int> attrs;
     attrs["POSITION"] = b.delta(to_floats(t.position_deltas), options.sparse_epsilon, true, report);
@@ -212,28 +222,10 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
     part_nodes.push_back(pi);
     b.model.nodes[0].children.push_back(pi);
     for (const auto& pm : part.meshes) {
-      tinygltf::Primitive pp;
-      pp.mode = TINYGLTF_MODE_TRIANGLES;
       Vertices local = pm.mesh.vertices;
       local.rowwise() -= part.pivot.transpose();
-      pp.attributes["POSITION"] = b.vec3(to_floats(local), true);
-      if (options.normals)
-        pp.attributes["NORMAL"] =
-            b.vec3(to_floats(vertex_normals(pm.mesh.vertices, pm.mesh.faces)), false);
-      if (!pm.colors.empty()) {
-        std::vector<float> rgb;
-        for (const auto& c : pm.colors) {
-          for (int k = 0; k < 3; ++k) rgb.push_back(std::clamp(c[k], 0.0f, 1.0f));
-        }
-        pp.attributes["COLOR_0"] = b.vec3(rgb, false);
-      }
-      std::vector<std::uint32_t> pidx;
-      for (long f = 0; f < pm.mesh.faces.rows(); ++f) {
-        for (int k = 0; k < 3; ++k) pidx.push_back(static_cast<std::uint32_t>(pm.mesh.faces(f, k)));
-      }
-      const int piv = b.view(pidx.data(), pidx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-      pp.indices =
-          b.accessor(piv, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, pidx.size(), TINYGLTF_TYPE_SCALAR);
+      tinygltf::Primitive pp = triangle_primitive(b, local, pm.mesh.vertices, pm.mesh.faces,
+                                                  pm.colors, options.normals);
       pp.material = 0;
       tinygltf::Mesh m;
       m.name = pm.name;
