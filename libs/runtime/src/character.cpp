@@ -16,6 +16,8 @@
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/fuzzyexpr/names.hpp"
 #include "emoface/mindmap/simulation.hpp"
+#include "emoface/mindmotion/live.hpp"
+#include "emoface/motiongraph/weights.hpp"
 #include "emoface/muscles/parameters.hpp"
 #include "emoface/muscles/solver.hpp"
 #include "emoface/parlee/emotion.hpp"
@@ -54,6 +56,8 @@ std::string_view to_string(SourceKind kind) noexcept {
       return "parlee";
     case SourceKind::MindMap:
       return "mindmap";
+    case SourceKind::MindMotion:
+      return "mindmotion";
     default:
       return "direct";
   }
@@ -63,14 +67,42 @@ SourceKind source_kind_from_string(std::string_view name) {
   if (name == "direct") return SourceKind::Direct;
   if (name == "parlee") return SourceKind::Parlee;
   if (name == "mindmap") return SourceKind::MindMap;
+  if (name == "mindmotion") return SourceKind::MindMotion;
   throw InvalidInput("unknown emotion source '" + std::string(name) +
-                     "' (direct, parlee, mindmap)");
+                     "' (direct, parlee, mindmap, mindmotion)");
 }
 
 void DisplayOptions::validate() const {
   if (!(onset > 0 && onset <= 5)) throw InvalidInput("display.onset must be in (0, 5] s");
   if (!(offset > 0 && offset <= 5)) throw InvalidInput("display.offset must be in (0, 5] s");
   if (!(tolerance >= 0 && tolerance < 1)) throw InvalidInput("display.tolerance must be in [0, 1)");
+}
+
+void MotionSourceOptions::validate() const {
+  if (!graph)
+    throw InvalidInput("mindmotion source: no motion graph (source.graph or source.graph_file)");
+  if (!(hint_path_fraction > 0 && hint_path_fraction <= 1))
+    throw InvalidInput("mindmotion source: source.hint_path_fraction must be in (0, 1]");
+  const std::string what = "mindmotion source: source.graph" +
+                           (graph_file.empty() ? "" : "_file \"" + graph_file + "\"");
+  const std::size_t channels = graph->landmark_ids().size();
+  // a weight graph's ids are ARKit channels (faceweights' "arkit" order), a landmark graph's iBUG
+  // ids
+  if (motiongraph::is_weight_space(graph->dimensions)) {
+    if (channels == 0) throw InvalidInput(what + " is an empty weight-space graph");
+    for (int id : graph->landmark_ids())
+      if (id < 0 || id >= 52)
+        throw InvalidInput(what + " has weight channel " + std::to_string(id) +
+                           ": the runtime takes ARKit-52 weight graphs (channels 0-51)");
+  } else {
+    if (graph->dimensions != 2)
+      throw InvalidInput(what + " is a " + std::to_string(graph->dimensions) +
+                         "D landmark graph; the runtime takes 2D iBUG-68 landmark graphs");
+    for (int id : graph->landmark_ids())
+      if (id < 0 || id >= 68)
+        throw InvalidInput(what + " has landmark id " + std::to_string(id) +
+                           ", not an iBUG-68 id (0-67)");
+  }
 }
 
 void CharacterOptions::validate() const {
@@ -98,7 +130,8 @@ void CharacterConfig::validate() const {
     agent.validate();
     if (domain_text.empty()) throw InvalidInput("parlee source: empty domain");
   }
-  if (source == SourceKind::MindMap) mindmap::validate(map);
+  if (source == SourceKind::MindMap || source == SourceKind::MindMotion) mindmap::validate(map);
+  if (source == SourceKind::MindMotion) motion.validate();
 }
 
 // ------------------------------------------------------------------------------------ state
@@ -121,9 +154,10 @@ Character::Impl::Impl(CharacterConfig c) : config(std::move(c)) {
     phi = parlee::decay_multipliers(config.agent.emotions, config.agent.personality);
   } else if (config.source == SourceKind::MindMap) {
     world = std::make_unique<mindmap::World>(std::vector<mindmap::MindMap>{config.map});
+  }
+  if (config.source == SourceKind::MindMap || config.source == SourceKind::MindMotion)
     for (std::size_t k = 0; k < 6; ++k)
       mood_node[k] = config.map.find_emotion(parlee::kBasicEmotionNames[k]);
-  }
   emotion = StreamingChannel(side_names());
   blinks = StreamingChannel({"eye_blink_l", "eye_blink_r"});
   gaze = StreamingChannel({"eye_gaze_yaw", "eye_gaze_pitch"});
@@ -147,12 +181,54 @@ Character::Impl::Impl(CharacterConfig c) : config(std::move(c)) {
   esv_ring.assign(lookahead + 1, std::array<double, 6>{});
   params_out.assign(ch::default_parameter_names().size(), 0.0);
   if (!config.face.empty()) {
-    facemesh::Face face =
-        config.face == "default"   ? facemesh::make_default_face()
-        : config.face == "generic" ? facemesh::make_generic_face()
-                                   : facemesh::load_face(config.face);
+    facemesh::Face face = config.face == "default"   ? facemesh::make_default_face()
+                          : config.face == "generic" ? facemesh::make_generic_face()
+                                                     : facemesh::load_face(config.face);
     solver = std::make_unique<muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig));
   }
+  if (config.source == SourceKind::MindMotion) make_live();
+}
+
+// The live character of the MindMotion source: seeded by options.seed; a landmark graph is fitted
+// on the character's face (the default face without one). Its 42 parameters feed the emotion
+// channel's 35 (by name); blinks, gaze and head stay with their own channels.
+void Character::Impl::make_live() {
+  const MotionSourceOptions& s = config.motion;
+  mindmotion::LiveCharacterOptions o = mindmotion::live_character_options();
+  o.seed = config.options.seed;
+  o.hint_path_fraction = s.hint_path_fraction;
+  if (!s.variation) {
+    o.player.synthesis.vary_duration = false;
+    o.player.synthesis.replace_probability = 0.0;
+    o.player.synthesis.vary_peak = false;
+  }
+  if (!motiongraph::is_weight_space(s.graph->dimensions)) {
+    if (!solver) {
+      facemesh::Face face = facemesh::make_default_face();
+      fit_solver = std::make_unique<muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig));
+    }
+    fitter = std::make_unique<bridge::LandmarkFitter>(solver ? *solver : *fit_solver);
+  }
+  try {
+    live = std::make_unique<mindmotion::LiveCharacter>(*s.graph, config.map, o, fitter.get());
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(std::string("mindmotion source (source.graph") +
+                       (s.graph_file.empty() ? "" : "_file \"" + s.graph_file + "\"") +
+                       ", source.map): " + e.what());
+  }
+  const auto& names = muscles::parameter_names();
+  for (const std::string& p : emotion.parameters()) {
+    const auto it = std::find(names.begin(), names.end(), p);
+    if (it == names.end()) throw Error("runtime: parameter '" + p + "' missing from the muscles");
+    live_cols.push_back(static_cast<std::size_t>(it - names.begin()));
+  }
+  live_prev.assign(live_cols.size(), 0.0);
+  live_cur.assign(live_cols.size(), 0.0);
+}
+
+// Plays the live character's frames due up to time t (never backwards).
+void Character::Impl::advance_live(double t) {
+  if (t > live->time()) live->update(t - live->time());
 }
 
 void Character::Impl::make_agent() {
@@ -174,9 +250,10 @@ std::array<double, 6> Character::Impl::esv_at(double t) {
       e = parlee::basic_emotions(occ, config.agent.emotions);
       break;
     }
-    case SourceKind::MindMap: {
-      if (t > world->time()) world->advance_to(t, nullptr);
-      const auto& mood = world->mood(0);
+    case SourceKind::MindMap:
+    case SourceKind::MindMotion: {
+      if (world && t > world->time()) world->advance_to(t, nullptr);
+      const auto& mood = world ? world->mood(0) : live->mood();
       for (std::size_t k = 0; k < 6; ++k)
         e[k] = mood_node[k] ? std::clamp(mood[*mood_node[k]], 0.0, 1.0) : 0.0;
       break;
@@ -223,6 +300,8 @@ void Character::Impl::raw_frame() {
   const std::size_t n = mixer.frames_in();
   const double t = static_cast<double>(n) / config.options.fps;
   generate_chunks(t);
+  const bool motion = config.source == SourceKind::MindMotion;
+  if (motion) advance_live(t);
   const std::array<double, 6> esv = esv_at(t);
   // emotion display (channel 4): a new held display when the felt ESV moved past the tolerance
   double moved =
@@ -230,7 +309,7 @@ void Character::Impl::raw_frame() {
                 : (std::any_of(esv.begin(), esv.end(), [](double v) { return v > 0; }) ? 1.0 : 0.0);
   for (std::size_t k = 0; k < 6 && shown_any; ++k)
     moved = std::max(moved, std::abs(esv[k] - shown[k]));
-  if (moved > config.options.display.tolerance && t > emotion.last_start()) {
+  if (!motion && moved > config.options.display.tolerance && t > emotion.last_start()) {
     fuzzyexpr::Esv in{};
     for (std::size_t k = 0; k < 6; ++k) in[k] = esv[k];
     const auto sides = fuzzyexpr::expand_to_sides(engine.convert(in));
@@ -246,7 +325,26 @@ void Character::Impl::raw_frame() {
   }
   using C = ch::Channel;
   blinks.sample(t, raw[static_cast<std::size_t>(C::Manipulator)].data());
-  emotion.sample(t, raw[static_cast<std::size_t>(C::EmotionDisplay)].data());
+  auto& display = raw[static_cast<std::size_t>(C::EmotionDisplay)];
+  if (motion) {
+    // The synthesized motion is the emotion display, interpolated between the graph's last two
+    // frames (one graph frame, 1/30 s, later than the graph: without it a 60 fps character would
+    // hold each 30 fps pose for two frames and take the whole step at once).
+    const std::uint64_t frames = live->frames();
+    if (frames != live_frame) {
+      const std::vector<double>& p = live->parameters();
+      live_prev = live_cur;
+      for (std::size_t i = 0; i < live_cur.size(); ++i) live_cur[i] = p[live_cols[i]];
+      if (live_frame == 0) live_prev = live_cur;
+      live_frame = frames;
+    }
+    const double fg = config.motion.graph->frame_rate;
+    const double u = std::clamp((t - static_cast<double>(frames - 1) / fg) * fg, 0.0, 1.0);
+    for (std::size_t i = 0; i < display.size(); ++i)
+      display[i] = live_prev[i] + u * (live_cur[i] - live_prev[i]);
+  } else {
+    emotion.sample(t, display.data());
+  }
   gaze.sample(t, raw[static_cast<std::size_t>(C::Gaze)].data());
   head.sample(t, raw[static_cast<std::size_t>(C::Head)].data());
   auto& lip = raw[static_cast<std::size_t>(C::Lip)];
@@ -311,9 +409,26 @@ EventResult Character::Impl::parlee_event(parlee::Event e, bool log) {
 }
 
 EventResult Character::Impl::mind_event(mindmap::Event e, bool log) {
+  if (config.source == SourceKind::MindMotion) {
+    if (!e.target.empty() && e.target != config.map.character)
+      return {false, "stimulus skipped: the target '" + e.target + "' is not this character ('" +
+                         config.map.character + "')"};
+    e.time = time;
+    e.target = config.map.character;
+    try {
+      advance_live(time);  // the stimulus acts at the input clock
+      live->push_stimulus(e.stimulus, e.weights);
+    } catch (const std::exception& ex) {
+      return {false, std::string("stimulus skipped: ") + ex.what()};  // the mood is unchanged
+    }
+    if (log) mind_log.push_back(e);
+    return {true, ""};
+  }
   if (config.source != SourceKind::MindMap)
-    return {false, "a mind-map stimulus needs a character with the mindmap source (this one is " +
-                       std::string(to_string(config.source)) + ")"};
+    return {false,
+            "a mind-map stimulus needs a character with the mindmap or mindmotion source "
+            "(this one is " +
+                std::string(to_string(config.source)) + ")"};
   e.time = std::max(time, world->time());
   if (e.target.empty()) e.target = config.map.character;
   try {

@@ -7,11 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "emoface/bridge/landmark_fit.hpp"
 #include "emoface/channels/dominance.hpp"
 #include "emoface/channels/speech.hpp"
 #include "emoface/faceweights/mapper.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/mindmap/simulation.hpp"
+#include "emoface/mindmotion/live.hpp"
 #include "emoface/muscles/solver.hpp"
 #include "emoface/parlee/agent.hpp"
 #include "emoface/runtime/character.hpp"
@@ -70,8 +72,18 @@ struct Character::Impl {
   muscles::Deformation deformation;
   muscles::DeformWorkspace workspace;
   std::size_t deformed_frame = std::numeric_limits<std::size_t>::max();
+  // MindMotion: the live character and its fitter (declared after the face they may fit on)
+  std::unique_ptr<muscles::FaceSolver> fit_solver;  // default face, when the character has none
+  std::unique_ptr<bridge::LandmarkFitter> fitter;
+  std::unique_ptr<mindmotion::LiveCharacter> live;
+  std::vector<std::size_t> live_cols;  // emotion-channel parameter i → index in live->parameters()
+  std::vector<double> live_prev,
+      live_cur;                  // display values of the previous and current graph frame
+  std::uint64_t live_frame = 0;  // live->frames() when live_cur was taken (0: none)
 
   explicit Impl(CharacterConfig c);
+  void make_live();
+  void advance_live(double t);
   void make_agent();
   void build_utt(Utt& u) const;
   std::array<double, 6> esv_at(double t);

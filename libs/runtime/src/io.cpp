@@ -10,6 +10,7 @@
 #include "emoface/fuzzyexpr/engine.hpp"
 #include "emoface/mindmap/io.hpp"
 #include "emoface/mindmap/simulation.hpp"
+#include "emoface/motiongraph/io.hpp"
 #include "emoface/muscles/solver.hpp"
 #include "emoface/parlee/domain.hpp"
 #include "emoface/parlee/io.hpp"
@@ -26,7 +27,7 @@ using detail::Reader;
 
 namespace {
 
-constexpr core::FormatVersion kConfigVersion{1, 0};
+constexpr core::FormatVersion kConfigVersion{1, 1};  // 1.1: the mindmotion source
 constexpr core::FormatVersion kStateVersion{1, 0};
 
 std::string resolve(const std::string& base, const std::string& path) {
@@ -92,8 +93,26 @@ CharacterConfig parse_character_config(std::string_view text, const std::string&
         c.agent = parlee::read_agent_file(resolve(base_dir, path));
       }
     }
-    if (c.source == SourceKind::MindMap) {
-      r.only(s, "/source", {"kind", "map", "map_file"});
+    if (c.source == SourceKind::MindMotion) {
+      r.only(s, "/source",
+             {"kind", "map", "map_file", "graph", "graph_file", "variation", "hint_path_fraction"});
+      if (s.contains("graph")) {
+        c.motion.graph =
+            std::make_shared<const motiongraph::MotionGraph>(motiongraph::parse_graph_json(
+                r.object(s["graph"], "/source/graph").dump(), file + " /source/graph"));
+      } else if (s.contains("graph_file")) {
+        r.get(s, "/source", "graph_file", c.motion.graph_file);
+        c.motion.graph_file = resolve(base_dir, c.motion.graph_file);
+        c.motion.graph = std::make_shared<const motiongraph::MotionGraph>(
+            motiongraph::read_graph(c.motion.graph_file));
+      } else {
+        r.fail("/source", "a mindmotion source needs \"graph\" or \"graph_file\"");
+      }
+      r.get(s, "/source", "variation", c.motion.variation);
+      r.get(s, "/source", "hint_path_fraction", c.motion.hint_path_fraction);
+    }
+    if (c.source == SourceKind::MindMap || c.source == SourceKind::MindMotion) {
+      if (c.source == SourceKind::MindMap) r.only(s, "/source", {"kind", "map", "map_file"});
       if (s.contains("map")) {
         c.map = mindmap::parse_mind_map(r.object(s["map"], "/source/map").dump(),
                                         file + " /source/map");
@@ -102,13 +121,15 @@ CharacterConfig parse_character_config(std::string_view text, const std::string&
         r.get(s, "/source", "map_file", path);
         c.map = mindmap::read_mind_map(resolve(base_dir, path));
       } else {
-        r.fail("/source", "a mindmap source needs \"map\" or \"map_file\"");
+        r.fail("/source",
+               "a " + std::string(to_string(c.source)) + " source needs \"map\" or \"map_file\"");
       }
     }
   }
   if (doc.contains("face")) {
     r.get(doc, "", "face", c.face);
-    if (!c.face.empty() && c.face != "default" && c.face != "generic") c.face = resolve(base_dir, c.face);
+    if (!c.face.empty() && c.face != "default" && c.face != "generic")
+      c.face = resolve(base_dir, c.face);
   }
   r.get(doc, "", "fps", o.fps);
   r.get(doc, "", "lookahead", o.lookahead);
@@ -204,7 +225,16 @@ std::string format_character_config(const CharacterConfig& c) {
     s["domain"] = c.domain_text;
     s["agent"] = Json::parse(parlee::write_agent(c.agent));
   }
-  if (c.source == SourceKind::MindMap) s["map"] = Json::parse(mindmap::to_json_text(c.map));
+  if (c.source == SourceKind::MindMap || c.source == SourceKind::MindMotion)
+    s["map"] = Json::parse(mindmap::to_json_text(c.map));
+  if (c.source == SourceKind::MindMotion) {
+    if (c.motion.graph_file.empty())
+      s["graph"] = Json::parse(motiongraph::graph_to_json(*c.motion.graph));
+    else
+      s["graph_file"] = c.motion.graph_file;
+    s["variation"] = c.motion.variation;
+    s["hint_path_fraction"] = c.motion.hint_path_fraction;
+  }
   doc["source"] = s;
   if (!c.face.empty()) doc["face"] = c.face;
   doc["fps"] = o.fps;
@@ -312,6 +342,10 @@ void restore_channel(const Reader& r, const Json& j, const std::string& p, Strea
 
 std::string Character::snapshot() const {
   const Impl& m = *impl_;
+  if (m.config.source == SourceKind::MindMotion)
+    throw InvalidInput(
+        "snapshot: not available for the mindmotion source (the motion player's state is not "
+        "serialisable yet)");
   Json doc = core::make_envelope("character_state", kStateVersion);
   doc["config"] = Json::parse(format_character_config(m.config));
   doc["time"] = m.time;
@@ -331,6 +365,8 @@ std::string Character::snapshot() const {
       src = {{"events", events}, {"emotions", m.occ_last}, {"t_last", m.t_last}};
       break;
     }
+    case SourceKind::MindMotion:
+      break;  // refused above
     case SourceKind::MindMap: {
       Json events = Json::array();
       for (const auto& e : m.mind_log) {
@@ -388,6 +424,8 @@ Character restore_character(std::string_view text, const std::string& file) {
   m.time = r.finite(doc["time"], "/time");
   const Json& src = r.object(doc["source"], "/source");
   switch (m.config.source) {
+    case SourceKind::MindMotion:
+      r.fail("/config/source/kind", "a mindmotion character has no snapshot");
     case SourceKind::Direct: {
       const auto v =
           numbers(r, src.contains("values") ? src["values"] : Json(), "/source/values", 6, false);

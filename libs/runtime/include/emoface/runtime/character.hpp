@@ -1,8 +1,10 @@
 #pragma once
 // emoface::runtime::Character — one animated character for a game engine or any real-time host,
 // updated frame by frame (issue 16). It owns
-//   an emotion source: direct emotion input, a ParleE agent (thesis ch. 5) or a mind map (paper
-//   §6), the fuzzy mapper (thesis ch. 6: ESV → FMCV → 35 face parameters), the channels of thesis
+//   an emotion source: direct emotion input, a ParleE agent (thesis ch. 5), a mind map (paper
+//   §6) or a mind map with a motion graph (issue 19 item 5: the mood's actions played as
+//   synthesized motion by mindmotion::LiveCharacter instead of fuzzy displays), the fuzzy mapper
+//   (thesis ch. 6: ESV → FMCV → 35 face parameters), the channels of thesis
 //   ch. 4 in streaming form (runtime/streaming.hpp): emotion displays (channel 4), speech visemes
 //   (channel 2), blinks (1), gaze (5) and head (6) noise, mixed with a bounded look-ahead (a fixed
 //   output latency ≤ 0.3 s), optionally a face (any rig: the default face or a rig file, e.g. one
@@ -40,13 +42,29 @@
 #include "emoface/facemesh/mesh.hpp"
 #include "emoface/mindmap/mind_map.hpp"
 #include "emoface/mindmap/simulation.hpp"
+#include "emoface/motiongraph/graph.hpp"
 #include "emoface/parlee/agent.hpp"
 
 namespace emoface::runtime {
 
-enum class SourceKind { Direct, Parlee, MindMap };
-std::string_view to_string(SourceKind kind) noexcept;       ///< "direct", "parlee", "mindmap"
+enum class SourceKind { Direct, Parlee, MindMap, MindMotion };
+/// "direct", "parlee", "mindmap", "mindmotion"
+std::string_view to_string(SourceKind kind) noexcept;
 SourceKind source_kind_from_string(std::string_view name);  ///< throws InvalidInput
+
+/// The MindMotion source (a live mind-map character, mindmotion::LiveCharacter): the map's mood
+/// chooses actions whose expression labels are synthesized by a motion graph, frame by frame.
+struct MotionSourceOptions {
+  /// A weight-space ARKit-52 graph (parameters through the exact ARKit mapping) or a 2D landmark
+  /// graph of iBUG-68 ids (parameters by the landmark fit on the character's face, or on the
+  /// default face without one). Shared: characters may use one graph.
+  std::shared_ptr<const motiongraph::MotionGraph> graph;
+  /// The file `graph` was read from; "" = set in code (format_character_config writes it inline).
+  std::string graph_file;
+  bool variation = true;             ///< §5.1 variation (duration, node replacement, peak choice)
+  double hint_path_fraction = 0.35;  ///< mood-decay hints play this leading part, (0, 1]
+  void validate() const;             ///< throws InvalidInput naming the field (source.graph...)
+};
 
 /// How emotions become emotion displays (channel 4): the displayed ESV follows the felt one; a new
 /// display (held until the next takes over, §4.5.2 concatenation) starts when an entry has moved by
@@ -87,9 +105,10 @@ struct CharacterOptions {
 
 struct CharacterConfig {
   SourceKind source = SourceKind::Direct;
-  std::string domain_text;    ///< Parlee: domain (thesis or PPDDL text)
-  parlee::AgentConfig agent;  ///< Parlee
-  mindmap::MindMap map;       ///< MindMap: the character's map
+  std::string domain_text;     ///< Parlee: domain (thesis or PPDDL text)
+  parlee::AgentConfig agent;   ///< Parlee
+  mindmap::MindMap map;        ///< MindMap, MindMotion: the character's map
+  MotionSourceOptions motion;  ///< MindMotion
   CharacterOptions options;
   /// Face for vertices(): "" = none, "default" = the built-in default face (the rigged MakeHuman
   /// head), "generic" = the procedural generic face, otherwise a rig file path.
@@ -160,7 +179,8 @@ class Character {
   const facemesh::Vertices& vertices();
   const facemesh::Mesh& mesh() const;  ///< neutral mesh (faces, UVs); throws without a face
 
-  /// The whole state as an "emoface.character_state" JSON document (config included).
+  /// The whole state as an "emoface.character_state" JSON document (config included). Throws
+  /// InvalidInput for the mindmotion source (its motion player's state is not serialisable yet).
   std::string snapshot() const;
   const CharacterConfig& config() const noexcept;
 
@@ -179,8 +199,10 @@ Character restore_character(std::string_view snapshot_json, const std::string& f
 /// Reads an "emoface.character" config (docs/runtime.md): {"format": "emoface.character",
 /// "version": "1.0", "source": {"kind": "direct"} | {"kind": "parlee", "domain": TEXT |
 /// "domain_file": PATH, "agent": {...} | "agent_file": PATH} | {"kind": "mindmap", "map": {...} |
-/// "map_file": PATH}, "face": "default" | PATH, "fps", "lookahead", "seed", "display": {...},
-/// "blinks", "gaze_noise", "head_noise", "step_seconds", "direct_decay_per_second", "speech":
+/// "map_file": PATH} | {"kind": "mindmotion", "map" | "map_file", "graph": {...} | "graph_file":
+/// PATH, "variation": BOOL, "hint_path_fraction": X}, "face": "default" | PATH, "fps", "lookahead",
+/// "seed", "display": {...}, "blinks", "gaze_noise", "head_noise", "step_seconds",
+/// "direct_decay_per_second", "speech":
 /// {"voice", "rate", "pitch", "program"}, "mix": {"dmin_plus", "dmin_minus"}}. Relative paths are
 /// resolved against `base_dir`. Throws FormatError naming the field.
 CharacterConfig parse_character_config(std::string_view json_text,
