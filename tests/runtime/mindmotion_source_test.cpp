@@ -17,6 +17,7 @@
 #include "emoface/mindmap/io.hpp"
 #include "emoface/motiongraph/io.hpp"
 #include "emoface/motiongraph/preprocess.hpp"
+#include "emoface/motiongraph/synthetic.hpp"
 #include "emoface/motiongraph/weights.hpp"
 #include "emoface/runtime/character.hpp"
 
@@ -223,6 +224,32 @@ TEST(MindMotionSource, ConfigFileRoundTripAndVertices) {
   const CharacterConfig inline_cfg =
       parse_character_config(format_character_config(motion_config()));
   EXPECT_EQ(inline_cfg.motion.graph->landmark_ids(), weight_graph()->landmark_ids());
+}
+
+TEST(MindMotionSource, LandmarkGraphIsFittedOnTheFace) {
+  // a 2D iBUG-68 landmark graph (the parametric CK+-like model): parameters by the landmark fit on
+  // the generic face (the character's face)
+  mg::SyntheticOptions o;
+  o.seed = 3;
+  o.sequences_per_label = 2;
+  o.subjects = 3;
+  o.min_frames = 6;
+  o.max_frames = 12;
+  CharacterConfig cfg = motion_config(2, false);
+  cfg.motion.graph = std::make_shared<const mg::MotionGraph>(mg::build_graph(mg::preprocess(
+      mg::generate_synthetic_database(mg::ParametricLandmarkModel(), o), mg::default_layout())));
+  cfg.face = "generic";
+  Character c(cfg);
+  c.update(0.5);
+  const std::vector<double> rest = c.parameters();
+  ASSERT_TRUE(c.push_event(R"j({"stimulus": "joke"})j").applied);  // happiness: grin or guffaw
+  double moved = 0.0;
+  for (int i = 0; i < 90; ++i) {
+    c.update(1.0 / 60);
+    moved = std::max(moved, largest_step(c.parameters(), rest));
+  }
+  EXPECT_GT(moved, 0.05);
+  for (double p : c.parameters()) EXPECT_TRUE(p >= -1.0 && p <= 1.0) << p;
 }
 
 TEST(MindMotionSource, BadConfigNamesTheField) {
