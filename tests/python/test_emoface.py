@@ -111,3 +111,55 @@ def test_character_with_face_returns_vertices():
     c.update(0.5)
     v = c.vertices()
     assert v.shape[1] == 3 and c.faces().shape[1] == 3
+
+
+def _mindmotion_graph():
+    graph = os.environ.get("EMOFACE_TEST_GRAPH")
+    if not graph or not os.path.exists(graph):
+        pytest.skip("EMOFACE_TEST_GRAPH not set (ctest fixture capi.make_graph)")
+    return graph
+
+
+REX = os.path.join(os.path.dirname(__file__), "..", "..", "data", "mindmap", "crowd", "rex.json")
+QUIET = {"format": "emoface.character", "version": "1.1", "seed": 3,
+         "blinks": False, "gaze_noise": False, "head_noise": False}
+
+
+def test_mindmotion_character_moves_by_synthesized_motion():
+    graph = _mindmotion_graph()
+    a = emoface.Character.mindmotion(graph, REX, QUIET)
+    b = emoface.Character.mindmotion(graph, REX, json.dumps(QUIET))
+    a.update(1.0)
+    b.update(1.0)
+    rest = a.parameters
+    assert a.push_stimulus("insult") == (True, "")
+    assert b.push_event({"stimulus": "insult"}) == (True, "")
+    for _ in range(120):
+        a.update(1 / 60)
+        b.update(1 / 60)
+        assert np.array_equal(a.parameters, b.parameters)  # same seed, same stream
+    assert np.max(np.abs(a.parameters - rest)) > 0.05
+    assert a.emotions[2] > 0.1  # rex is angry
+    assert a.arkit.shape == (52,) and np.all((a.arkit >= 0) & (a.arkit <= 1))
+    assert a.facs.shape == (len(a.facs),) and len(a.facs) > 0
+    applied, message = a.push_stimulus("tickle")
+    assert not applied and "tickle" in message
+    assert not a.push_stimulus("tickle", {"happiness": 2.0})[0]  # out of [0, 1]
+    assert a.push_stimulus("tickle", {"happiness": 1.0}) == (True, "")
+    assert not a.push_event({"emotions": {"happiness": 1}})[0]
+    with pytest.raises(ValueError):
+        a.snapshot()  # not available for this source yet
+
+
+def test_mindmotion_bad_files_and_config_raise():
+    graph = _mindmotion_graph()
+    with pytest.raises(OSError):
+        emoface.Character.mindmotion("/no/such/graph.json", REX)
+    with pytest.raises(ValueError):
+        emoface.Character.mindmotion(REX, REX)  # a mind map is no motion graph
+    with pytest.raises(ValueError):
+        emoface.Character.mindmotion(graph, REX, {"format": "emoface.character", "version": "1.1",
+                                                  "source": {"kind": "direct"}, "colour": 1})
+    with pytest.raises(ValueError):
+        emoface.Character.mindmotion(graph, REX, {"format": "emoface.character", "version": "1.1",
+                                                  "source": {"kind": "parlee", "domain": "x"}})

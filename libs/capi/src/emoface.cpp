@@ -7,6 +7,7 @@
 #include <exception>
 #include <memory>
 #include <new>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "emoface/channels/speech.hpp"
@@ -143,6 +144,18 @@ emoface_character* emoface_character_restore(const char* snapshot_json, char* er
   });
 }
 
+emoface_character* emoface_character_create_mindmotion(const char* graph_path, const char* map_path,
+                                                       const char* options_json, char* err,
+                                                       size_t err_size) {
+  return create(err, err_size, [&] {
+    if (!graph_path) throw emoface::InvalidInput("NULL graph path");
+    if (!map_path) throw emoface::InvalidInput("NULL mind map path");
+    rt::CharacterConfig base;
+    if (options_json && *options_json) base = rt::parse_character_config(options_json, "<options>");
+    return rt::Character(rt::mindmotion_config(graph_path, map_path, std::move(base)));
+  });
+}
+
 void emoface_character_destroy(emoface_character* c) { delete c; }
 
 const char* emoface_character_error(const emoface_character* c) {
@@ -153,6 +166,28 @@ int emoface_character_event(emoface_character* c, const char* event_json) {
   return guarded(c, [&]() -> int {
     if (!event_json) return fail(c, EMOFACE_ERROR_ARGUMENT, "NULL event");
     const rt::EventResult r = c->character.push_event(event_json);
+    if (!r.applied) return fail(c, EMOFACE_ERROR_SKIPPED, r.message);
+    return EMOFACE_OK;
+  });
+}
+
+int emoface_character_stimulus(emoface_character* c, const char* stimulus,
+                               const char* weights_json) {
+  return guarded(c, [&]() -> int {
+    if (!stimulus) return fail(c, EMOFACE_ERROR_ARGUMENT, "NULL stimulus");
+    nlohmann::ordered_json event = {{"stimulus", stimulus}};
+    if (weights_json) {
+      nlohmann::ordered_json w;
+      try {
+        w = nlohmann::ordered_json::parse(weights_json);
+      } catch (const std::exception& e) {
+        return fail(c, EMOFACE_ERROR_FORMAT, std::string("weights: not valid JSON: ") + e.what());
+      }
+      if (!w.is_object())
+        return fail(c, EMOFACE_ERROR_FORMAT, "weights: expected an object of emotion: weight");
+      event["weights"] = std::move(w);
+    }
+    const rt::EventResult r = c->character.push_event(event.dump());
     if (!r.applied) return fail(c, EMOFACE_ERROR_SKIPPED, r.message);
     return EMOFACE_OK;
   });

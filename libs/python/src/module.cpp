@@ -233,6 +233,17 @@ PYBIND11_MODULE(emoface, m) {
           "from_file",
           [](const std::string& path) { return rt::Character(rt::read_character_config(path)); })
       .def_static(
+          "mindmotion",
+          [](const std::string& graph, const std::string& map, const py::object& config) {
+            rt::CharacterConfig base;
+            if (!config.is_none())
+              base = rt::parse_character_config(to_json_text(config), "<config>");
+            return rt::Character(rt::mindmotion_config(graph, map, std::move(base)));
+          },
+          py::arg("graph"), py::arg("map"), py::arg("config") = py::none(),
+          "a live mind-map character moved by a motion graph (docs/runtime.md): graph and map "
+          "file paths; config: None, a JSON string or a dict (emoface.character without source)")
+      .def_static(
           "restore",
           [](const std::string& snapshot) { return rt::restore_character(snapshot, "<snapshot>"); })
       .def(
@@ -243,6 +254,18 @@ PYBIND11_MODULE(emoface, m) {
           },
           py::arg("event"),
           "-> (applied, message); events the model does not allow are skipped, not raised")
+      .def(
+          "push_stimulus",
+          [](rt::Character& c, const std::string& stimulus, const py::object& weights) {
+            py::dict event;
+            event["stimulus"] = stimulus;
+            if (!weights.is_none()) event["weights"] = weights;
+            const rt::EventResult r = c.push_event(to_json_text(event));
+            return py::make_tuple(r.applied, r.message);
+          },
+          py::arg("stimulus"), py::arg("weights") = py::none(),
+          "mind-map stimulus (mindmap, mindmotion sources); weights: None or {emotion: weight}; "
+          "-> (applied, message)")
       .def(
           "speak",
           [](rt::Character& c, const std::string& text) {
@@ -271,6 +294,8 @@ PYBIND11_MODULE(emoface, m) {
       .def_property_readonly(
           "arkit",
           [](rt::Character& c) { return vector_array(c.arkit().data(), c.arkit().size()); })
+      .def_property_readonly(
+          "facs", [](rt::Character& c) { return vector_array(c.facs().data(), c.facs().size()); })
       .def("vertices", [](rt::Character& c) { return vertices_array(c.vertices()); })
       .def("faces", [](const rt::Character& c) { return faces_array(c.mesh().faces); })
       .def_property_readonly("input_time", &rt::Character::input_time)

@@ -275,6 +275,21 @@ std::string format_character_config(const CharacterConfig& c) {
   return doc.dump(1) + "\n";
 }
 
+CharacterConfig mindmotion_config(const std::string& graph_file, const std::string& map_file,
+                                  CharacterConfig base) {
+  if (base.source != SourceKind::Direct)
+    throw InvalidInput("mindmotion config: the base config has the " +
+                       std::string(to_string(base.source)) +
+                       " source; the graph and the map make the source");
+  base.source = SourceKind::MindMotion;
+  base.map = mindmap::read_mind_map(map_file);
+  base.motion.graph =
+      std::make_shared<const motiongraph::MotionGraph>(motiongraph::read_graph(graph_file));
+  base.motion.graph_file = graph_file;
+  base.validate();
+  return base;
+}
+
 // ------------------------------------------------------------------------------------ snapshots
 
 namespace {

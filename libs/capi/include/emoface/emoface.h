@@ -5,7 +5,7 @@
  *   emoface_character_event(c, "{\"emotions\": {\"happiness\": 0.9}}");
  *   for (;;) {
  *     emoface_character_update(c, 1.0 / 60.0);
- *     double p[42];  emoface_character_parameters(c, p, 42);   // emoface_parameter_name(i) names them
+ *     double p[42];  emoface_character_parameters(c, p, 42);  // emoface_parameter_name(i)
  *   }
  *   emoface_character_destroy(c);
  *
@@ -13,10 +13,14 @@
  * EMOFACE_ERROR_* code and a message in emoface_character_error(handle) (valid until the next call
  * on that handle) — or, without a handle (NULL handle, create/restore failures), in
  * emoface_last_error(), which is per thread. No C++ exception crosses this boundary. Buffers are
- * caller-owned: `n` is their capacity in elements; a wrong `n` is EMOFACE_ERROR_SIZE (nothing written).
- * A handle may be used from one thread at a time; different handles are independent.
+ * caller-owned: `n` is their capacity in elements; a wrong `n` is EMOFACE_ERROR_SIZE (nothing
+ * written). A handle may be used from one thread at a time; different handles are independent.
  * Strings are UTF-8, NUL-terminated. Times are seconds.
  * See docs/runtime.md for the config and event JSON and for Unity, Unreal and Godot bindings.
+ *
+ * ABI: entry points are only ever added (the soname stays libemoface.so.0 while that holds);
+ * emoface_character_create_mindmotion and emoface_character_stimulus were added after 0.1.0
+ * (issue 19), every earlier function is unchanged.
  */
 #ifndef EMOFACE_EMOFACE_H
 #define EMOFACE_EMOFACE_H
@@ -74,6 +78,16 @@ EMOFACE_API emoface_character* emoface_character_create(const char* config_json,
 EMOFACE_API emoface_character* emoface_character_create_from_file(const char* path, char* err, size_t err_size);
 /* A character continuing exactly where emoface_character_snapshot() left off. */
 EMOFACE_API emoface_character* emoface_character_restore(const char* snapshot_json, char* err, size_t err_size);
+/* A live mind-map character whose face moves by motion-graph synthesis (the "mindmotion" source,
+ * docs/runtime.md): graph_path = a motion graph (`mgraph build`; weight-space ARKit-52, or 2D
+ * iBUG-68 landmarks fitted on the face), map_path = the character's mind map (emoface.mindmap),
+ * options_json = NULL/"" or an "emoface.character" config without "source" for everything else
+ * (face, fps, seed, blinks, ...). A missing file, a graph of the wrong kind or a map action the
+ * graph cannot synthesize fails like emoface_character_create (message naming the file/field). */
+EMOFACE_API emoface_character* emoface_character_create_mindmotion(const char* graph_path,
+                                                                   const char* map_path,
+                                                                   const char* options_json,
+                                                                   char* err, size_t err_size);
 /* NULL is fine. */
 EMOFACE_API void emoface_character_destroy(emoface_character* c);
 /* The last error of this handle ("" after a success); for NULL, emoface_last_error(). */
@@ -83,6 +97,12 @@ EMOFACE_API const char* emoface_character_error(const emoface_character* c);
  * "outcome": "goal"} (ParleE), {"stimulus": "gift", "weights": {...}} (mind map). An event the model
  * does not allow returns EMOFACE_ERROR_SKIPPED; the character stays usable. */
 EMOFACE_API int emoface_character_event(emoface_character* c, const char* event_json);
+/* A mind-map stimulus at the input clock (mindmap and mindmotion sources): an action node of the
+ * map, or with weights_json (NULL or {"happiness": 0.8, ...}, weights in [0, 1]) a world stimulus
+ * the map may lack. Unknown stimuli and other sources: EMOFACE_ERROR_SKIPPED; malformed
+ * weights_json: EMOFACE_ERROR_FORMAT. */
+EMOFACE_API int emoface_character_stimulus(emoface_character* c, const char* stimulus,
+                                           const char* weights_json);
 /* Speaks text with the espeak-ng program (a separate process; tens of ms). *start_seconds (may be
  * NULL) receives the start on the input clock: play the audio at start + latency. */
 EMOFACE_API int emoface_character_speak(emoface_character* c, const char* text, double* start_seconds);

@@ -212,4 +212,11 @@ CharacterConfig read_character_config(const std::string& path);
 /// The config as JSON (inline domain/agent/map), parse_character_config gives it back.
 std::string format_character_config(const CharacterConfig& config);
 
+/// A mindmotion config from files: the motion graph (motiongraph::read_graph) and the mind map
+/// (mindmap::read_mind_map); every other field from `base`, whose source must be the default
+/// (direct). Throws IoError/FormatError naming the file, InvalidInput for a source in `base` or a
+/// graph that does not fit the map (CharacterConfig::validate()).
+CharacterConfig mindmotion_config(const std::string& graph_file, const std::string& map_file,
+                                  CharacterConfig base = {});
+
 }  // namespace emoface::runtime
