@@ -1,16 +1,24 @@
 // runtime::Character per-frame cost (issue 16 targets: 1,000 characters at 60 Hz without
 // deformation ≥ 60,000 character-updates/s per core; with deformation on the default face ≥
 // 2,000/s), with baselines in the same run: the offline channels::mix per frame over the same kind
-// of channels, and FaceSolver::deform alone.
+// of channels, and FaceSolver::deform alone. Issue 19 item 5: the mindmotion source (a live
+// mind-map character moved by a motion graph) against the mindmap source (mood → fuzzy displays),
+// same map, same stimuli, same run.
 //   build/tests/bench/runtime_bench --benchmark_min_time=2s
 #include <benchmark/benchmark.h>
 
 #include <string>
 #include <vector>
 
+#include "emoface/bridge/face_landmark_model.hpp"
+#include "emoface/bridge/weight_space.hpp"
 #include "emoface/channels/mixer.hpp"
 #include "emoface/channels/parameters.hpp"
 #include "emoface/facemesh/default_face.hpp"
+#include "emoface/mindmap/io.hpp"
+#include "emoface/motiongraph/preprocess.hpp"
+#include "emoface/motiongraph/synthetic.hpp"
+#include "emoface/motiongraph/weights.hpp"
 #include "emoface/muscles/solver.hpp"
 #include "emoface/runtime/character.hpp"
 
@@ -65,6 +73,74 @@ void BM_RuntimeUpdateDeform(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
 }
 BENCHMARK(BM_RuntimeUpdateDeform)->Unit(benchmark::kMicrosecond);
+
+// Mind-map characters: rex of data/mindmap/crowd, a stimulus per character every 2 s (staggered),
+// 60 Hz updates; `kind` = the mindmap source (mood → fuzzy displays) or the mindmotion source with
+// a weight-space ARKit graph of the default generated size (`mgraph generate --space arkit` +
+// `mgraph build`: 7 labels × 10 sequences, 20 subjects) or a 2D landmark graph (the parametric
+// CK+-like model, fitted on the default face).
+const char* const kStimuli[] = {R"({"stimulus": "gift"})", R"({"stimulus": "insult"})",
+                                R"({"stimulus": "bang"})", R"({"stimulus": "joke"})"};
+
+std::shared_ptr<const emoface::motiongraph::MotionGraph> bench_graph(bool weights) {
+  namespace mg = emoface::motiongraph;
+  if (weights) {
+    static const auto g = [] {
+      const emoface::bridge::FaceLandmarkModel face;
+      return std::make_shared<const mg::MotionGraph>(mg::build_graph(
+          mg::preprocess(emoface::bridge::generate_weight_database(face, {}),
+                         emoface::bridge::arkit_layout(), mg::weight_preprocess_options()),
+          mg::weight_graph_options()));
+    }();
+    return g;
+  }
+  static const auto g = [] {
+    return std::make_shared<const mg::MotionGraph>(mg::build_graph(mg::preprocess(
+        mg::generate_synthetic_database(mg::ParametricLandmarkModel(), {}), mg::default_layout())));
+  }();
+  return g;
+}
+
+void mind_crowd(benchmark::State& state, rt::SourceKind kind, bool weights) {
+  const int n = static_cast<int>(state.range(0));
+  const auto map = emoface::mindmap::read_mind_map(std::string(EMOFACE_SOURCE_DIR) +
+                                                   "/data/mindmap/crowd/rex.json");
+  std::vector<rt::Character> crowd;
+  for (int i = 0; i < n; ++i) {
+    rt::CharacterConfig c;
+    c.source = kind;
+    c.map = map;
+    if (kind == rt::SourceKind::MindMotion) c.motion.graph = bench_graph(weights);
+    c.options.seed = static_cast<std::uint64_t>(i + 1);
+    crowd.emplace_back(c);
+  }
+  std::size_t frame = 0;
+  const auto step = [&] {
+    for (std::size_t i = 0; i < crowd.size(); ++i) {
+      if ((frame + i) % 120 == 0) crowd[i].push_event(kStimuli[(frame / 120 + i) % 4]);
+      crowd[i].update(1.0 / 60);
+    }
+    ++frame;
+  };
+  for (int f = 0; f < 120; ++f) step();  // warm up: actions, blinks and noise running
+  for (auto _ : state) {
+    step();
+    benchmark::DoNotOptimize(crowd.back().parameters().data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * n);
+}
+void BM_RuntimeMindMap(benchmark::State& state) {
+  mind_crowd(state, rt::SourceKind::MindMap, false);
+}
+void BM_RuntimeMindMotionWeights(benchmark::State& state) {
+  mind_crowd(state, rt::SourceKind::MindMotion, true);
+}
+void BM_RuntimeMindMotionLandmarks(benchmark::State& state) {
+  mind_crowd(state, rt::SourceKind::MindMotion, false);
+}
+BENCHMARK(BM_RuntimeMindMap)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RuntimeMindMotionWeights)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RuntimeMindMotionLandmarks)->Arg(10)->Unit(benchmark::kMillisecond);
 
 // Baseline: the offline mixer over 10 s at 60 fps with the channels a character has (blinks, a
 // smile display, lip visemes, gaze, head), per frame.
