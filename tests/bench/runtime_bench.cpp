@@ -4,7 +4,7 @@
 // of channels, and FaceSolver::deform alone. Issue 19 item 5: the mindmotion source (a live
 // mind-map character moved by a motion graph) against the mindmap source (mood → fuzzy displays),
 // same map, same stimuli, same run.
-//   build/tests/bench/runtime_bench --benchmark_min_time=2s
+//   build/tests/bench/runtime_bench --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 
 #include <string>
