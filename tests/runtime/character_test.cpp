@@ -220,11 +220,13 @@ TEST(Character, SnapshotRestoreContinuesBitIdentically) {
   for (const auto& cfg : configs) {
     Character a(cfg);
     a.push_event(R"j({"emotions": {"happiness": 0.7, "surprise": 0.4}})j");
-    if (cfg.source == SourceKind::Parlee)
+    if (cfg.source == SourceKind::Parlee) {
       for (std::size_t k = 0; k < 3; ++k) ASSERT_TRUE(a.push_parlee_event(events[k]).applied);
-    if (cfg.source == SourceKind::MindMap)
+    }
+    if (cfg.source == SourceKind::MindMap) {
       ASSERT_TRUE(a.push_event(R"j({"stimulus": "gift", "weights": {"happiness": 0.9}})j").applied)
           << to_string(cfg.source);
+    }
     run(a, 0, 150);
     const std::string snap = a.snapshot();
     Character b = restore_character(snap, "snap.json");
@@ -311,6 +313,71 @@ TEST(Character, ConfigRoundTripAndBadInput) {
   EXPECT_NE(err(env + R"j("speech": {"rate": 1e9}})j").find("rate"), std::string::npos);
   EXPECT_NE(err("{").find("c.json"), std::string::npos);
   EXPECT_EQ(parse_character_config(env + R"j("seed": 9})j").options.seed, 9u);
+}
+
+// The unknown-field rule of docs/formats.md (core::JsonReader, issue 18 item 1): a newer minor
+// version may add fields (ignored), the same or an older one rejects them with a located error.
+TEST(Character, UnknownFieldRuleOfTheFormats) {
+  const auto doc = [](const std::string& version, const std::string& body) {
+    return R"j({"format": "emoface.character", "version": ")j" + version + "\", " + body + "}";
+  };
+  const auto err = [](const std::string& text) {
+    try {
+      parse_character_config(text, "c.json");
+    } catch (const FormatError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const std::string extra = R"j("seed": 4, "colour": 1, "display": {"onset": 0.5, "sparkle": 2},)j"
+                            R"j( "source": {"kind": "direct", "mood": "x"})j";
+  for (const char* v : {"1.0", "1.1"}) {
+    const std::string e = err(doc(v, extra));
+    EXPECT_NE(e.find("c.json: at /colour: unknown field \"colour\""), std::string::npos) << e;
+    EXPECT_NE(err(doc(v, R"j("display": {"sparkle": 2})j")).find("at /display/sparkle"),
+              std::string::npos);
+    EXPECT_NE(err(doc(v, R"j("source": {"kind": "direct", "mood": "x"})j")).find("/source/mood"),
+              std::string::npos);
+  }
+  const CharacterConfig newer = parse_character_config(doc("1.7", extra), "c.json");  // ignored
+  EXPECT_EQ(newer.options.seed, 4u);
+  EXPECT_EQ(newer.options.display.onset, 0.5);
+  EXPECT_NE(err(doc("2.0", R"j("seed": 4)j")).find("c.json"), std::string::npos);
+  // a newer minor still checks the fields it knows, with their pointers
+  EXPECT_NE(err(doc("1.7", R"j("display": {"onset": "x"})j")).find("c.json: at /display/onset"),
+            std::string::npos);
+  EXPECT_NE(err(doc("1.1", R"j("mix": {"priority": [1, 2]})j")).find("/mix/priority"),
+            std::string::npos);
+  EXPECT_EQ(parse_character_config(doc("1.1", R"j("seed": 18446744073709551615)j")).options.seed,
+            18446744073709551615u);
+  EXPECT_NE(err(doc("1.1", R"j("seed": -1)j")).find("/seed"), std::string::npos);
+
+  // snapshots (emoface.character_state 1.0): a 1.x newer minor with added fields restores and
+  // continues identically; 1.0 with an added field is refused at its pointer
+  Character a{CharacterConfig{}};
+  a.push_event(R"j({"emotions": {"happiness": 0.7}})j");
+  a.update(1.0);
+  const std::string snap = a.snapshot();
+  const std::string v10 = R"j("version":"1.0")j";
+  ASSERT_NE(snap.find(v10), std::string::npos);
+  std::string added = snap;
+  added.replace(added.find("\"mixer\":{"), 9, R"j("mixer":{"lanes":3,)j");
+  added.replace(added.find("\"esv_out\":"), 10, R"j("weather":"rain","esv_out":)j");
+  try {
+    restore_character(added, "s.json");
+    ADD_FAILURE() << "an unknown field of a 1.0 snapshot was accepted";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("s.json: at /"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unknown field"), std::string::npos) << e.what();
+  }
+  std::string newer_snap = added;
+  newer_snap.replace(newer_snap.find(v10), v10.size(), R"j("version":"1.3")j");
+  Character b = restore_character(newer_snap, "s.json");
+  for (int i = 0; i < 120; ++i) {
+    a.update(1.0 / 60);
+    b.update(1.0 / 60);
+    ASSERT_EQ(a.parameters(), b.parameters()) << i;
+  }
 }
 
 TEST(Character, ArkitAndFacsWeights) {

@@ -21,9 +21,10 @@
 namespace emoface::runtime {
 
 namespace ch = emoface::channels;
+using detail::get;
 using detail::Json;
+using detail::JsonValue;
 using detail::num;
-using detail::Reader;
 
 namespace {
 
@@ -35,177 +36,156 @@ std::string resolve(const std::string& base, const std::string& path) {
   return (std::filesystem::path(base) / path).string();
 }
 
-void read_timing(const Reader& r, const Json& o, const std::string& p, ch::Timing& t) {
-  r.only(o, p, {"start", "end", "onset", "offset"});
-  r.get(o, p, "start", t.start);
-  r.get(o, p, "end", t.end);
-  r.get(o, p, "onset", t.onset);
-  r.get(o, p, "offset", t.offset);
+void read_timing(const JsonValue& o, ch::Timing& t) {
+  o.only_keys({"start", "end", "onset", "offset"});
+  get(o, "start", t.start);
+  get(o, "end", t.end);
+  get(o, "onset", t.onset);
+  get(o, "offset", t.offset);
 }
 
 }  // namespace
 
 CharacterConfig parse_character_config(std::string_view text, const std::string& file,
                                        const std::string& base_dir) {
-  const Json doc = core::parse_json(text, file);
-  core::check_envelope(doc, "character", kConfigVersion, file);
-  const Reader r{file};
-  r.only(doc, "", {"format",       "version",
-                   "generator",    "source",
-                   "face",         "fps",
-                   "lookahead",    "seed",
-                   "display",      "blinks",
-                   "gaze_noise",   "head_noise",
-                   "blink",        "gaze",
-                   "head",         "chunk_seconds",
-                   "mix",          "coarticulation",
-                   "silence_pad",  "speech",
-                   "step_seconds", "direct_decay_per_second"});
+  const core::JsonReader reader(text, file, "character", kConfigVersion);
+  const JsonValue doc = reader.root();
+  doc.only_keys({"source", "face", "fps", "lookahead", "seed", "display", "blinks", "gaze_noise",
+                 "head_noise", "blink", "gaze", "head", "chunk_seconds", "mix", "coarticulation",
+                 "silence_pad", "speech", "step_seconds", "direct_decay_per_second"});
   CharacterConfig c;
   CharacterOptions& o = c.options;
-  if (doc.contains("source")) {
-    const Json& s = r.object(doc["source"], "/source");
+  if (const auto s = doc.find("source")) {
+    s->expect_object();
     std::string kind = "direct";
-    r.get(s, "/source", "kind", kind);
+    get(*s, "kind", kind);
     try {
       c.source = source_kind_from_string(kind);
     } catch (const InvalidInput& e) {
-      r.fail("/source/kind", e.what());
+      s->at("kind").fail(e.what());
     }
-    if (c.source == SourceKind::Direct) r.only(s, "/source", {"kind"});
+    switch (c.source) {
+      case SourceKind::Direct:
+        s->only_keys({"kind"});
+        break;
+      case SourceKind::Parlee:
+        s->only_keys({"kind", "domain", "domain_file", "agent", "agent_file"});
+        break;
+      case SourceKind::MindMap:
+        s->only_keys({"kind", "map", "map_file"});
+        break;
+      case SourceKind::MindMotion:
+        s->only_keys(
+            {"kind", "map", "map_file", "graph", "graph_file", "variation", "hint_path_fraction"});
+        break;
+    }
     if (c.source == SourceKind::Parlee) {
-      r.only(s, "/source", {"kind", "domain", "domain_file", "agent", "agent_file"});
-      if (s.contains("domain")) {
-        r.get(s, "/source", "domain", c.domain_text);
-      } else if (s.contains("domain_file")) {
-        std::string path;
-        r.get(s, "/source", "domain_file", path);
-        c.domain_text = core::read_file(resolve(base_dir, path));
+      if (const auto d = s->find("domain")) {
+        c.domain_text = d->string();
+      } else if (const auto f = s->find("domain_file")) {
+        c.domain_text = core::read_file(resolve(base_dir, f->string()));
       } else {
-        r.fail("/source", "a parlee source needs \"domain\" (text) or \"domain_file\"");
+        s->fail("a parlee source needs \"domain\" (text) or \"domain_file\"");
       }
-      if (s.contains("agent")) {
-        c.agent = parlee::parse_agent(r.object(s["agent"], "/source/agent").dump(),
-                                      file + " /source/agent");
-      } else if (s.contains("agent_file")) {
-        std::string path;
-        r.get(s, "/source", "agent_file", path);
-        c.agent = parlee::read_agent_file(resolve(base_dir, path));
+      if (const auto a = s->find("agent")) {
+        c.agent = parlee::parse_agent(a->expect_object().json().dump(), file + " /source/agent");
+      } else if (const auto f = s->find("agent_file")) {
+        c.agent = parlee::read_agent_file(resolve(base_dir, f->string()));
       }
     }
     if (c.source == SourceKind::MindMotion) {
-      r.only(s, "/source",
-             {"kind", "map", "map_file", "graph", "graph_file", "variation", "hint_path_fraction"});
-      if (s.contains("graph")) {
+      if (const auto g = s->find("graph")) {
         c.motion.graph =
             std::make_shared<const motiongraph::MotionGraph>(motiongraph::parse_graph_json(
-                r.object(s["graph"], "/source/graph").dump(), file + " /source/graph"));
-      } else if (s.contains("graph_file")) {
-        r.get(s, "/source", "graph_file", c.motion.graph_file);
-        c.motion.graph_file = resolve(base_dir, c.motion.graph_file);
+                g->expect_object().json().dump(), file + " /source/graph"));
+      } else if (const auto f = s->find("graph_file")) {
+        c.motion.graph_file = resolve(base_dir, f->string());
         c.motion.graph = std::make_shared<const motiongraph::MotionGraph>(
             motiongraph::read_graph(c.motion.graph_file));
       } else {
-        r.fail("/source", "a mindmotion source needs \"graph\" or \"graph_file\"");
+        s->fail("a mindmotion source needs \"graph\" or \"graph_file\"");
       }
-      r.get(s, "/source", "variation", c.motion.variation);
-      r.get(s, "/source", "hint_path_fraction", c.motion.hint_path_fraction);
+      get(*s, "variation", c.motion.variation);
+      get(*s, "hint_path_fraction", c.motion.hint_path_fraction);
     }
     if (c.source == SourceKind::MindMap || c.source == SourceKind::MindMotion) {
-      if (c.source == SourceKind::MindMap) r.only(s, "/source", {"kind", "map", "map_file"});
-      if (s.contains("map")) {
-        c.map = mindmap::parse_mind_map(r.object(s["map"], "/source/map").dump(),
-                                        file + " /source/map");
-      } else if (s.contains("map_file")) {
-        std::string path;
-        r.get(s, "/source", "map_file", path);
-        c.map = mindmap::read_mind_map(resolve(base_dir, path));
+      if (const auto m = s->find("map")) {
+        c.map = mindmap::parse_mind_map(m->expect_object().json().dump(), file + " /source/map");
+      } else if (const auto f = s->find("map_file")) {
+        c.map = mindmap::read_mind_map(resolve(base_dir, f->string()));
       } else {
-        r.fail("/source",
-               "a " + std::string(to_string(c.source)) + " source needs \"map\" or \"map_file\"");
+        s->fail("a " + std::string(to_string(c.source)) + " source needs \"map\" or \"map_file\"");
       }
     }
   }
-  if (doc.contains("face")) {
-    r.get(doc, "", "face", c.face);
+  if (const auto f = doc.find("face")) {
+    c.face = f->string();
     if (!c.face.empty() && c.face != "default" && c.face != "generic")
       c.face = resolve(base_dir, c.face);
   }
-  r.get(doc, "", "fps", o.fps);
-  r.get(doc, "", "lookahead", o.lookahead);
-  r.get(doc, "", "seed", o.seed);
-  if (doc.contains("display")) {
-    const Json& d = r.object(doc["display"], "/display");
-    r.only(d, "/display", {"onset", "offset", "tolerance"});
-    r.get(d, "/display", "onset", o.display.onset);
-    r.get(d, "/display", "offset", o.display.offset);
-    r.get(d, "/display", "tolerance", o.display.tolerance);
+  get(doc, "fps", o.fps);
+  get(doc, "lookahead", o.lookahead);
+  get(doc, "seed", o.seed);
+  if (const auto d = doc.find("display")) {
+    d->only_keys({"onset", "offset", "tolerance"});
+    get(*d, "onset", o.display.onset);
+    get(*d, "offset", o.display.offset);
+    get(*d, "tolerance", o.display.tolerance);
   }
-  r.get(doc, "", "blinks", o.blinks);
-  r.get(doc, "", "gaze_noise", o.gaze_noise);
-  r.get(doc, "", "head_noise", o.head_noise);
-  if (doc.contains("blink")) {
-    const Json& b = r.object(doc["blink"], "/blink");
-    r.only(b, "/blink",
-           {"mean_interval", "min_interval", "duration", "onset", "offset", "closure"});
-    r.get(b, "/blink", "mean_interval", o.blink.mean_interval);
-    r.get(b, "/blink", "min_interval", o.blink.min_interval);
-    r.get(b, "/blink", "duration", o.blink.duration);
-    r.get(b, "/blink", "onset", o.blink.onset);
-    r.get(b, "/blink", "offset", o.blink.offset);
-    r.get(b, "/blink", "closure", o.blink.closure);
+  get(doc, "blinks", o.blinks);
+  get(doc, "gaze_noise", o.gaze_noise);
+  get(doc, "head_noise", o.head_noise);
+  if (const auto b = doc.find("blink")) {
+    b->only_keys({"mean_interval", "min_interval", "duration", "onset", "offset", "closure"});
+    get(*b, "mean_interval", o.blink.mean_interval);
+    get(*b, "min_interval", o.blink.min_interval);
+    get(*b, "duration", o.blink.duration);
+    get(*b, "onset", o.blink.onset);
+    get(*b, "offset", o.blink.offset);
+    get(*b, "closure", o.blink.closure);
   }
   for (const char* key : {"gaze", "head"}) {
-    if (!doc.contains(key)) continue;
-    const std::string p = std::string("/") + key;
+    const auto j = doc.find(key);
+    if (!j) continue;
     ch::NoiseOptions& n = std::string(key) == "gaze" ? o.gaze : o.head;
-    const Json& j = r.object(doc[key], p);
-    r.only(j, p, {"amplitude", "mean_hold", "min_hold", "transition"});
-    r.get(j, p, "amplitude", n.amplitude);
-    r.get(j, p, "mean_hold", n.mean_hold);
-    r.get(j, p, "min_hold", n.min_hold);
-    r.get(j, p, "transition", n.transition);
+    j->only_keys({"amplitude", "mean_hold", "min_hold", "transition"});
+    get(*j, "amplitude", n.amplitude);
+    get(*j, "mean_hold", n.mean_hold);
+    get(*j, "min_hold", n.min_hold);
+    get(*j, "transition", n.transition);
   }
-  r.get(doc, "", "chunk_seconds", o.chunk_seconds);
-  if (doc.contains("mix")) {
-    const Json& m = r.object(doc["mix"], "/mix");
-    r.only(m, "/mix", {"dmin_plus", "dmin_minus", "active_threshold", "priority"});
-    r.get(m, "/mix", "dmin_plus", o.mix.dmin_plus);
-    r.get(m, "/mix", "dmin_minus", o.mix.dmin_minus);
-    r.get(m, "/mix", "active_threshold", o.mix.active_threshold);
-    if (m.contains("priority")) {
-      const Json& pr = m["priority"];
-      if (!pr.is_array() || pr.size() != ch::kChannelCount)
-        r.fail("/mix/priority", "expected 6 integers");
-      for (std::size_t k = 0; k < ch::kChannelCount; ++k) {
-        if (!pr[k].is_number_integer())
-          r.fail("/mix/priority/" + std::to_string(k), "expected an integer");
-        o.mix.priority[k] = pr[k].get<int>();
-      }
+  get(doc, "chunk_seconds", o.chunk_seconds);
+  if (const auto m = doc.find("mix")) {
+    m->only_keys({"dmin_plus", "dmin_minus", "active_threshold", "priority"});
+    get(*m, "dmin_plus", o.mix.dmin_plus);
+    get(*m, "dmin_minus", o.mix.dmin_minus);
+    get(*m, "active_threshold", o.mix.active_threshold);
+    if (const auto pr = m->find("priority")) {
+      pr->expect_array(ch::kChannelCount);
+      for (std::size_t k = 0; k < ch::kChannelCount; ++k)
+        o.mix.priority[k] = static_cast<int>((*pr)[k].integer(-1000000000, 1000000000));
     }
   }
-  if (doc.contains("coarticulation")) {
-    const Json& m = r.object(doc["coarticulation"], "/coarticulation");
-    r.only(m, "/coarticulation", {"time_unit", "rest_dominance", "cutoff"});
-    r.get(m, "/coarticulation", "time_unit", o.coarticulation.time_unit);
-    r.get(m, "/coarticulation", "rest_dominance", o.coarticulation.rest_dominance);
-    r.get(m, "/coarticulation", "cutoff", o.coarticulation.cutoff);
+  if (const auto m = doc.find("coarticulation")) {
+    m->only_keys({"time_unit", "rest_dominance", "cutoff"});
+    get(*m, "time_unit", o.coarticulation.time_unit);
+    get(*m, "rest_dominance", o.coarticulation.rest_dominance);
+    get(*m, "cutoff", o.coarticulation.cutoff);
   }
-  r.get(doc, "", "silence_pad", o.silence_pad);
-  if (doc.contains("speech")) {
-    const Json& s = r.object(doc["speech"], "/speech");
-    r.only(s, "/speech", {"voice", "rate", "pitch", "program"});
-    r.get(s, "/speech", "voice", o.speech.voice);
-    r.get(s, "/speech", "rate", o.speech.rate);
-    r.get(s, "/speech", "pitch", o.speech.pitch);
-    r.get(s, "/speech", "program", o.speech.program);
+  get(doc, "silence_pad", o.silence_pad);
+  if (const auto s = doc.find("speech")) {
+    s->only_keys({"voice", "rate", "pitch", "program"});
+    get(*s, "voice", o.speech.voice);
+    get(*s, "rate", o.speech.rate);
+    get(*s, "pitch", o.speech.pitch);
+    get(*s, "program", o.speech.program);
   }
-  r.get(doc, "", "step_seconds", o.step_seconds);
-  r.get(doc, "", "direct_decay_per_second", o.direct_decay_per_second);
+  get(doc, "step_seconds", o.step_seconds);
+  get(doc, "direct_decay_per_second", o.direct_decay_per_second);
   try {
     c.validate();
   } catch (const InvalidInput& e) {
-    r.fail("", e.what());
+    doc.fail(e.what());
   }
   return c;
 }
@@ -311,45 +291,36 @@ Json channel_json(const StreamingChannel& c) {
   return items;
 }
 
-std::vector<double> numbers(const Reader& r, const Json& j, const std::string& p, std::size_t n,
-                            bool allow_null) {
-  if (!j.is_array() || (n != SIZE_MAX && j.size() != n))
-    r.fail(p, "expected an array of " +
-                  (n == SIZE_MAX ? std::string("numbers") : std::to_string(n) + " numbers"));
+std::vector<double> numbers(const JsonValue& v, std::size_t n, bool allow_null) {
+  v.expect_array();
+  if (n != SIZE_MAX && v.size() != n)
+    v.fail("expected an array of " + std::to_string(n) + " numbers, got " +
+           std::to_string(v.size()) + " elements");
   std::vector<double> out;
-  out.reserve(j.size());
-  for (std::size_t i = 0; i < j.size(); ++i)
-    out.push_back(allow_null ? r.number(j[i], p + "/" + std::to_string(i))
-                             : r.finite(j[i], p + "/" + std::to_string(i)));
+  out.reserve(v.size());
+  for (const JsonValue& x : v.items())
+    out.push_back(allow_null ? detail::number_or_null(x) : x.number());
   return out;
 }
 
-void restore_channel(const Reader& r, const Json& j, const std::string& p, StreamingChannel& c) {
-  if (!j.is_array()) r.fail(p, "expected an array of movements");
+void restore_channel(const JsonValue& v, StreamingChannel& c) {
   std::vector<StreamingChannel::Item> items;
   const std::size_t np = c.parameters().size();
-  for (std::size_t k = 0; k < j.size(); ++k) {
-    const std::string q = p + "/" + std::to_string(k);
-    const Json& o = r.object(j[k], q);
-    r.only(o, q,
-           {"timing", "target", "start_value", "overlaps", "previous_offset", "previous_end"});
+  for (const JsonValue& o : v.items()) {
+    o.only_keys({"timing", "target", "start_value", "overlaps", "previous_offset", "previous_end"});
     StreamingChannel::Item it;
-    if (!o.contains("timing")) r.fail(q + "/timing", "missing");
-    read_timing(r, r.object(o["timing"], q + "/timing"), q + "/timing", it.timing);
-    if (!o.contains("target") || !o.contains("start_value"))
-      r.fail(q, "missing target or start_value");
-    it.target = numbers(r, o["target"], q + "/target", np, false);
-    it.start_value = numbers(r, o["start_value"], q + "/start_value", np, false);
-    r.get(o, q, "overlaps", it.overlaps);
-    r.get(o, q, "previous_offset", it.previous_offset);
-    it.previous_end =
-        o.contains("previous_end") ? r.number(o["previous_end"], q + "/previous_end") : -INFINITY;
+    read_timing(o.at("timing").expect_object(), it.timing);
+    it.target = numbers(o.at("target"), np, false);
+    it.start_value = numbers(o.at("start_value"), np, false);
+    get(o, "overlaps", it.overlaps);
+    get(o, "previous_offset", it.previous_offset);
+    if (const auto p = o.find("previous_end")) it.previous_end = detail::number_or_null(*p);
     items.push_back(std::move(it));
   }
   try {
     c.restore(std::move(items));
   } catch (const InvalidInput& e) {
-    r.fail(p, e.what());
+    v.fail(e.what());
   }
 }
 
@@ -424,167 +395,146 @@ std::string Character::snapshot() const {
 }
 
 Character restore_character(std::string_view text, const std::string& file) {
-  const Json doc = core::parse_json(text, file);
-  core::check_envelope(doc, "character_state", kStateVersion, file);
-  const Reader r{file};
-  r.only(doc, "",
-         {"format", "version", "generator", "config", "time", "source", "display", "channels",
-          "chunks", "speech", "mixer", "esv_ring", "esv_out"});
+  const core::JsonReader reader(text, file, "character_state", kStateVersion);
+  const JsonValue doc = reader.root();
+  doc.only_keys({"config", "time", "source", "display", "channels", "chunks", "speech", "mixer",
+                 "esv_ring", "esv_out"});
   for (const char* k : {"config", "time", "source", "display", "channels", "chunks", "speech",
                         "mixer", "esv_ring", "esv_out"})
-    if (!doc.contains(k)) r.fail(std::string("/") + k, "missing");
+    doc.at(k);  // "missing field" before anything is built
   auto impl = std::make_unique<Character::Impl>(
-      parse_character_config(r.object(doc["config"], "/config").dump(), file + " /config"));
+      parse_character_config(doc.at("config").expect_object().json().dump(), file + " /config"));
   Character::Impl& m = *impl;
-  m.time = r.finite(doc["time"], "/time");
-  const Json& src = r.object(doc["source"], "/source");
+  const JsonValue time = doc.at("time");
+  m.time = time.number();
+  if (!(m.time >= 0 && m.time <= 1e9)) time.fail("must be in [0, 1e9] s");
+  const JsonValue src = doc.at("source").expect_object();
   switch (m.config.source) {
     case SourceKind::MindMotion:
-      r.fail("/config/source/kind", "a mindmotion character has no snapshot");
+      doc.at("config").fail("a mindmotion character has no snapshot");
     case SourceKind::Direct: {
-      const auto v =
-          numbers(r, src.contains("values") ? src["values"] : Json(), "/source/values", 6, false);
+      const JsonValue values = src.at("values");
+      const auto v = numbers(values, 6, false);
       for (double x : v)
-        if (!(x >= 0 && x <= 1)) r.fail("/source/values", "emotion intensities must be in [0, 1]");
+        if (!(x >= 0 && x <= 1)) values.fail("emotion intensities must be in [0, 1]");
       std::copy(v.begin(), v.end(), m.direct.begin());
-      r.get(src, "/source", "time", m.direct_time);
+      get(src, "time", m.direct_time);
       if (!(m.direct_time >= 0 && m.direct_time <= m.time))
-        r.fail("/source/time", "must be in [0, /time]");
+        src.at("time").fail("must be in [0, /time]");
       break;
     }
     case SourceKind::Parlee: {
-      const Json& ev = src.contains("events") ? src["events"] : Json();
-      if (!ev.is_array()) r.fail("/source/events", "expected an array");
-      for (std::size_t i = 0; i < ev.size(); ++i) {
-        const std::string p = "/source/events/" + std::to_string(i);
-        const Json& e = r.object(ev[i], p);
+      for (const JsonValue& e : src.at("events").items()) {
+        e.only_keys({"time", "action", "outcome", "note", "feedback"});
         parlee::Event pe;
-        r.get(e, p, "time", pe.time);
-        r.get(e, p, "action", pe.action);
-        r.get(e, p, "outcome", pe.outcome);
-        r.get(e, p, "note", pe.note);
-        if (e.contains("feedback")) pe.feedback = r.finite(e["feedback"], p + "/feedback");
+        get(e, "time", pe.time);
+        get(e, "action", pe.action);
+        get(e, "outcome", pe.outcome);
+        get(e, "note", pe.note);
+        if (const auto f = e.find("feedback")) pe.feedback = f->number();
         try {
           m.agent->step(pe);
         } catch (const std::exception& ex) {
-          r.fail(p, std::string("event does not replay: ") + ex.what());
+          e.fail(std::string("event does not replay: ") + ex.what());
         }
         m.parlee_log.push_back(pe);
       }
-      const auto occ = numbers(r, src.contains("emotions") ? src["emotions"] : Json(),
-                               "/source/emotions", parlee::kEmotionCount, false);
+      const JsonValue emotions = src.at("emotions");
+      const auto occ = numbers(emotions, parlee::kEmotionCount, false);
       for (std::size_t i = 0; i < occ.size(); ++i)
         if (!(occ[i] >= 0 && occ[i] <= m.config.agent.emotions.omega[i]))
-          r.fail("/source/emotions/" + std::to_string(i), "intensity must be in [0, omega]");
+          emotions[i].fail("intensity must be in [0, omega]");
       std::copy(occ.begin(), occ.end(), m.occ_last.begin());
-      r.get(src, "/source", "t_last", m.t_last);
-      if (!(m.t_last >= 0 && m.t_last <= m.time)) r.fail("/source/t_last", "must be in [0, /time]");
+      get(src, "t_last", m.t_last);
+      if (!(m.t_last >= 0 && m.t_last <= m.time)) src.at("t_last").fail("must be in [0, /time]");
       break;
     }
     case SourceKind::MindMap: {
-      const Json& ev = src.contains("events") ? src["events"] : Json();
-      if (!ev.is_array()) r.fail("/source/events", "expected an array");
-      for (std::size_t i = 0; i < ev.size(); ++i) {
-        const std::string p = "/source/events/" + std::to_string(i);
-        const Json& e = r.object(ev[i], p);
+      for (const JsonValue& e : src.at("events").items()) {
+        e.only_keys({"time", "target", "stimulus", "source", "weights"});
         mindmap::Event me;
-        r.get(e, p, "time", me.time);
-        r.get(e, p, "target", me.target);
-        r.get(e, p, "stimulus", me.stimulus);
-        r.get(e, p, "source", me.source);
-        if (e.contains("weights"))
-          for (auto w = e["weights"].begin(); w != e["weights"].end(); ++w)
-            me.weights.emplace_back(w.key(), r.finite(w.value(), p + "/weights"));
+        get(e, "time", me.time);
+        get(e, "target", me.target);
+        get(e, "stimulus", me.stimulus);
+        get(e, "source", me.source);
+        if (const auto w = e.find("weights"))
+          for (const auto& [name, value] : w->members())
+            me.weights.emplace_back(name, value.number());
         try {
           if (me.time > m.world->time()) m.world->advance_to(me.time, nullptr);
           m.world->apply(me, nullptr);
         } catch (const std::exception& ex) {
-          r.fail(p, std::string("stimulus does not replay: ") + ex.what());
+          e.fail(std::string("stimulus does not replay: ") + ex.what());
         }
         m.mind_log.push_back(me);
       }
       double wt = 0;
-      r.get(src, "/source", "world_time", wt);
+      get(src, "world_time", wt);
       if (wt > m.world->time()) m.world->advance_to(wt, nullptr);
       break;
     }
   }
-  const Json& d = r.object(doc["display"], "/display");
-  r.get(d, "/display", "any", m.shown_any);
-  const auto shown =
-      numbers(r, d.contains("shown") ? d["shown"] : Json(), "/display/shown", 6, false);
+  const JsonValue d = doc.at("display");
+  d.only_keys({"any", "shown"});
+  get(d, "any", m.shown_any);
+  const auto shown = numbers(d.at("shown"), 6, false);
   for (double x : shown)
-    if (!(x >= 0 && x <= 1)) r.fail("/display/shown", "emotion intensities must be in [0, 1]");
+    if (!(x >= 0 && x <= 1)) d.at("shown").fail("emotion intensities must be in [0, 1]");
   std::copy(shown.begin(), shown.end(), m.shown.begin());
-  const Json& chs = r.object(doc["channels"], "/channels");
-  restore_channel(r, chs.contains("emotion") ? chs["emotion"] : Json(), "/channels/emotion",
-                  m.emotion);
-  restore_channel(r, chs.contains("blinks") ? chs["blinks"] : Json(), "/channels/blinks", m.blinks);
-  restore_channel(r, chs.contains("gaze") ? chs["gaze"] : Json(), "/channels/gaze", m.gaze);
-  restore_channel(r, chs.contains("head") ? chs["head"] : Json(), "/channels/head", m.head);
-  if (!doc["chunks"].is_number_unsigned()) r.fail("/chunks", "expected a non-negative integer");
-  m.chunks = doc["chunks"].get<std::uint64_t>();
-  const Json& sp = doc["speech"];
-  if (!sp.is_array()) r.fail("/speech", "expected an array");
-  for (std::size_t i = 0; i < sp.size(); ++i) {
-    const std::string p = "/speech/" + std::to_string(i);
-    const Json& u = r.object(sp[i], p);
+  const JsonValue chs = doc.at("channels");
+  chs.only_keys({"emotion", "blinks", "gaze", "head"});
+  restore_channel(chs.at("emotion"), m.emotion);
+  restore_channel(chs.at("blinks"), m.blinks);
+  restore_channel(chs.at("gaze"), m.gaze);
+  restore_channel(chs.at("head"), m.head);
+  m.chunks = detail::unsigned_integer(doc.at("chunks"));
+  for (const JsonValue& u : doc.at("speech").items()) {
+    u.only_keys({"start", "end", "segments"});
     Character::Impl::Utt utt;
-    utt.start = u.contains("start") ? r.finite(u["start"], p + "/start") : 0.0;
-    utt.end = u.contains("end") ? r.finite(u["end"], p + "/end") : 0.0;
-    const Json& segs = u.contains("segments") ? u["segments"] : Json();
-    if (!segs.is_array()) r.fail(p + "/segments", "expected an array");
-    for (std::size_t k = 0; k < segs.size(); ++k) {
-      const std::string q = p + "/segments/" + std::to_string(k);
-      const Json& s = segs[k];
-      if (!s.is_array() || s.size() != 5 || !s[0].is_string() || !s[4].is_string())
-        r.fail(q, "expected [viseme, start, end, apex, label]");
-      utt.segs.push_back({s[0].get<std::string>(), r.finite(s[1], q + "/1"),
-                          r.finite(s[2], q + "/2"), r.finite(s[3], q + "/3"),
-                          s[4].get<std::string>()});
+    get(u, "start", utt.start);
+    get(u, "end", utt.end);
+    for (const JsonValue& seg : u.at("segments").items()) {
+      seg.expect_array(5);
+      utt.segs.push_back(
+          {seg[0].string(), seg[1].number(), seg[2].number(), seg[3].number(), seg[4].string()});
     }
     try {
       m.build_utt(utt);
     } catch (const InvalidInput& e) {
-      r.fail(p, e.what());
+      u.fail(e.what());
     }
     m.utts.push_back(std::move(utt));
   }
-  const Json& mx = r.object(doc["mixer"], "/mixer");
+  const JsonValue mx = doc.at("mixer");
+  mx.only_keys({"frames_in", "ring", "last_inhibited", "output"});
   StreamingMixer::State st;
-  if (!mx.contains("frames_in") || !mx["frames_in"].is_number_unsigned())
-    r.fail("/mixer/frames_in", "expected an integer");
-  st.frames_in = mx["frames_in"].get<std::size_t>();
-  st.ring = numbers(r, mx.contains("ring") ? mx["ring"] : Json(), "/mixer/ring", SIZE_MAX, false);
-  st.last_inhibited = numbers(r, mx.contains("last_inhibited") ? mx["last_inhibited"] : Json(),
-                              "/mixer/last_inhibited", SIZE_MAX, true);
-  st.output =
-      numbers(r, mx.contains("output") ? mx["output"] : Json(), "/mixer/output", SIZE_MAX, false);
+  st.frames_in = static_cast<std::size_t>(detail::unsigned_integer(mx.at("frames_in")));
+  st.ring = numbers(mx.at("ring"), SIZE_MAX, false);
+  st.last_inhibited = numbers(mx.at("last_inhibited"), SIZE_MAX, true);
+  st.output = numbers(mx.at("output"), SIZE_MAX, false);
   try {
     m.mixer.restore(st);
   } catch (const InvalidInput& e) {
-    r.fail("/mixer", e.what());
+    mx.fail(e.what());
   }
   m.params_out = st.output;
   // the clocks must agree (update() computes every frame n with n/fps <= time): a foreign or edited
   // snapshot must not make the next update() loop for ages
   const double fps = m.config.options.fps;
-  if (!(m.time >= 0 && m.time <= 1e9)) r.fail("/time", "must be in [0, 1e9] s");
   const bool due_ok = st.frames_in == 0
                           ? !(0.0 <= m.time + 1e-9)
                           : static_cast<double>(st.frames_in - 1) / fps <= m.time + 1e-9 &&
                                 !(static_cast<double>(st.frames_in) / fps <= m.time + 1e-9);
-  if (!due_ok) r.fail("/mixer/frames_in", "does not match /time at the configured fps");
-  const Json& ring = doc["esv_ring"];
-  if (!ring.is_array() || ring.size() != m.esv_ring.size()) r.fail("/esv_ring", "wrong size");
+  if (!due_ok) mx.at("frames_in").fail("does not match /time at the configured fps");
+  const JsonValue ring = doc.at("esv_ring");
+  ring.expect_array(m.esv_ring.size());
   for (std::size_t i = 0; i < ring.size(); ++i) {
-    const auto v = numbers(r, ring[i], "/esv_ring/" + std::to_string(i), 6, false);
+    const auto v = numbers(ring[i], 6, false);
     for (double x : v)
-      if (!(x >= 0 && x <= 1))
-        r.fail("/esv_ring/" + std::to_string(i), "emotion intensities must be in [0, 1]");
+      if (!(x >= 0 && x <= 1)) ring[i].fail("emotion intensities must be in [0, 1]");
     std::copy(v.begin(), v.end(), m.esv_ring[i].begin());
   }
-  const auto eo = numbers(r, doc["esv_out"], "/esv_out", 6, false);
+  const auto eo = numbers(doc.at("esv_out"), 6, false);
   std::copy(eo.begin(), eo.end(), m.esv_out.begin());
   return Character(std::move(impl));
 }
