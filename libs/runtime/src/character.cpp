@@ -86,8 +86,7 @@ void MotionSourceOptions::validate() const {
   const std::string what = "mindmotion source: source.graph" +
                            (graph_file.empty() ? "" : "_file \"" + graph_file + "\"");
   const std::size_t channels = graph->landmark_ids().size();
-  // a weight graph's ids are ARKit channels (faceweights' "arkit" order), a landmark graph's iBUG
-  // ids
+  // ids: ARKit channels (faceweights' "arkit" order) of a weight graph, iBUG ids of landmarks
   if (motiongraph::is_weight_space(graph->dimensions)) {
     if (channels == 0) throw InvalidInput(what + " is an empty weight-space graph");
     for (int id : graph->landmark_ids())
@@ -339,7 +338,8 @@ void Character::Impl::raw_frame() {
       live_frame = frames;
     }
     const double fg = config.motion.graph->frame_rate;
-    const double u = std::clamp((t - static_cast<double>(frames - 1) / fg) * fg, 0.0, 1.0);
+    const double u =  // 0 before the first graph frame (live_prev = live_cur = 0 then)
+        frames == 0 ? 0.0 : std::clamp((t - static_cast<double>(frames - 1) / fg) * fg, 0.0, 1.0);
     for (std::size_t i = 0; i < display.size(); ++i)
       display[i] = live_prev[i] + u * (live_cur[i] - live_prev[i]);
   } else {
