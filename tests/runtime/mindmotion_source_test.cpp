@@ -202,6 +202,36 @@ TEST(MindMotionSource, EventsOfOtherSourcesAndUnknownStimuliAreSkipped) {
   EXPECT_THROW(c.snapshot(), InvalidInput);
 }
 
+TEST(MindMotionSource, SpeechAndBlinksAreLayeredOverTheMotion) {
+  // a hand-timed utterance (as character_test.cpp) and blinks over the synthesized motion: the jaw
+  // opens for the open vowel, the lids close, and a stimulus during speech still moves the brows
+  CharacterConfig cfg = motion_config(6, false);
+  cfg.options.blinks = true;
+  Character c(cfg);
+  const auto& names = Character::parameter_names();
+  const auto index = [&](const char* n) {
+    return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin());
+  };
+  c.update(0.5);
+  const double jaw_rest = c.parameters()[index("masseter")];
+  channels::Utterance u;
+  u.sample_rate = 1000;
+  u.phonemes = {
+      {"h", 0, 0.08}, {"@", 0.08, 0.15}, {"l", 0.15, 0.22}, {"oU", 0.22, 0.5}, {"_:", 0.5, 0.6}};
+  u.samples.assign(600, 0);
+  c.speak(u);
+  ASSERT_TRUE(c.push_event(R"j({"stimulus": "insult"})j").applied);
+  double jaw = 0.0, lid = 0.0;
+  for (int i = 0; i < 600; ++i) {
+    c.update(1.0 / 60);
+    if (i < 90) jaw = std::max(jaw, c.parameters()[index("masseter")]);
+    lid = std::max(lid, c.parameters()[index("eye_blink_l")]);
+  }
+  EXPECT_GT(jaw, jaw_rest + 0.1) << jaw << " " << jaw_rest;
+  std::printf("jaw %.3f (rest %.3f)\n", jaw, jaw_rest);
+  EXPECT_GT(lid, 0.9);  // blinks (about one per 4 s) in 10 s
+}
+
 TEST(MindMotionSource, ConfigFileRoundTripAndVertices) {
   const std::string env = R"j({"format": "emoface.character", "version": "1.1", )j";
   const std::string text = env + R"j("source": {"kind": "mindmotion", "map_file": ")j" + kData +
