@@ -4,7 +4,7 @@
 # ARKit graph made by `mgraph` (default generated size). Each row is one seed: at rest, then 1 s
 # after a joke, an insult and a bang (one stimulus each, the face of the last frame) — the rows
 # differ by the seed (§5.1 variation, the mind map's choices). → faceanim → facerender.
-# Usage: scripts/runtime_mindmotion_sheet.sh [BUILD_DIR [OUT.png]]   (build with -DEMOFACE_PYTHON=ON)
+# Usage: scripts/runtime_mindmotion_sheet.sh [BUILD_DIR [OUT.png]]  (build with -DEMOFACE_PYTHON=ON)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR=${1:-build}
