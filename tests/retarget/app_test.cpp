@@ -17,6 +17,7 @@
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/gltf.hpp"
 #include "emoface/facemesh/io.hpp"
+#include "emoface/facemesh/mesh_document.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 #include "user_gltf.hpp"
 
@@ -174,6 +175,30 @@ TEST(RetargetApp, TransferOfGltfWritesGlb) {
   for (Eigen::Index v = 0; v < face.mesh.vertices.rows(); ++v)
     worst = std::max(worst, (rigged.rig.frame.to_mesh(rigged.mesh.vertices.row(v).transpose()) - face.mesh.vertices.row(v).transpose()).norm());
   EXPECT_LT(worst, 1e-6);  // glTF stores float32
+}
+
+// A user's glTF whose own morph target is a sparse accessor (as engines export them, glTF 2.0
+// §3.6.2.3): the transfer reads it and writes it back — still sparse, the same deltas.
+TEST(RetargetApp, TransferKeepsSparseMorphTargets) {
+  TempDir t;
+  const auto face = emoface::facemesh::make_default_face();
+  const auto in = t.path / "user.glb";
+  ASSERT_TRUE(emoface::testing::write_user_gltf(in.string(), face.mesh, true));
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + in.string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
+  const auto before = emoface::facemesh::read_mesh_document(in.string());
+  const auto after = emoface::facemesh::read_mesh_document((out / "face.glb").string());
+  ASSERT_EQ(before.morph_targets().size(), 1u);
+  ASSERT_EQ(after.morph_targets().size(), 1u);
+  EXPECT_EQ(after.morph_targets()[0].name, "user_smile");
+  EXPECT_GT(before.morph_targets()[0].position_deltas.maxCoeff(), 0.0019);  // 2 mm rows read
+  EXPECT_EQ(after.morph_targets()[0].position_deltas, before.morph_targets()[0].position_deltas);
+  EXPECT_EQ(after.triangles().vertices, before.triangles().vertices);
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, (out / "face.glb").string())) << err;
+  EXPECT_TRUE(m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].targets[0].at("POSITION"))].sparse.isSparse);
 }
 
 #ifdef FACEANIM_EXE

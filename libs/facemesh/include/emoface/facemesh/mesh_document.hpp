@@ -78,6 +78,11 @@ class MeshDocument {
   const std::vector<Eigen::Vector3f>& vertex_colors() const;
   /// OBJ `mtllib` files named by the document (paths as written, relative to the file's directory).
   const std::vector<std::string>& material_libraries() const;
+  /// glTF: the first mesh's own morph targets (dense or sparse accessors), in file order: name from
+  /// mesh.extras.targetNames ("target_<k>" when unnamed), POSITION deltas per vertex of triangles()
+  /// (#V by 3, the file's frame and units; zero rows where a primitive's target has no POSITION),
+  /// NORMAL deltas likewise or empty when no primitive has any. Empty for other formats.
+  const std::vector<MorphTarget>& morph_targets() const;
 
   /// Writes the document with `positions` (#V by 3, input frame) in place of the original vertex
   /// positions; everything else byte for byte where the format allows (OBJ: only the numbers of the `v`
