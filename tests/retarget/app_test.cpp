@@ -239,6 +239,80 @@ TEST(RetargetApp, FaceanimAnimatesTheTransferredMesh) {
   ASSERT_EQ(a.vertices.rows(), b.vertices.rows());
   EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-6);
 }
+// A scanner's binary PLY with vertex colours and a property of its own: the transfer copies it, the
+// faceanim frames are that PLY with only the moved vertices' x/y/z bytes changed (colours and the
+// unknown property kept), and facerender shows the file's colours on the user's rig.
+TEST(RetargetApp, PlyColoursSurviveTransferAndAnimation) {
+  TempDir t;
+  const auto face = emoface::facemesh::make_generic_face();
+  const auto& v = face.mesh.vertices;
+  std::string ply = "ply\nformat binary_little_endian 1.0\ncomment a scanner\nelement vertex " + std::to_string(v.rows()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\n"
+                    "property uchar blue\nproperty float confidence\nelement face " + std::to_string(face.mesh.faces.rows()) +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
+  auto put = [&ply](const void* p, std::size_t n) { ply.append(static_cast<const char*>(p), n); };
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const auto f = static_cast<float>(v(i, k));
+      put(&f, 4);
+    }
+    const unsigned char rgb[3] = {40, static_cast<unsigned char>(v(i, 0) > 0 ? 200 : 90), 60};  // green, darker on the right
+    put(rgb, 3);
+    const float confidence = 0.75f;
+    put(&confidence, 4);
+  }
+  for (Eigen::Index f = 0; f < face.mesh.faces.rows(); ++f) {
+    const unsigned char n = 3;
+    put(&n, 1);
+    for (int k = 0; k < 3; ++k) put(&face.mesh.faces(f, k), 4);
+  }
+  std::ofstream(t.path / "scan.ply", std::ios::binary) << ply;
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + (t.path / "scan.ply").string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
+  EXPECT_TRUE(slurp(out / "face.ply") == ply);  // byte for byte (not printed: binary)
+  int status = 0;
+#ifdef FACEANIM_EXE
+  std::ofstream(t.path / "p.csv") << "masseter,zygomatic_major_l,zygomatic_major_r\n0,0,0\n1,0.8,0.8\n";
+  const auto frames = t.path / "frames";
+  status = std::system((std::string(FACEANIM_EXE) + " --rig " + (out / "face.rig").string() + " --params " +
+                        (t.path / "p.csv").string() + " --out " + frames.string() + " 2>/dev/null").c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const std::string open = slurp(frames / "frame_0001.ply");
+  ASSERT_EQ(open.size(), ply.size());  // the same binary layout
+  const auto in_doc = emoface::facemesh::read_mesh_document((t.path / "scan.ply").string());
+  const auto frame = emoface::facemesh::read_mesh_document((frames / "frame_0001.ply").string());
+  EXPECT_EQ(frame.vertex_colors(), in_doc.vertex_colors());
+  ASSERT_EQ(frame.vertex_colors().size(), static_cast<std::size_t>(v.rows()));
+  std::size_t moved = 0, other_bytes_changed = 0;
+  const std::size_t body = ply.find("end_header\n") + 11;
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    moved += (frame.triangles().vertices.row(i) - in_doc.triangles().vertices.row(i)).norm() > 0.0;
+    const std::size_t rec = body + static_cast<std::size_t>(i) * 19;
+    other_bytes_changed += open.compare(rec + 12, 7, ply, rec + 12, 7) != 0;  // colour + confidence
+  }
+  EXPECT_GT(moved, 300u);
+  EXPECT_EQ(other_bytes_changed, 0u);
+  EXPECT_TRUE(open.substr(body + static_cast<std::size_t>(v.rows()) * 19) == ply.substr(body + static_cast<std::size_t>(v.rows()) * 19));
+  EXPECT_TRUE(open.substr(0, body) == ply.substr(0, body));  // the header
+  // neutral: every vertex back where the user had it (float file, through the rig frame and back)
+  const auto neutral = emoface::facemesh::read_mesh_document((frames / "frame_0000.ply").string());
+  EXPECT_LT((neutral.triangles().vertices - in_doc.triangles().vertices).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_EQ(neutral.vertex_colors(), in_doc.vertex_colors());
+#endif
+#ifdef FACERENDER_EXE
+  // facerender on the user's rig: the file's colours, not the rig's material colours
+  emoface::facemesh::write_mesh((t.path / "plain.ply").string(), emoface::facemesh::read_mesh((out / "face.ply").string()));
+  for (const char* m : {"face", "plain"}) {
+    const std::string mesh = m == std::string("face") ? (out / "face.ply").string() : (t.path / "plain.ply").string();
+    status = std::system((std::string(FACERENDER_EXE) + " " + mesh + " --rig " + (out / "face.rig").string() + " --out " +
+                          (t.path / (std::string(m) + ".png")).string() + " 2>/dev/null").c_str());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << m;
+  }
+  EXPECT_NE(slurp(t.path / "face.png"), slurp(t.path / "plain.png"));
+  if (const char* keep = std::getenv("EMOFACE_KEEP_PNG")) fs::copy_file(t.path / "face.png", keep, fs::copy_options::overwrite_existing);
+#endif
+}
+
 // A user's own glTF (skin with inverse bind matrices, UVs + texture under their material, a target
 // and an animation of theirs), rigged by the transfer and animated by faceanim --gltf: everything
 // of theirs comes back unchanged, our targets (parameters + the 52 ARKit shapes) and our weights

@@ -24,6 +24,7 @@
 #include "emoface/core/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 #include "gltf_buffers.hpp"
+#include "ply_document.hpp"
 
 namespace emoface::facemesh {
 
@@ -43,6 +44,7 @@ struct MeshDocument::Impl {
   std::vector<Eigen::Vector3f> colors;
   std::vector<std::string> material_libraries;
   std::vector<MorphTarget> targets;  // glTF: the first mesh's own morph targets
+  std::shared_ptr<const detail::PlyDocument> ply;  // PLY: the file, kept whole
 
   // OBJ: the file text and its logical lines (a line continued with '\' spans several physical lines).
   enum class LineKind { Other, Vertex, Normal };
@@ -458,6 +460,66 @@ void copy_material_libraries(const MeshDocument::Impl& doc, const std::string& p
     fs::create_directories(dst.parent_path(), ec);
     core::write_file_atomic(dst.string(), core::read_file(src.string()));
   }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// PLY (ply_document.hpp: our parser keeps every element and property)
+
+void read_ply(MeshDocument::Impl& doc) {
+  auto ply = std::make_shared<detail::PlyDocument>(detail::parse_ply(core::read_file(doc.path), doc.path));
+  const std::size_t nv = ply->xyz.size() / 3;
+  doc.tri.vertices.resize(static_cast<long>(nv), 3);
+  std::copy(ply->xyz.begin(), ply->xyz.end(), doc.tri.vertices.data());
+  std::vector<std::array<int, 3>> faces;
+  std::vector<std::size_t> line_of;
+  MeshGroup group;
+  for (std::size_t p = 0; p < ply->polygons.size(); ++p) {
+    const auto& poly = ply->polygons[p];
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
+      if (is_degenerate(doc.tri.vertices, poly[0], poly[k], poly[k + 1])) {
+        ++doc.dropped;
+        continue;
+      }
+      group.faces.push_back(static_cast<int>(faces.size()));
+      faces.push_back({poly[0], poly[k], poly[k + 1]});
+      doc.polygon_of_triangle.push_back(static_cast<int>(p));
+      line_of.push_back(ply->polygon_line[p]);
+    }
+  }
+  SourceLocation where;
+  where.file = doc.path;
+  if (faces.empty()) throw FormatError(where, ply->polygons.empty() ? "no faces" : "no non-degenerate triangle");
+  doc.tri.faces.resize(static_cast<long>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) doc.tri.faces(static_cast<long>(f), k) = faces[f][static_cast<std::size_t>(k)];
+  }
+  const int bad = overshared_edge(doc.tri.faces, group.faces);
+  if (bad >= 0) {
+    where.line = line_of[static_cast<std::size_t>(bad)];
+    throw FormatError(where, "face " + std::to_string(doc.polygon_of_triangle[static_cast<std::size_t>(bad)]) +
+                                 ": an edge shared by more than two triangles (non-manifold)");
+  }
+  doc.groups.push_back(std::move(group));
+  doc.colors = ply->colors;
+  doc.ply = std::move(ply);
+}
+
+void write_ply_document(const MeshDocument::Impl& doc, const std::string& path, const Vertices& positions,
+                        bool recompute_normals) {
+  const Vertices& old = doc.tri.vertices;
+  std::vector<char> dirty(static_cast<std::size_t>(old.rows()), 0);
+  Vertices normals;
+  if (recompute_normals && doc.ply->has_normals) {
+    normals = vertex_normals(positions, doc.tri.faces);
+    const Faces& F = doc.tri.faces;
+    for (long f = 0; f < F.rows(); ++f) {
+      bool moved = false;
+      for (int k = 0; k < 3; ++k) moved = moved || !same_bits(old.data() + 3 * F(f, k), positions.data() + 3 * F(f, k));
+      if (!moved) continue;
+      for (int k = 0; k < 3; ++k) dirty[static_cast<std::size_t>(F(f, k))] = 1;
+    }
+  }
+  core::write_file_atomic(path, detail::write_ply(*doc.ply, positions, normals, dirty));
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -1045,6 +1107,12 @@ void MeshDocument::write(const std::string& path, const Vertices& positions, boo
       if (copy_materials) copy_material_libraries(doc, path);
       return;
     case MeshFormat::Ply:
+      if (mesh_format_from_path(path) == MeshFormat::Ply) {
+        write_ply_document(doc, path, positions, recompute_normals);
+        return;
+      }
+      write_mesh(path, Mesh{positions, doc.tri.faces});
+      return;
     case MeshFormat::Off:
       write_mesh(path, Mesh{positions, doc.tri.faces});
       return;
@@ -1234,7 +1302,7 @@ MeshDocument read_mesh_document(const std::string& path) {
   }
   switch (doc.format) {
     case MeshFormat::Obj: read_obj(doc); break;
-    case MeshFormat::Ply:
+    case MeshFormat::Ply: read_ply(doc); break;
     case MeshFormat::Off:
       doc.tri = read_mesh(path);
       doc.polygon_of_triangle.resize(doc.tri.face_count());

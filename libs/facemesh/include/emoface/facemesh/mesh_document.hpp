@@ -11,7 +11,9 @@
 // OBJ is parsed here (not through OpenMesh) so that the vertex order is exactly the file's `v` order and
 // every other line survives verbatim; polygons are fan-triangulated for triangles(). glTF 2.0 goes through
 // tinygltf: the first mesh, all of its triangle primitives (vertices of primitive k follow those of k−1).
-// PLY and OFF are read with read_mesh and written with write_mesh (no extra content to keep).
+// PLY is parsed here too (ASCII and binary): every element and property is kept, vertex colours are
+// read, and writing patches only the x/y/z (and nx/ny/nz) numbers of moved vertices. OFF is read
+// with read_mesh and written with write_mesh (no extra content to keep).
 #include <memory>
 #include <string>
 #include <vector>
@@ -73,8 +75,8 @@ class MeshDocument {
   const std::vector<MeshGroup>& groups() const;
   /// Texture coordinates present (OBJ `vt` referenced by faces, glTF TEXCOORD_0).
   bool has_uvs() const;
-  /// Per-vertex colours when every vertex has one (OBJ `v x y z r g b`, glTF COLOR_0 on every primitive),
-  /// else empty. PLY colour properties are not read (PLY/OFF documents go through read_mesh).
+  /// Per-vertex colours when every vertex has one (OBJ `v x y z r g b`, glTF COLOR_0 on every primitive,
+  /// PLY red/green/blue (or diffuse_*) as uchar/ushort (scaled to 0-1) or float/double), else empty.
   const std::vector<Eigen::Vector3f>& vertex_colors() const;
   /// OBJ `mtllib` files named by the document (paths as written, relative to the file's directory).
   const std::vector<std::string>& material_libraries() const;
@@ -89,7 +91,9 @@ class MeshDocument {
   /// lines whose position changed (bit comparison) change, `%.17g`, colours on them kept; with
   /// `recompute_normals` each `vn` used by a triangle with a moved vertex is recomputed, area-weighted;
   /// glTF: POSITION (and NORMAL when recompute_normals) data of the first mesh rewritten in place,
-  /// min/max updated; `path` may be .gltf (buffers embedded) or .glb). `positions` equal to
+  /// min/max updated (a sparse one that changes is written dense); `path` may be .gltf (buffers
+  /// embedded) or .glb; PLY to .ply: only the x/y/z numbers (tokens or bytes) of moved vertices change,
+  /// nx/ny/nz recomputed around them with `recompute_normals`, every other property kept). `positions` equal to
   /// triangles().vertices reproduces the input file byte for byte for OBJ. Copies the OBJ's material libraries next to `path` when `copy_materials`
   /// and the target directory differs. Atomic (temporary file + rename); throws InvalidInput on a size
   /// mismatch or non-finite positions, IoError on failure.
