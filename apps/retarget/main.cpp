@@ -13,6 +13,7 @@
 #include "emoface/muscles/solver.hpp"
 #include "emoface/retarget/default_head.hpp"
 #include "emoface/retarget/io.hpp"
+#include "emoface/retarget/output_set.hpp"
 #include "emoface/retarget/plot.hpp"
 #include "emoface/retarget/retarget.hpp"
 #include "emoface/retarget/transfer.hpp"
@@ -50,11 +51,10 @@ fm::Image emotion_sheet(const fm::Face& face, int tile) {
   return fm::contact_sheet(tiles, static_cast<int>(fx::kEmotionCount));
 }
 
-// --mode transfer: everything is computed first; the files are then written one by one (each
-// atomically) and removed again if a later one fails, so the output set appears all or nothing.
+// --mode transfer: everything is computed first; the files are then written as one set
+// (rt::OutputSet: on a failure every file and directory it made is removed again).
 int run_transfer(const fm::Face& source, const std::string& target_path, const std::string& out_dir,
                  const std::string& landmarks_path, const rt::RetargetOptions& fit, bool no_png, bool quiet, int tile) {
-  namespace fs = std::filesystem;
   const fm::MeshDocument doc = fm::read_mesh_document(target_path);
   rt::UserLandmarks landmarks;
   if (!landmarks_path.empty()) landmarks = rt::read_landmarks(landmarks_path);
@@ -70,48 +70,27 @@ int run_transfer(const fm::Face& source, const std::string& target_path, const s
   const std::string ext = gltf ? "glb" : fm::to_string(format);
   const std::string mesh_name = "face." + ext;
   r.face.rig.mesh_file = mesh_name;
+  // The input bytes (non-glTF), the .mtl files and their textures, read before anything is written;
+  // what could not be copied (missing, outside the input's directory) becomes a report warning.
+  std::string mesh_bytes;
+  if (!gltf) mesh_bytes = emoface::core::read_file(target_path);
+  fm::Companions companions = doc.companion_files();
+  for (const auto& w : companions.warnings) r.report.warnings.push_back(w);
   const std::string rig_text = fm::format_rig(r.face.rig);
   const std::string report_text = rt::format_transfer_report(r);
-  // The input bytes (non-glTF) and the material libraries, read before anything is written.
-  std::string mesh_bytes;
-  std::vector<std::pair<std::string, std::string>> extra;  // relative path, bytes
-  if (!gltf) mesh_bytes = emoface::core::read_file(target_path);
-  const fs::path in_dir = fs::path(target_path).parent_path();
-  for (const auto& lib : doc.material_libraries()) {
-    const fs::path rel(lib);
-    if (rel.is_absolute() || rel.lexically_normal().string().rfind("..", 0) == 0) continue;  // stays where it is
-    if (fs::exists(in_dir / rel)) extra.emplace_back(rel.lexically_normal().string(), emoface::core::read_file((in_dir / rel).string()));
-  }
   fm::Image sheet;
   if (!no_png) sheet = emotion_sheet(r.face, tile);
-  const fs::path dir(out_dir);
-  std::vector<fs::path> written;
-  try {
-    fs::create_directories(dir);
-    if (gltf) {
-      doc.write((dir / mesh_name).string(), doc.triangles().vertices, false, false);
-    } else {
-      emoface::core::write_file_atomic((dir / mesh_name).string(), mesh_bytes);
-    }
-    written.push_back(dir / mesh_name);
-    for (const auto& [rel, bytes] : extra) {
-      fs::create_directories((dir / rel).parent_path());
-      emoface::core::write_file_atomic((dir / rel).string(), bytes);
-      written.push_back(dir / rel);
-    }
-    emoface::core::write_file_atomic((dir / "face.rig").string(), rig_text);
-    written.push_back(dir / "face.rig");
-    emoface::core::write_file_atomic((dir / "report.json").string(), report_text);
-    written.push_back(dir / "report.json");
-    if (!no_png) {
-      fm::write_png((dir / "emotions.png").string(), sheet);
-      written.push_back(dir / "emotions.png");
-    }
-  } catch (...) {
-    std::error_code ec;
-    for (const auto& p : written) fs::remove(p, ec);
-    throw;
+  rt::OutputSet outputs(out_dir);
+  if (gltf) {
+    outputs.add_writer(mesh_name, [&](const std::string& path) { doc.write(path, doc.triangles().vertices, false, false); });
+  } else {
+    outputs.add(mesh_name, std::move(mesh_bytes));
   }
+  for (auto& file : companions.files) outputs.add(file.path, std::move(file.bytes));
+  outputs.add("face.rig", rig_text);
+  outputs.add("report.json", report_text);
+  if (!no_png) outputs.add_writer("emotions.png", [&](const std::string& path) { fm::write_png(path, sheet); });
+  outputs.commit();
   if (!quiet) {
     const auto& rep = r.report;
     std::fprintf(stderr, "retarget: transfer onto %ld vertices (%zu components): registration RMS %.4g -> %.4g (input units), "

@@ -128,6 +128,41 @@ TEST(RetargetApp, TransferKeepsTheUsersFileAndRigsIt) {
   EXPECT_EQ(slurp(out2 / "face.rig"), slurp(out / "face.rig"));
 }
 
+// The .mtl's textures go along (relative layout kept, names with spaces, option flags); one from
+// outside the input's directory is copied in under its base name and the .mtl line rewritten; a
+// missing one is a warning in report.json. A failure while writing leaves nothing of the set behind.
+TEST(RetargetApp, TransferCopiesTheTextures) {
+  TempDir t;
+  const auto in = t.path / "in" / "user";
+  fs::create_directories(in / "textures");
+  fs::create_directories(t.path / "elsewhere");
+  write_user_obj(in / "head.obj");
+  const std::string mtl = "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd -s 1 1 1 -bm 0.5 textures/skin tone.png\n"
+                          "bump ../../elsewhere/bump.png\nmap_Ks missing.png\nnewmtl eye\nKd 1 1 1\n";
+  std::ofstream(in / "head.mtl") << mtl;
+  std::ofstream(in / "textures" / "skin tone.png") << "PNG skin";
+  std::ofstream(t.path / "elsewhere" / "bump.png") << "PNG bump";
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + (in / "head.obj").string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
+  EXPECT_EQ(slurp(out / "face.obj"), slurp(in / "head.obj"));
+  EXPECT_EQ(slurp(out / "textures" / "skin tone.png"), "PNG skin");
+  EXPECT_EQ(slurp(out / "bump.png"), "PNG bump");
+  std::string expected = mtl;
+  expected.replace(expected.find("../../elsewhere/bump.png"), 24, "bump.png");
+  EXPECT_EQ(slurp(out / "head.mtl"), expected);
+  EXPECT_FALSE(fs::exists(t.path / "in" / "bump.png"));
+  const std::string report = slurp(out / "report.json");
+  EXPECT_NE(report.find("texture 'missing.png' ('head.mtl' line 5) not found"), std::string::npos) << report;
+  EXPECT_NE(report.find("copied as 'bump.png'"), std::string::npos);
+  // report.json cannot be written (a directory in its place): none of the set is left
+  const auto blocked = t.path / "blocked";
+  fs::create_directories(blocked / "report.json");
+  EXPECT_EQ(run("--target " + (in / "head.obj").string() + " --out " + blocked.string() + " --generations 2 --population 6 --quiet --no-png"), 2);
+  std::size_t n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(blocked)) ++n, (void)e;
+  EXPECT_EQ(n, 1u);  // only the directory that was there
+}
+
 TEST(RetargetApp, TransferWritesNothingOnBadInput) {
   TempDir t;
   const auto in = t.path / "in";
@@ -152,8 +187,7 @@ TEST(RetargetApp, TransferWritesNothingOnBadInput) {
   EXPECT_EQ(run("--target " + (in / "nan.obj").string() + " --out " + out.string() + " --quiet"), 2);
   std::ofstream(in / "nofaces.obj") << "v 0 0 0\nv 1 1 0\nv 0 0 1\n";
   EXPECT_EQ(run("--target " + (in / "nofaces.obj").string() + " --out " + out.string() + " --quiet"), 2);
-  EXPECT_FALSE(fs::exists(out / "face.rig"));
-  EXPECT_FALSE(fs::exists(out / "report.json"));
+  EXPECT_FALSE(fs::exists(out));  // not even the directory
   // --landmarks without transfer is a usage error
   EXPECT_EQ(run("--mode deform-source --target " + (in / "head.obj").string() + " --out " + out.string() + " --landmarks " +
                 (in / "lm.json").string()), 1);

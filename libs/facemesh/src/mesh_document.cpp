@@ -448,17 +448,16 @@ void write_obj(const MeshDocument::Impl& doc, const std::string& path, const Ver
   core::write_file_atomic(path, out);
 }
 
-void copy_material_libraries(const MeshDocument::Impl& doc, const std::string& path) {
-  const fs::path from_dir = fs::path(doc.path).parent_path();
+void copy_material_libraries(const MeshDocument& document, const std::string& path) {
+  const fs::path from_dir = fs::path(document.path()).parent_path();
   const fs::path to_dir = fs::path(path).parent_path();
   std::error_code ec;
   if (fs::equivalent(from_dir.empty() ? "." : from_dir, to_dir.empty() ? "." : to_dir, ec)) return;
-  for (const auto& lib : doc.material_libraries) {
-    const fs::path src = from_dir / lib;
-    if (!fs::is_regular_file(src)) continue;  // a missing .mtl is the user's; the OBJ still reads
-    const fs::path dst = to_dir / lib;
+  // the .mtl files and their textures (a missing one is the user's; the OBJ still reads)
+  for (const auto& file : document.companion_files().files) {
+    const fs::path dst = to_dir / file.path;
     fs::create_directories(dst.parent_path(), ec);
-    core::write_file_atomic(dst.string(), core::read_file(src.string()));
+    core::write_file_atomic(dst.string(), file.bytes);
   }
 }
 
@@ -1104,7 +1103,7 @@ void MeshDocument::write(const std::string& path, const Vertices& positions, boo
     case MeshFormat::Obj:
       if (mesh_format_from_path(path) != MeshFormat::Obj) throw InvalidInput("'" + path + "': an OBJ document is written as .obj");
       write_obj(doc, path, positions, recompute_normals);
-      if (copy_materials) copy_material_libraries(doc, path);
+      if (copy_materials) copy_material_libraries(*this, path);
       return;
     case MeshFormat::Ply:
       if (mesh_format_from_path(path) == MeshFormat::Ply) {

@@ -47,6 +47,18 @@ struct DocumentTargetsReport {
   std::size_t sparse_accessors = 0, dense_accessors = 0;
 };
 
+/// A file that goes with a copy of a document: its path relative to the copy's directory (inside it,
+/// '/' separated) and its bytes.
+struct CompanionFile {
+  std::string path;
+  std::string bytes;
+};
+/// MeshDocument::companion_files: what to write beside a copy, and what could not be (warnings).
+struct Companions {
+  std::vector<CompanionFile> files;
+  std::vector<std::string> warnings;
+};
+
 struct MeshGroup {
   std::string object;    ///< OBJ `o` (or glTF mesh name), may be empty
   std::string group;     ///< OBJ `g` (or "primitive_<k>"), may be empty
@@ -80,6 +92,15 @@ class MeshDocument {
   const std::vector<Eigen::Vector3f>& vertex_colors() const;
   /// OBJ `mtllib` files named by the document (paths as written, relative to the file's directory).
   const std::vector<std::string>& material_libraries() const;
+  /// OBJ: the files a copy of this document written into another directory needs — every `mtllib`
+  /// and every texture its `map_*`/`bump`/`disp`/`decal`/`refl`/`norm` statements name (option flags
+  /// such as `-s 1 1 1 -bm 0.5` skipped, names with spaces kept), at the same paths relative to the
+  /// copy as to the original. Nothing lands outside the copy's directory: a texture with an absolute
+  /// path or one leaving the mesh's directory (`..`) is copied in beside its .mtl under its base name
+  /// (made unique) and the .mtl line rewritten to name it; a material library outside it is not
+  /// copied. Missing files are warnings, not errors. Empty for other formats. Reads the files; throws
+  /// IoError when an existing one cannot be read.
+  Companions companion_files() const;
   /// glTF: the first mesh's own morph targets (dense or sparse accessors), in file order: name from
   /// mesh.extras.targetNames ("target_<k>" when unnamed), POSITION deltas per vertex of triangles()
   /// (#V by 3, the file's frame and units; zero rows where a primitive's target has no POSITION),
@@ -92,10 +113,11 @@ class MeshDocument {
   /// `recompute_normals` each `vn` used by a triangle with a moved vertex is recomputed, area-weighted;
   /// glTF: POSITION (and NORMAL when recompute_normals) data of the first mesh rewritten in place,
   /// min/max updated (a sparse one that changes is written dense); `path` may be .gltf (buffers
-  /// embedded) or .glb; PLY to .ply: only the x/y/z numbers (tokens or bytes) of moved vertices change,
-  /// nx/ny/nz recomputed around them with `recompute_normals`, every other property kept). `positions` equal to
-  /// triangles().vertices reproduces the input file byte for byte for OBJ. Copies the OBJ's material libraries next to `path` when `copy_materials`
-  /// and the target directory differs. Atomic (temporary file + rename); throws InvalidInput on a size
+  /// embedded) or .glb; PLY to .ply: only the x/y/z numbers (tokens or bytes) of moved vertices
+  /// change, nx/ny/nz recomputed around them with `recompute_normals`, every other property kept).
+  /// `positions` equal to triangles().vertices reproduces the input file byte for byte for OBJ and
+  /// PLY. Copies the OBJ's material libraries and their textures (companion_files) next to `path`
+  /// when `copy_materials` and the target directory differs. Atomic (temporary file + rename); throws InvalidInput on a size
   /// mismatch or non-finite positions, IoError on failure.
   void write(const std::string& path, const Vertices& positions, bool recompute_normals = true,
              bool copy_materials = true) const;
