@@ -42,8 +42,10 @@ int main(int argc, char** argv) {
                "frames only (--out), Live Link angle columns ignored");
   app.add_option("--out", out_dir, "Directory for frame_0000.<format> ...");
   app.add_option("--format", format,
-                 "Mesh format of the frames (default: the rig's mesh kind, obj, ply or glb). Frames are in the\n"
-                 "mesh file's own frame; obj/glb/gltf of an OBJ/glTF mesh keep its UVs, groups and materials,\n"
+                 "Mesh format of the frames (default: the rig's mesh kind, obj, ply or glb). "
+                 "Frames are in the\n"
+                 "mesh file's own frame; obj/glb/gltf of an OBJ/glTF mesh keep its UVs, groups and "
+                 "materials,\n"
                  "ply of a PLY mesh every property (vertex colours)")
       ->check(CLI::IsMember({"obj", "ply", "off", "glb", "gltf"}));
   app.add_option("--gltf", gltf,

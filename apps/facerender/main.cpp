@@ -86,7 +86,8 @@ int main(int argc, char** argv) {
           if (!rig.frame.is_identity()) in.mesh.vertices.row(v) = rig.frame.to_rig(in.mesh.vertices.row(v).transpose()).transpose();
         }
         if (!doc.vertex_colors().empty() && !fm::paint_for(rig)) {
-          in.colors = doc.vertex_colors();  // a user's rigged mesh: their own colours (OBJ, PLY, COLOR_0)
+          in.colors =
+              doc.vertex_colors();  // a user's rigged mesh: their own colours (OBJ, PLY, COLOR_0)
         } else {
           if (colors.empty()) colors = fm::material_colors(rig, in.mesh);
           in.colors = colors;

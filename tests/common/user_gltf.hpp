@@ -4,8 +4,8 @@
 // material, one morph target of theirs ("user_smile") and an animation of theirs (the jaw joint) —
 // written from any triangle mesh (e.g. the face under test). Used to check that our glTF writers
 // keep everything of theirs (tests/retarget/app_test.cpp, tests/gltf/make_user_gltf.cpp). With
-// `sparse_target` their target is a sparse accessor (no buffer view: zeros, then the moved rows), as
-// engines export morph targets (glTF 2.0 §3.6.2.3).
+// `sparse_target` their target is a sparse accessor (no buffer view: zeros, then the moved rows),
+// as engines export morph targets (glTF 2.0 §3.6.2.3).
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -110,13 +110,19 @@ inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh, bool sparse_t
     for (std::size_t i = 0; i < nv; ++i) {
       if (smile[3 * i + 1] != 0.0f) {
         rows.push_back(static_cast<std::uint32_t>(i));
-        values.insert(values.end(), smile.begin() + static_cast<long>(3 * i), smile.begin() + static_cast<long>(3 * i + 3));
+        values.insert(values.end(), smile.begin() + static_cast<long>(3 * i),
+                      smile.begin() + static_cast<long>(3 * i + 3));
       }
     }
-    const int iv = m.accessors[static_cast<std::size_t>(
-        user_gltf_accessor(m, rows.data(), rows.size() * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, rows.size()))].bufferView;
-    const int vv = m.accessors[static_cast<std::size_t>(
-        user_gltf_accessor(m, values.data(), values.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, rows.size()))].bufferView;
+    const int iv =
+        m.accessors[static_cast<std::size_t>(user_gltf_accessor(
+                        m, rows.data(), rows.size() * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                        TINYGLTF_TYPE_SCALAR, rows.size()))]
+            .bufferView;
+    const int vv = m.accessors[static_cast<std::size_t>(user_gltf_accessor(
+                                   m, values.data(), values.size() * 4,
+                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, rows.size()))]
+                       .bufferView;
     m.accessors.resize(m.accessors.size() - 2);  // only their views are used
     auto& a = m.accessors[static_cast<std::size_t>(t)];
     a.bufferView = -1;
@@ -208,7 +214,8 @@ inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh, bool sparse_t
 }
 
 /// Writes user_gltf_model(mesh, sparse_target) to `path` (.gltf with the buffer embedded, or .glb).
-inline bool write_user_gltf(const std::string& path, const facemesh::Mesh& mesh, bool sparse_target = false) {
+inline bool write_user_gltf(const std::string& path, const facemesh::Mesh& mesh,
+                            bool sparse_target = false) {
   tinygltf::Model m = user_gltf_model(mesh, sparse_target);
   tinygltf::TinyGLTF w;
   const bool glb = path.size() > 4 && path.substr(path.size() - 4) == ".glb";

@@ -655,18 +655,24 @@ TEST_F(MeshDocumentTest, RejectsBadGltf) {
 
 // Makes accessor `id` sparse: `rows` (indices) replaced by `values` (packed, the accessor's element
 // type, float), indices of `index_type`; without `keep_base` the buffer view goes (zeros below).
-void make_sparse(tinygltf::Model& m, int id, const std::vector<std::uint32_t>& rows, const std::vector<float>& values,
-                 bool keep_base, int index_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+void make_sparse(tinygltf::Model& m, int id, const std::vector<std::uint32_t>& rows,
+                 const std::vector<float>& values, bool keep_base,
+                 int index_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
   auto& a = m.accessors[static_cast<std::size_t>(id)];
   std::vector<unsigned char> idx;
   for (std::uint32_t r : rows) {
-    if (index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) idx.push_back(static_cast<unsigned char>(r));
-    const int size = index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT ? 4 : 2;
+    if (index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
+      idx.push_back(static_cast<unsigned char>(r));
+    const int size = index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
+                     : index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT ? 4
+                                                                          : 2;
     if (size == 2) {
       const auto s = static_cast<std::uint16_t>(r);
-      idx.insert(idx.end(), reinterpret_cast<const unsigned char*>(&s), reinterpret_cast<const unsigned char*>(&s) + 2);
+      idx.insert(idx.end(), reinterpret_cast<const unsigned char*>(&s),
+                 reinterpret_cast<const unsigned char*>(&s) + 2);
     } else if (size == 4) {
-      idx.insert(idx.end(), reinterpret_cast<const unsigned char*>(&r), reinterpret_cast<const unsigned char*>(&r) + 4);
+      idx.insert(idx.end(), reinterpret_cast<const unsigned char*>(&r),
+                 reinterpret_cast<const unsigned char*>(&r) + 4);
     }
   }
   const int iv = add_view(m, idx.data(), idx.size());
@@ -690,8 +696,10 @@ tinygltf::Model sparse_character() {
   make_sparse(m, p0.targets[0].at("POSITION"), {0}, {0, 0, 0.1f}, false);
   make_sparse(m, m.meshes[0].primitives[1].targets[0].at("POSITION"), {2}, {0.5f, 0, 0}, false,
               TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
-  m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[1].targets[0].at("POSITION"))].maxValues = {0.5, 0, 0};
-  make_sparse(m, p0.attributes.at("POSITION"), {2}, {1, 1, 0.25f}, true, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+  m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[1].targets[0].at("POSITION"))]
+      .maxValues = {0.5, 0, 0};
+  make_sparse(m, p0.attributes.at("POSITION"), {2}, {1, 1, 0.25f}, true,
+              TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
   m.accessors[static_cast<std::size_t>(p0.attributes.at("POSITION"))].maxValues = {1, 1, 0.25};
   return m;
 }
@@ -703,8 +711,9 @@ TEST_F(MeshDocumentTest, ReadsSparseAccessors) {
     const MeshDocument doc = read_mesh_document(in);
     const Mesh& t = doc.triangles();
     ASSERT_EQ(t.vertex_count(), 7u);
-    EXPECT_EQ(Eigen::Vector3d(t.vertices.row(2).transpose()), Eigen::Vector3d(1, 1, 0.25));  // replaced
-    EXPECT_EQ(Eigen::Vector3d(t.vertices.row(3).transpose()), Eigen::Vector3d(0, 1, 0));     // base
+    EXPECT_EQ(Eigen::Vector3d(t.vertices.row(2).transpose()),
+              Eigen::Vector3d(1, 1, 0.25));  // replaced
+    EXPECT_EQ(Eigen::Vector3d(t.vertices.row(3).transpose()), Eigen::Vector3d(0, 1, 0));  // base
     ASSERT_EQ(doc.morph_targets().size(), 1u);
     const MorphTarget& blink = doc.morph_targets()[0];
     EXPECT_EQ(blink.name, "blink");
@@ -718,8 +727,12 @@ TEST_F(MeshDocumentTest, ReadsSparseAccessors) {
     // written unchanged: the sparse accessors stay sparse, the same numbers come back
     doc.write(path("same.glb"), t.vertices, false);
     const tinygltf::Model same = load(path("same.glb"));
-    EXPECT_TRUE(same.accessors[static_cast<std::size_t>(same.meshes[0].primitives[0].attributes.at("POSITION"))].sparse.isSparse);
-    EXPECT_TRUE(same.accessors[static_cast<std::size_t>(same.meshes[0].primitives[0].targets[0].at("POSITION"))].sparse.isSparse);
+    EXPECT_TRUE(same.accessors[static_cast<std::size_t>(
+                                   same.meshes[0].primitives[0].attributes.at("POSITION"))]
+                    .sparse.isSparse);
+    EXPECT_TRUE(same.accessors[static_cast<std::size_t>(
+                                   same.meshes[0].primitives[0].targets[0].at("POSITION"))]
+                    .sparse.isSparse);
     const MeshDocument again = read_mesh_document(path("same.glb"));
     EXPECT_EQ(again.triangles().vertices, t.vertices);
     EXPECT_EQ(again.morph_targets()[0].position_deltas, expected);
@@ -729,12 +742,15 @@ TEST_F(MeshDocumentTest, ReadsSparseAccessors) {
     moved(1, 1) = -0.5;
     doc.write(path("moved.gltf"), moved, false);
     const tinygltf::Model m = load(path("moved.gltf"));
-    const auto& pa = m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].attributes.at("POSITION"))];
+    const auto& pa =
+        m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].attributes.at("POSITION"))];
     EXPECT_FALSE(pa.sparse.isSparse);
     EXPECT_EQ(floats(m, m.meshes[0].primitives[0].attributes.at("POSITION")),
               (std::vector<float>{0, 0, 0, 1, -0.5f, 0, 1, 1, 0.25f, 0, 1, 0}));
     EXPECT_EQ(pa.minValues, (std::vector<double>{0, -0.5, 0}));
-    EXPECT_TRUE(m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].targets[0].at("POSITION"))].sparse.isSparse);
+    EXPECT_TRUE(
+        m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].targets[0].at("POSITION"))]
+            .sparse.isSparse);
     const MeshDocument back = read_mesh_document(path("moved.gltf"));
     EXPECT_EQ(back.triangles().vertices, moved);
     EXPECT_EQ(back.morph_targets()[0].position_deltas, expected);
@@ -757,58 +773,111 @@ TEST_F(MeshDocumentTest, SparseTargetsSurviveAddingOurs) {
 }
 
 TEST_F(MeshDocumentTest, RejectsBadSparseAccessors) {
-  const auto target_of = [](const tinygltf::Model& m) { return m.meshes[0].primitives[0].targets[0].at("POSITION"); };
+  const auto target_of = [](const tinygltf::Model& m) {
+    return m.meshes[0].primitives[0].targets[0].at("POSITION");
+  };
   struct Case {
     const char* name;
     std::function<void(tinygltf::Model&)> damage;
     std::string pointer_tail;  // after /accessors/<target>
   };
   const std::vector<Case> cases = {
-      {"index out of range", [&](tinygltf::Model& m) { make_sparse(m, target_of(m), {1, 4}, {0, 0, 1, 0, 0, 1}, false); }, "/sparse/indices"},
-      {"indices not increasing", [&](tinygltf::Model& m) { make_sparse(m, target_of(m), {2, 1}, {0, 0, 1, 0, 0, 1}, false); }, "/sparse/indices"},
-      {"repeated index", [&](tinygltf::Model& m) { make_sparse(m, target_of(m), {1, 1}, {0, 0, 1, 0, 0, 1}, false); }, "/sparse/indices"},
-      {"count above the accessor's", [&](tinygltf::Model& m) {
-         make_sparse(m, target_of(m), {0, 1, 2, 3, 4}, std::vector<float>(15, 0.0f), false); }, "/sparse/count"},
-      {"count 0", [&](tinygltf::Model& m) {
+      {"index out of range",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1, 4}, {0, 0, 1, 0, 0, 1}, false);
+       },
+       "/sparse/indices"},
+      {"indices not increasing",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {2, 1}, {0, 0, 1, 0, 0, 1}, false);
+       },
+       "/sparse/indices"},
+      {"repeated index",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1, 1}, {0, 0, 1, 0, 0, 1}, false);
+       },
+       "/sparse/indices"},
+      {"count above the accessor's",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {0, 1, 2, 3, 4}, std::vector<float>(15, 0.0f), false);
+       },
+       "/sparse/count"},
+      {"count 0",
+       [&](tinygltf::Model& m) {
          make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
-         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.count = 0; }, "/sparse/count"},
-      {"float indices", [&](tinygltf::Model& m) {
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.count = 0;
+       },
+       "/sparse/count"},
+      {"float indices",
+       [&](tinygltf::Model& m) {
          make_sparse(m, target_of(m), {1}, {0, 0, 1}, false, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
-         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT; },
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.componentType =
+             TINYGLTF_COMPONENT_TYPE_FLOAT;
+       },
        "/sparse/indices/componentType"},
-      {"signed short indices", [&](tinygltf::Model& m) {
+      {"signed short indices",
+       [&](tinygltf::Model& m) {
          make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
-         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_SHORT; },
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.componentType =
+             TINYGLTF_COMPONENT_TYPE_SHORT;
+       },
        "/sparse/indices/componentType"},
-      {"truncated indices", [&](tinygltf::Model& m) {
+      {"truncated indices",
+       [&](tinygltf::Model& m) {
          make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
-         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.count = 2; }, "/sparse/indices"},
-      {"truncated values", [&](tinygltf::Model& m) {
-         make_sparse(m, target_of(m), {1, 2}, {0, 0, 1}, false); }, "/sparse/values"},
-      {"values offset beyond the view", [&](tinygltf::Model& m) {
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.count = 2;
+       },
+       "/sparse/indices"},
+      {"truncated values",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1, 2}, {0, 0, 1}, false);
+       },
+       "/sparse/values"},
+      {"values offset beyond the view",
+       [&](tinygltf::Model& m) {
          make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
-         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.values.byteOffset = 1 << 30; }, "/sparse/values"},
-      {"negative indices offset", [&](tinygltf::Model& m) {
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.values.byteOffset = 1 << 30;
+       },
+       "/sparse/values"},
+      {"negative indices offset",
+       [&](tinygltf::Model& m) {
          make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
-         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.byteOffset = -4; }, "/sparse/indices"},
-      {"no such values view", [&](tinygltf::Model& m) {
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.byteOffset = -4;
+       },
+       "/sparse/indices"},
+      {"no such values view",
+       [&](tinygltf::Model& m) {
          make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
-         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.values.bufferView = 999; }, "/sparse/values/bufferView"},
-      {"strided indices view", [&](tinygltf::Model& m) {
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.values.bufferView = 999;
+       },
+       "/sparse/values/bufferView"},
+      {"strided indices view",
+       [&](tinygltf::Model& m) {
          make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
-         m.bufferViews[static_cast<std::size_t>(m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.bufferView)].byteStride = 4; },
+         m
+             .bufferViews[static_cast<std::size_t>(
+                 m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.bufferView)]
+             .byteStride = 4;
+       },
        "/sparse/indices/bufferView"},
-      {"NaN value", [&](tinygltf::Model& m) {
-         make_sparse(m, target_of(m), {1}, {0, std::nanf(""), 1}, false); }, ""},
-      {"infinite value", [&](tinygltf::Model& m) {
-         make_sparse(m, target_of(m), {3}, {0, 0, std::numeric_limits<float>::infinity()}, false); }, ""},
+      {"NaN value",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, std::nanf(""), 1}, false);
+       },
+       ""},
+      {"infinite value",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {3}, {0, 0, std::numeric_limits<float>::infinity()}, false);
+       },
+       ""},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
     tinygltf::Model m = character();
     c.damage(m);
     save(m, path("bad.gltf"), false);
-    expect_gltf_error(path("bad.gltf"), "/accessors/" + std::to_string(target_of(m)) + c.pointer_tail);
+    expect_gltf_error(path("bad.gltf"),
+                      "/accessors/" + std::to_string(target_of(m)) + c.pointer_tail);
   }
   {  // a sparse POSITION with NaN: the POSITION accessor is named
     tinygltf::Model m = character();

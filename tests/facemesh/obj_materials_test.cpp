@@ -30,7 +30,8 @@ class ObjMaterialsTest : public testing::TempDirTest {
   }
 };
 
-const char* kObj = "mtllib mats/head.mtl\nmtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl skin\nf 1 2 3\n";
+const char* kObj =
+    "mtllib mats/head.mtl\nmtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl skin\nf 1 2 3\n";
 
 TEST_F(ObjMaterialsTest, CopiesEveryTextureTheMaterialsName) {
   put("user/head.obj", kObj);
@@ -50,12 +51,16 @@ TEST_F(ObjMaterialsTest, CopiesEveryTextureTheMaterialsName) {
       "map_Kd -s 1 1 1 -bm 0.5 textures/skin tone.png\r\n"
       "map_Ka textures/skin tone.png\r\n"
       "bump -bm 0.5 ../../outside/bump.png\r\n"
-      "map_Ks -o 0.5 0.5 " + spec + "\r\n"
+      "map_Ks -o 0.5 0.5 " +
+      spec +
+      "\r\n"
       "map_d -clamp on missing.png\r\n"
       "disp textures/disp.png\r\n"
       "refl -type sphere refl.png\r\n"
       "norm normal.png\r\n"
-      "map_Ns -mm 0 1 " + bump2 + "\r\n"
+      "map_Ns -mm 0 1 " +
+      bump2 +
+      "\r\n"
       "map_aat on\r\n"
       "newmtl eye\r\n"
       "map_Kd\r\n";
@@ -84,7 +89,8 @@ TEST_F(ObjMaterialsTest, CopiesEveryTextureTheMaterialsName) {
   // warnings: the missing library and texture, the three copied in, the statement without a name
   ASSERT_EQ(c.warnings.size(), 6u);
   auto warned = [&](const std::string& what) {
-    return std::any_of(c.warnings.begin(), c.warnings.end(), [&](const std::string& w) { return w.find(what) != std::string::npos; });
+    return std::any_of(c.warnings.begin(), c.warnings.end(),
+                       [&](const std::string& w) { return w.find(what) != std::string::npos; });
   };
   EXPECT_TRUE(warned("material library 'missing.mtl' not found"));
   EXPECT_TRUE(warned("texture 'missing.png' ('mats/head.mtl' line 8) not found"));
@@ -102,7 +108,8 @@ TEST_F(ObjMaterialsTest, CopiesEveryTextureTheMaterialsName) {
 }
 
 TEST_F(ObjMaterialsTest, LibrariesOutsideStayWhereTheyAre) {
-  put("user/head.obj", "mtllib ../shared.mtl\nmtllib /nonexistent/abs.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  put("user/head.obj",
+      "mtllib ../shared.mtl\nmtllib /nonexistent/abs.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   put("shared.mtl", "newmtl a\nmap_Kd a.png\n");
   const Companions c = read_mesh_document(path("user/head.obj")).companion_files();
   EXPECT_TRUE(c.files.empty());

@@ -99,7 +99,8 @@ std::string binary_ply(bool big) {
     put_binary(out, static_cast<std::uint8_t>(p.size()), big);
     for (int i : p) put_binary(out, static_cast<std::int32_t>(i), big);
     put_binary(out, static_cast<std::uint8_t>(2 * p.size()), big);
-    for (std::size_t i = 0; i < 2 * p.size(); ++i) put_binary(out, 0.5f * static_cast<float>(i % 3), big);
+    for (std::size_t i = 0; i < 2 * p.size(); ++i)
+      put_binary(out, 0.5f * static_cast<float>(i % 3), big);
   }
   put_binary(out, std::int32_t{0}, big);
   put_binary(out, std::int32_t{4}, big);
@@ -137,7 +138,8 @@ TEST_F(PlyDocumentTest, ReadsColoursAndKeepsEveryPropertyInAscii) {
   EXPECT_EQ(out.rfind(expected_prefix, 0), 0u);
   EXPECT_NE(out.find("\n1 1 0.5 "), std::string::npos) << out;
   EXPECT_NE(out.find(" 0 0 255 128 1\n"), std::string::npos);  // vertex 2's colour and quality
-  EXPECT_NE(out.find("\n4 0 1 2 3 8 0 0 1 0 1 1 0 1\n3 1 4 2 6 0 0 1 0 1 1\n0 4\n"), std::string::npos);
+  EXPECT_NE(out.find("\n4 0 1 2 3 8 0 0 1 0 1 1 0 1\n3 1 4 2 6 0 0 1 0 1 1\n0 4\n"),
+            std::string::npos);
   const MeshDocument back = read_mesh_document(path("moved.ply"));
   EXPECT_EQ(back.triangles().vertices, p);
   EXPECT_EQ(back.vertex_colors(), doc.vertex_colors());
@@ -145,8 +147,9 @@ TEST_F(PlyDocumentTest, ReadsColoursAndKeepsEveryPropertyInAscii) {
   // (1, 1, 0.5) × (0, 1, 0) = (−0.5, 0, 1), normalised — found as the text the writer gives (%.9g)
   const Eigen::Vector3f n3 = Eigen::Vector3d(-0.5, 0, 1).normalized().cast<float>();
   char buf[80];
-  std::snprintf(buf, sizeof buf, "\n0 1 0 %.9g %.9g %.9g 51 102 153 255 0\n", static_cast<double>(n3.x()),
-                static_cast<double>(n3.y()), static_cast<double>(n3.z()));
+  std::snprintf(buf, sizeof buf, "\n0 1 0 %.9g %.9g %.9g 51 102 153 255 0\n",
+                static_cast<double>(n3.x()), static_cast<double>(n3.y()),
+                static_cast<double>(n3.z()));
   EXPECT_NE(out.find(buf), std::string::npos) << buf << out;
   // without normal recomputation only the position changes
   doc.write(path("moved_only.ply"), p, false);
@@ -180,11 +183,12 @@ TEST_F(PlyDocumentTest, BinaryBothByteOrders) {
 }
 
 TEST_F(PlyDocumentTest, FloatColoursDoublePositionsAndOtherFormats) {
-  const std::string in = put("c.ply",
-                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
-                             "property double z\nproperty float red\nproperty float green\nproperty float blue\n"
-                             "element face 1\nproperty list uchar uint vertex_index\nend_header\n"
-                             "0 0 0 0.25 0.5 1\n1 0 0 0 0 0\n0.1 0.7 0.30000000000000004 1 1 1\n3 0 1 2\n");
+  const std::string in =
+      put("c.ply",
+          "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+          "property double z\nproperty float red\nproperty float green\nproperty float blue\n"
+          "element face 1\nproperty list uchar uint vertex_index\nend_header\n"
+          "0 0 0 0.25 0.5 1\n1 0 0 0 0 0\n0.1 0.7 0.30000000000000004 1 1 1\n3 0 1 2\n");
   const MeshDocument doc = read_mesh_document(in);
   ASSERT_EQ(doc.vertex_colors().size(), 3u);
   EXPECT_EQ(doc.vertex_colors()[0], Eigen::Vector3f(0.25f, 0.5f, 1.0f));
@@ -208,17 +212,21 @@ TEST_F(PlyDocumentTest, FaceMeshesKeepTheirColours) {
   Face face = make_default_face();
   const long nv = face.mesh.vertices.rows();
   std::string text = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(nv) +
-                     "\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\nproperty uchar green\n"
-                     "property uchar blue\nproperty float confidence\nelement face " + std::to_string(face.mesh.faces.rows()) +
+                     "\nproperty double x\nproperty double y\nproperty double z\nproperty uchar "
+                     "red\nproperty uchar green\n"
+                     "property uchar blue\nproperty float confidence\nelement face " +
+                     std::to_string(face.mesh.faces.rows()) +
                      "\nproperty list uchar int vertex_indices\nend_header\n";
   char buf[160];
   for (long v = 0; v < nv; ++v) {
-    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g %d %d %d 0.5\n", face.mesh.vertices(v, 0) * 10, face.mesh.vertices(v, 1) * 10,
+    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g %d %d %d 0.5\n",
+                  face.mesh.vertices(v, 0) * 10, face.mesh.vertices(v, 1) * 10,
                   face.mesh.vertices(v, 2) * 10, static_cast<int>(v % 256), 100, 200);
     text += buf;
   }
   for (long f = 0; f < face.mesh.faces.rows(); ++f) {
-    std::snprintf(buf, sizeof buf, "3 %d %d %d\n", face.mesh.faces(f, 0), face.mesh.faces(f, 1), face.mesh.faces(f, 2));
+    std::snprintf(buf, sizeof buf, "3 %d %d %d\n", face.mesh.faces(f, 0), face.mesh.faces(f, 1),
+                  face.mesh.faces(f, 2));
     text += buf;
   }
   put("head.ply", text);
@@ -228,8 +236,10 @@ TEST_F(PlyDocumentTest, FaceMeshesKeepTheirColours) {
   const Face loaded = load_face(path("face.rig"));
   ASSERT_TRUE(loaded.document != nullptr);
   EXPECT_EQ(loaded.document->format(), MeshFormat::Ply);
-  EXPECT_EQ(loaded.document->vertex_colors()[7], Eigen::Vector3f(7 / 255.0f, 100 / 255.0f, 200 / 255.0f));
-  EXPECT_LT((loaded.mesh.vertices - face.mesh.vertices).cwiseAbs().maxCoeff(), 1e-15);  // rig frame: metres
+  EXPECT_EQ(loaded.document->vertex_colors()[7],
+            Eigen::Vector3f(7 / 255.0f, 100 / 255.0f, 200 / 255.0f));
+  EXPECT_LT((loaded.mesh.vertices - face.mesh.vertices).cwiseAbs().maxCoeff(),
+            1e-15);  // rig frame: metres
   write_face_mesh(path("same.ply"), loaded, loaded.mesh.vertices);
   EXPECT_EQ(core::read_file(path("same.ply")), text);
   Vertices moved = loaded.mesh.vertices;
@@ -238,7 +248,8 @@ TEST_F(PlyDocumentTest, FaceMeshesKeepTheirColours) {
   const MeshDocument back = read_mesh_document(path("frame.ply"));
   EXPECT_EQ(back.vertex_colors(), loaded.document->vertex_colors());
   EXPECT_NEAR(back.triangles().vertices(5, 2), face.mesh.vertices(5, 2) * 10 + 0.01, 1e-12);
-  EXPECT_EQ(back.triangles().vertices.bottomRows(nv - 6), loaded.document->triangles().vertices.bottomRows(nv - 6));
+  EXPECT_EQ(back.triangles().vertices.bottomRows(nv - 6),
+            loaded.document->triangles().vertices.bottomRows(nv - 6));
   const std::string out = core::read_file(path("frame.ply"));
   EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), std::count(text.begin(), text.end(), '\n'));
   EXPECT_NE(out.find(" 5 100 200 0.5\n"), std::string::npos);
@@ -256,7 +267,9 @@ void expect_ply_error(const std::string& file, std::size_t line, const std::stri
 }
 
 TEST_F(PlyDocumentTest, RejectsBadPly) {
-  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+      "z\n";
   const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   const std::string good = "0 0 0\n1 0 0\n0 1 0\n";
   struct Case {
@@ -272,7 +285,8 @@ TEST_F(PlyDocumentTest, RejectsBadPly) {
       {"ply\nformat ascii 1.0\nelement vertex -3\n", 3, "bad count"},
       {"ply\nformat ascii 1.0\nproperty float x\n", 3, "before any element"},
       {"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\n", 4, "unknown property type"},
-      {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nwhat\n", 5, "unknown header keyword"},
+      {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nwhat\n", 5,
+       "unknown header keyword"},
       {head + faces + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", 11, "vertex 1 y is not finite"},
       {head + faces + "0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n", 11, "vertex 1 y is not finite"},
       {head + faces + "0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n", 11, "expected a number"},
@@ -283,34 +297,45 @@ TEST_F(PlyDocumentTest, RejectsBadPly) {
       {head + faces + "0.000000 0 0\n1.0000000 0 0\n", 12, "truncated"},
       {head + faces + good + "3 0 1 1e3\n", 13, "expected an integer"},
       {head + faces + good + "300 0 1 2\n", 13, "out of range for uchar"},
-      {"ply\nformat ascii 1.0\nelement vertex 999999999\nproperty float x\nproperty float y\nproperty float z\n" + faces + good,
+      {"ply\nformat ascii 1.0\nelement vertex 999999999\nproperty float x\nproperty float "
+       "y\nproperty float z\n" +
+           faces + good,
        1, "more than the"},
-      {"ply\nformat ascii 1.0\nelement vertex 3\nproperty int x\nproperty float y\nproperty float z\n" + faces + good + "3 0 1 2\n",
+      {"ply\nformat ascii 1.0\nelement vertex 3\nproperty int x\nproperty float y\nproperty float "
+       "z\n" +
+           faces + good + "3 0 1 2\n",
        1, "positions must be float or double"},
-      {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n" + faces + good + "3 0 1 2\n", 1,
-       "no z property"},
+      {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n" + faces +
+           good + "3 0 1 2\n",
+       1, "no z property"},
       {head + "end_header\n" + good, 1, "no face element"},
-      {head + "element face 1\nproperty list uchar float vertex_indices\nend_header\n" + good + "3 0 1 2\n", 1,
-       "indices must be integers"},
+      {head + "element face 1\nproperty list uchar float vertex_indices\nend_header\n" + good +
+           "3 0 1 2\n",
+       1, "indices must be integers"},
       {head + "property float red\nproperty float green\nproperty float blue\n" + faces +
            "0 0 0 1 1 1\n1 0 0 1.5 0 0\n0 1 0 0 0 0\n3 0 1 2\n",
        14, "out of range (float colours are 0 to 1)"},
       {head + "property float red\nproperty float green\nproperty float blue\n" + faces +
            "0 0 0 1 1 1\n1 0 0 nan 0 0\n0 1 0 0 0 0\n3 0 1 2\n",
        14, "out of range"},
-      {head + "property short red\nproperty short green\nproperty short blue\n" + faces + "0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n3 0 1 2\n",
+      {head + "property short red\nproperty short green\nproperty short blue\n" + faces +
+           "0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n3 0 1 2\n",
        1, "not supported"},
-      {head + "property uchar red\n" + faces + "0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 2\n", 1, "need red, green and blue"},
+      {head + "property uchar red\n" + faces + "0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 2\n", 1,
+       "need red, green and blue"},
       {head + faces + good + "3 0 0 1\n", 0, "no non-degenerate triangle"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     SCOPED_TRACE(cases[k].what);
-    expect_ply_error(put("bad" + std::to_string(k) + ".ply", cases[k].text), cases[k].line, cases[k].what);
+    expect_ply_error(put("bad" + std::to_string(k) + ".ply", cases[k].text), cases[k].line,
+                     cases[k].what);
   }
   // non-manifold: three triangles on one edge
-  expect_ply_error(put("nm.ply", "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
-                                 "element face 3\nproperty list uchar int vertex_indices\nend_header\n"
-                                 "0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 1 4\n"),
+  expect_ply_error(put("nm.ply",
+                       "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float "
+                       "y\nproperty float z\n"
+                       "element face 3\nproperty list uchar int vertex_indices\nend_header\n"
+                       "0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 1 4\n"),
                    17, "non-manifold");
   // binary: truncated inside a vertex, a face list past the end — named by byte offset
   std::string bin = binary_ply(false);

@@ -130,20 +130,24 @@ TEST(RetargetApp, TransferKeepsTheUsersFileAndRigsIt) {
 
 // The .mtl's textures go along (relative layout kept, names with spaces, option flags); one from
 // outside the input's directory is copied in under its base name and the .mtl line rewritten; a
-// missing one is a warning in report.json. A failure while writing leaves nothing of the set behind.
+// missing one is a warning in report.json. A failure while writing leaves nothing of the set
+// behind.
 TEST(RetargetApp, TransferCopiesTheTextures) {
   TempDir t;
   const auto in = t.path / "in" / "user";
   fs::create_directories(in / "textures");
   fs::create_directories(t.path / "elsewhere");
   write_user_obj(in / "head.obj");
-  const std::string mtl = "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd -s 1 1 1 -bm 0.5 textures/skin tone.png\n"
-                          "bump ../../elsewhere/bump.png\nmap_Ks missing.png\nnewmtl eye\nKd 1 1 1\n";
+  const std::string mtl =
+      "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd -s 1 1 1 -bm 0.5 textures/skin tone.png\n"
+      "bump ../../elsewhere/bump.png\nmap_Ks missing.png\nnewmtl eye\nKd 1 1 1\n";
   std::ofstream(in / "head.mtl") << mtl;
   std::ofstream(in / "textures" / "skin tone.png") << "PNG skin";
   std::ofstream(t.path / "elsewhere" / "bump.png") << "PNG bump";
   const auto out = t.path / "out";
-  ASSERT_EQ(run("--target " + (in / "head.obj").string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
+  ASSERT_EQ(run("--target " + (in / "head.obj").string() + " --out " + out.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            0);
   EXPECT_EQ(slurp(out / "face.obj"), slurp(in / "head.obj"));
   EXPECT_EQ(slurp(out / "textures" / "skin tone.png"), "PNG skin");
   EXPECT_EQ(slurp(out / "bump.png"), "PNG bump");
@@ -152,15 +156,37 @@ TEST(RetargetApp, TransferCopiesTheTextures) {
   EXPECT_EQ(slurp(out / "head.mtl"), expected);
   EXPECT_FALSE(fs::exists(t.path / "in" / "bump.png"));
   const std::string report = slurp(out / "report.json");
-  EXPECT_NE(report.find("texture 'missing.png' ('head.mtl' line 5) not found"), std::string::npos) << report;
+  EXPECT_NE(report.find("texture 'missing.png' ('head.mtl' line 5) not found"), std::string::npos)
+      << report;
   EXPECT_NE(report.find("copied as 'bump.png'"), std::string::npos);
   // report.json cannot be written (a directory in its place): none of the set is left
   const auto blocked = t.path / "blocked";
   fs::create_directories(blocked / "report.json");
-  EXPECT_EQ(run("--target " + (in / "head.obj").string() + " --out " + blocked.string() + " --generations 2 --population 6 --quiet --no-png"), 2);
+  EXPECT_EQ(run("--target " + (in / "head.obj").string() + " --out " + blocked.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            2);
   std::size_t n = 0;
   for (const auto& e : fs::recursive_directory_iterator(blocked)) ++n, (void)e;
   EXPECT_EQ(n, 1u);  // only the directory that was there
+}
+
+// A second real mesh: MediaPipe's canonical face model (Apache-2.0, ../shared/meshes only, never in
+// the repository) is a face mask, not a head — refused with a clear message, nothing written.
+TEST(RetargetApp, TransferRefusesAFaceMask) {
+  const std::string mask =
+      std::string(EMOFACE_SOURCE_DIR) + "/../shared/meshes/mediapipe_canonical_face_model.obj";
+  if (!fs::exists(mask)) GTEST_SKIP() << "../shared/meshes absent";
+  TempDir t;
+  const auto out = t.path / "out";
+  const int status =
+      std::system((std::string(RETARGET_EXE) + " --target " + mask + " --out " + out.string() +
+                   " --quiet --no-png 2>" + (t.path / "err.txt").string())
+                      .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_NE(slurp(t.path / "err.txt").find("no top of head (a face mask"), std::string::npos)
+      << slurp(t.path / "err.txt");
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(RetargetApp, TransferWritesNothingOnBadInput) {
@@ -219,7 +245,9 @@ TEST(RetargetApp, TransferKeepsSparseMorphTargets) {
   const auto in = t.path / "user.glb";
   ASSERT_TRUE(emoface::testing::write_user_gltf(in.string(), face.mesh, true));
   const auto out = t.path / "out";
-  ASSERT_EQ(run("--target " + in.string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
+  ASSERT_EQ(run("--target " + in.string() + " --out " + out.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            0);
   const auto before = emoface::facemesh::read_mesh_document(in.string());
   const auto after = emoface::facemesh::read_mesh_document((out / "face.glb").string());
   ASSERT_EQ(before.morph_targets().size(), 1u);
@@ -232,7 +260,9 @@ TEST(RetargetApp, TransferKeepsSparseMorphTargets) {
   tinygltf::TinyGLTF loader;
   std::string err, warn;
   ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, (out / "face.glb").string())) << err;
-  EXPECT_TRUE(m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].targets[0].at("POSITION"))].sparse.isSparse);
+  EXPECT_TRUE(
+      m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].targets[0].at("POSITION"))]
+          .sparse.isSparse);
 }
 
 #ifdef FACEANIM_EXE
@@ -280,9 +310,12 @@ TEST(RetargetApp, PlyColoursSurviveTransferAndAnimation) {
   TempDir t;
   const auto face = emoface::facemesh::make_generic_face();
   const auto& v = face.mesh.vertices;
-  std::string ply = "ply\nformat binary_little_endian 1.0\ncomment a scanner\nelement vertex " + std::to_string(v.rows()) +
-                    "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\n"
-                    "property uchar blue\nproperty float confidence\nelement face " + std::to_string(face.mesh.faces.rows()) +
+  std::string ply = "ply\nformat binary_little_endian 1.0\ncomment a scanner\nelement vertex " +
+                    std::to_string(v.rows()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar "
+                    "red\nproperty uchar green\n"
+                    "property uchar blue\nproperty float confidence\nelement face " +
+                    std::to_string(face.mesh.faces.rows()) +
                     "\nproperty list uchar int vertex_indices\nend_header\n";
   auto put = [&ply](const void* p, std::size_t n) { ply.append(static_cast<const char*>(p), n); };
   for (Eigen::Index i = 0; i < v.rows(); ++i) {
@@ -290,7 +323,8 @@ TEST(RetargetApp, PlyColoursSurviveTransferAndAnimation) {
       const auto f = static_cast<float>(v(i, k));
       put(&f, 4);
     }
-    const unsigned char rgb[3] = {40, static_cast<unsigned char>(v(i, 0) > 0 ? 200 : 90), 60};  // green, darker on the right
+    const unsigned char rgb[3] = {40, static_cast<unsigned char>(v(i, 0) > 0 ? 200 : 90),
+                                  60};  // green, darker on the right
     put(rgb, 3);
     const float confidence = 0.75f;
     put(&confidence, 4);
@@ -302,14 +336,19 @@ TEST(RetargetApp, PlyColoursSurviveTransferAndAnimation) {
   }
   std::ofstream(t.path / "scan.ply", std::ios::binary) << ply;
   const auto out = t.path / "out";
-  ASSERT_EQ(run("--target " + (t.path / "scan.ply").string() + " --out " + out.string() + " --generations 2 --population 6 --quiet --no-png"), 0);
+  ASSERT_EQ(run("--target " + (t.path / "scan.ply").string() + " --out " + out.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            0);
   EXPECT_TRUE(slurp(out / "face.ply") == ply);  // byte for byte (not printed: binary)
   int status = 0;
 #ifdef FACEANIM_EXE
-  std::ofstream(t.path / "p.csv") << "masseter,zygomatic_major_l,zygomatic_major_r\n0,0,0\n1,0.8,0.8\n";
+  std::ofstream(t.path / "p.csv")
+      << "masseter,zygomatic_major_l,zygomatic_major_r\n0,0,0\n1,0.8,0.8\n";
   const auto frames = t.path / "frames";
-  status = std::system((std::string(FACEANIM_EXE) + " --rig " + (out / "face.rig").string() + " --params " +
-                        (t.path / "p.csv").string() + " --out " + frames.string() + " 2>/dev/null").c_str());
+  status = std::system((std::string(FACEANIM_EXE) + " --rig " + (out / "face.rig").string() +
+                        " --params " + (t.path / "p.csv").string() + " --out " + frames.string() +
+                        " 2>/dev/null")
+                           .c_str());
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   const std::string open = slurp(frames / "frame_0001.ply");
   ASSERT_EQ(open.size(), ply.size());  // the same binary layout
@@ -326,24 +365,31 @@ TEST(RetargetApp, PlyColoursSurviveTransferAndAnimation) {
   }
   EXPECT_GT(moved, 300u);
   EXPECT_EQ(other_bytes_changed, 0u);
-  EXPECT_TRUE(open.substr(body + static_cast<std::size_t>(v.rows()) * 19) == ply.substr(body + static_cast<std::size_t>(v.rows()) * 19));
+  EXPECT_TRUE(open.substr(body + static_cast<std::size_t>(v.rows()) * 19) ==
+              ply.substr(body + static_cast<std::size_t>(v.rows()) * 19));
   EXPECT_TRUE(open.substr(0, body) == ply.substr(0, body));  // the header
   // neutral: every vertex back where the user had it (float file, through the rig frame and back)
   const auto neutral = emoface::facemesh::read_mesh_document((frames / "frame_0000.ply").string());
-  EXPECT_LT((neutral.triangles().vertices - in_doc.triangles().vertices).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_LT((neutral.triangles().vertices - in_doc.triangles().vertices).cwiseAbs().maxCoeff(),
+            1e-6);
   EXPECT_EQ(neutral.vertex_colors(), in_doc.vertex_colors());
 #endif
 #ifdef FACERENDER_EXE
   // facerender on the user's rig: the file's colours, not the rig's material colours
-  emoface::facemesh::write_mesh((t.path / "plain.ply").string(), emoface::facemesh::read_mesh((out / "face.ply").string()));
+  emoface::facemesh::write_mesh((t.path / "plain.ply").string(),
+                                emoface::facemesh::read_mesh((out / "face.ply").string()));
   for (const char* m : {"face", "plain"}) {
-    const std::string mesh = m == std::string("face") ? (out / "face.ply").string() : (t.path / "plain.ply").string();
-    status = std::system((std::string(FACERENDER_EXE) + " " + mesh + " --rig " + (out / "face.rig").string() + " --out " +
-                          (t.path / (std::string(m) + ".png")).string() + " 2>/dev/null").c_str());
+    const std::string mesh =
+        m == std::string("face") ? (out / "face.ply").string() : (t.path / "plain.ply").string();
+    status = std::system((std::string(FACERENDER_EXE) + " " + mesh + " --rig " +
+                          (out / "face.rig").string() + " --out " +
+                          (t.path / (std::string(m) + ".png")).string() + " 2>/dev/null")
+                             .c_str());
     ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << m;
   }
   EXPECT_NE(slurp(t.path / "face.png"), slurp(t.path / "plain.png"));
-  if (const char* keep = std::getenv("EMOFACE_KEEP_PNG")) fs::copy_file(t.path / "face.png", keep, fs::copy_options::overwrite_existing);
+  if (const char* keep = std::getenv("EMOFACE_KEEP_PNG"))
+    fs::copy_file(t.path / "face.png", keep, fs::copy_options::overwrite_existing);
 #endif
 }
 

@@ -51,7 +51,8 @@ TEST(OutputSet, AFailureLeavesNothingBehind) {
     EXPECT_THROW(out.commit(), IoError);
     EXPECT_FALSE(fs::exists(s.path / "new"));
   }
-  {  // the rename fails (a directory in the way) in an existing directory: only what was there stays
+  {  // the rename fails (a directory in the way) in an existing directory: only what was there
+     // stays
     fs::create_directories(s.path / "old" / "report.json");
     core::write_file_atomic((s.path / "old" / "keep.txt").string(), "mine");
     OutputSet out((s.path / "old").string());

@@ -445,7 +445,8 @@ void write_face_mesh(const std::string& path, const Face& face, const Vertices& 
   const bool doc_fits = doc && doc->triangles().vertices.rows() == positions.rows() && doc->triangles().faces == face.mesh.faces;
   const bool doc_gltf = doc_fits && (doc->format() == MeshFormat::Gltf || doc->format() == MeshFormat::Glb);
   const Vertices file = to_mesh_frame(face.rig, positions, doc_fits ? &doc->triangles().vertices : nullptr);
-  const bool same_kind = doc_fits && doc->format() == format && (format == MeshFormat::Obj || format == MeshFormat::Ply);
+  const bool same_kind = doc_fits && doc->format() == format &&
+                         (format == MeshFormat::Obj || format == MeshFormat::Ply);
   if (same_kind || (doc_gltf && gltf)) {
     doc->write(path, file);
   } else if (gltf) {

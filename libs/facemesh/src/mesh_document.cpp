@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <initializer_list>
@@ -43,7 +43,7 @@ struct MeshDocument::Impl {
   bool has_uvs = false;
   std::vector<Eigen::Vector3f> colors;
   std::vector<std::string> material_libraries;
-  std::vector<MorphTarget> targets;  // glTF: the first mesh's own morph targets
+  std::vector<MorphTarget> targets;                // glTF: the first mesh's own morph targets
   std::shared_ptr<const detail::PlyDocument> ply;  // PLY: the file, kept whole
 
   // OBJ: the file text and its logical lines (a line continued with '\' spans several physical lines).
@@ -465,7 +465,8 @@ void copy_material_libraries(const MeshDocument& document, const std::string& pa
 // PLY (ply_document.hpp: our parser keeps every element and property)
 
 void read_ply(MeshDocument::Impl& doc) {
-  auto ply = std::make_shared<detail::PlyDocument>(detail::parse_ply(core::read_file(doc.path), doc.path));
+  auto ply =
+      std::make_shared<detail::PlyDocument>(detail::parse_ply(core::read_file(doc.path), doc.path));
   const std::size_t nv = ply->xyz.size() / 3;
   doc.tri.vertices.resize(static_cast<long>(nv), 3);
   std::copy(ply->xyz.begin(), ply->xyz.end(), doc.tri.vertices.data());
@@ -487,24 +488,27 @@ void read_ply(MeshDocument::Impl& doc) {
   }
   SourceLocation where;
   where.file = doc.path;
-  if (faces.empty()) throw FormatError(where, ply->polygons.empty() ? "no faces" : "no non-degenerate triangle");
+  if (faces.empty())
+    throw FormatError(where, ply->polygons.empty() ? "no faces" : "no non-degenerate triangle");
   doc.tri.faces.resize(static_cast<long>(faces.size()), 3);
   for (std::size_t f = 0; f < faces.size(); ++f) {
-    for (int k = 0; k < 3; ++k) doc.tri.faces(static_cast<long>(f), k) = faces[f][static_cast<std::size_t>(k)];
+    for (int k = 0; k < 3; ++k)
+      doc.tri.faces(static_cast<long>(f), k) = faces[f][static_cast<std::size_t>(k)];
   }
   const int bad = overshared_edge(doc.tri.faces, group.faces);
   if (bad >= 0) {
     where.line = line_of[static_cast<std::size_t>(bad)];
-    throw FormatError(where, "face " + std::to_string(doc.polygon_of_triangle[static_cast<std::size_t>(bad)]) +
-                                 ": an edge shared by more than two triangles (non-manifold)");
+    throw FormatError(
+        where, "face " + std::to_string(doc.polygon_of_triangle[static_cast<std::size_t>(bad)]) +
+                   ": an edge shared by more than two triangles (non-manifold)");
   }
   doc.groups.push_back(std::move(group));
   doc.colors = ply->colors;
   doc.ply = std::move(ply);
 }
 
-void write_ply_document(const MeshDocument::Impl& doc, const std::string& path, const Vertices& positions,
-                        bool recompute_normals) {
+void write_ply_document(const MeshDocument::Impl& doc, const std::string& path,
+                        const Vertices& positions, bool recompute_normals) {
   const Vertices& old = doc.tri.vertices;
   std::vector<char> dirty(static_cast<std::size_t>(old.rows()), 0);
   Vertices normals;
@@ -513,7 +517,8 @@ void write_ply_document(const MeshDocument::Impl& doc, const std::string& path, 
     const Faces& F = doc.tri.faces;
     for (long f = 0; f < F.rows(); ++f) {
       bool moved = false;
-      for (int k = 0; k < 3; ++k) moved = moved || !same_bits(old.data() + 3 * F(f, k), positions.data() + 3 * F(f, k));
+      for (int k = 0; k < 3; ++k)
+        moved = moved || !same_bits(old.data() + 3 * F(f, k), positions.data() + 3 * F(f, k));
       if (!moved) continue;
       for (int k = 0; k < 3; ++k) dirty[static_cast<std::size_t>(F(f, k))] = 1;
     }
@@ -556,7 +561,9 @@ struct GltfReader {
     }
   }
 
-  std::string accessor_pointer(int accessor) const { return "/accessors/" + std::to_string(accessor); }
+  std::string accessor_pointer(int accessor) const {
+    return "/accessors/" + std::to_string(accessor);
+  }
 
   const tinygltf::Accessor& accessor_at(int accessor) const {
     if (accessor < 0 || static_cast<std::size_t>(accessor) >= doc.model.accessors.size())
@@ -564,7 +571,8 @@ struct GltfReader {
     return doc.model.accessors[static_cast<std::size_t>(accessor)];
   }
 
-  // The bytes of buffer view `index` (bounds checked against its buffer); `what` names the referrer.
+  // The bytes of buffer view `index` (bounds checked against its buffer); `what` names the
+  // referrer.
   const tinygltf::BufferView& buffer_view(int index, const std::string& what) const {
     if (index < 0 || static_cast<std::size_t>(index) >= doc.model.bufferViews.size())
       fail(what, "buffer view " + std::to_string(index) + " missing or out of range");
@@ -609,9 +617,12 @@ struct GltfReader {
     if (a.count > kMaxElements) fail(p + "/count", "count " + std::to_string(a.count) + " too large");
     if (a.bufferView == -1) return v;  // no buffer view: zeros (glTF 2.0 §3.6.2.3), base == nullptr
     const auto& bv = buffer_view(a.bufferView, p + "/bufferView");
-    auto& buffer = const_cast<tinygltf::Buffer&>(doc.model.buffers[static_cast<std::size_t>(bv.buffer)]);
+    auto& buffer =
+        const_cast<tinygltf::Buffer&>(doc.model.buffers[static_cast<std::size_t>(bv.buffer)]);
     v.stride = bv.byteStride ? bv.byteStride : v.element;
-    if (v.stride < v.element) fail("/bufferViews/" + std::to_string(a.bufferView) + "/byteStride", "smaller than the element");
+    if (v.stride < v.element)
+      fail("/bufferViews/" + std::to_string(a.bufferView) + "/byteStride",
+           "smaller than the element");
     if (a.count > 0) {
       const std::size_t need = a.byteOffset + v.stride * (a.count - 1) + v.element;
       if (a.byteOffset > bv.byteLength || need > bv.byteLength) fail(p + "/count", "count " + std::to_string(a.count) + " exceeds its buffer view");
@@ -622,8 +633,10 @@ struct GltfReader {
   }
 
   static double component(const View& v, std::size_t i, int k) {
-    return component_at(v.base + i * v.stride + static_cast<std::size_t>(k) * (v.element / static_cast<std::size_t>(v.components)),
-                        v.component_type, v.normalized);
+    return component_at(
+        v.base + i * v.stride +
+            static_cast<std::size_t>(k) * (v.element / static_cast<std::size_t>(v.components)),
+        v.component_type, v.normalized);
   }
   // One component; normalised integers mapped as glTF 2.0 §3.11 ("Animations": c / (2^n − 1),
   // signed max(c / (2^(n−1) − 1), −1)), the same mapping the spec gives for vertex attributes.
@@ -638,7 +651,8 @@ struct GltfReader {
         const auto c = static_cast<std::int8_t>(*p);
         return normalized ? std::max(c / 127.0, -1.0) : c;
       }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalized ? *p / 255.0 : *p;
       case TINYGLTF_COMPONENT_TYPE_SHORT: {
         std::int16_t s;
         std::memcpy(&s, p, 2);
@@ -668,7 +682,9 @@ struct GltfReader {
     std::size_t count = 0;
     int components = 0, component_type = 0;
     bool normalized = false, sparse = false;
-    double at(std::size_t i, int k) const { return data[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(k)]; }
+    double at(std::size_t i, int k) const {
+      return data[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(k)];
+    }
   };
   Elements elements(int accessor) const {
     const std::string p = accessor_pointer(accessor);
@@ -684,7 +700,8 @@ struct GltfReader {
     e.data.assign(v.count * nc, 0.0);
     if (v.base) {
       for (std::size_t i = 0; i < v.count; ++i) {
-        for (int k = 0; k < v.components; ++k) e.data[i * nc + static_cast<std::size_t>(k)] = component(v, i, k);
+        for (int k = 0; k < v.components; ++k)
+          e.data[i * nc + static_cast<std::size_t>(k)] = component(v, i, k);
       }
     }
     if (!a.sparse.isSparse) return e;
@@ -692,60 +709,75 @@ struct GltfReader {
     const std::string sp = p + "/sparse";
     if (s.count < 1) fail(sp + "/count", "must be at least 1, got " + std::to_string(s.count));
     if (static_cast<std::size_t>(s.count) > a.count)
-      fail(sp + "/count", std::to_string(s.count) + " exceeds the accessor's count " + std::to_string(a.count));
+      fail(sp + "/count",
+           std::to_string(s.count) + " exceeds the accessor's count " + std::to_string(a.count));
     const auto n = static_cast<std::size_t>(s.count);
     const int it = s.indices.componentType;
-    if (it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      fail(sp + "/indices/componentType", "must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, got " + std::to_string(it));
+    if (it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(sp + "/indices/componentType",
+           "must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, got " + std::to_string(it));
     // the indices and values views: tightly packed (no byteStride), inside their views
-    auto packed_span = [&](int view_index, int offset, std::size_t bytes, const std::string& where) {
+    auto packed_span = [&](int view_index, int offset, std::size_t bytes,
+                           const std::string& where) {
       const auto& bv = buffer_view(view_index, where + "/bufferView");
-      if (bv.byteStride != 0) fail(where + "/bufferView", "a sparse accessor's buffer view must not have a byteStride");
-      if (offset < 0 || static_cast<std::size_t>(offset) > bv.byteLength || bytes > bv.byteLength - static_cast<std::size_t>(offset))
-        fail(where, std::to_string(n) + " sparse elements exceed buffer view " + std::to_string(view_index));
-      return doc.model.buffers[static_cast<std::size_t>(bv.buffer)].data.data() + bv.byteOffset + static_cast<std::size_t>(offset);
+      if (bv.byteStride != 0)
+        fail(where + "/bufferView", "a sparse accessor's buffer view must not have a byteStride");
+      if (offset < 0 || static_cast<std::size_t>(offset) > bv.byteLength ||
+          bytes > bv.byteLength - static_cast<std::size_t>(offset))
+        fail(where, std::to_string(n) + " sparse elements exceed buffer view " +
+                        std::to_string(view_index));
+      return doc.model.buffers[static_cast<std::size_t>(bv.buffer)].data.data() + bv.byteOffset +
+             static_cast<std::size_t>(offset);
     };
     const std::size_t isize = component_size(it);
-    const unsigned char* idx = packed_span(s.indices.bufferView, s.indices.byteOffset, n * isize, sp + "/indices");
-    const unsigned char* val = packed_span(s.values.bufferView, s.values.byteOffset, n * v.element, sp + "/values");
+    const unsigned char* idx =
+        packed_span(s.indices.bufferView, s.indices.byteOffset, n * isize, sp + "/indices");
+    const unsigned char* val =
+        packed_span(s.values.bufferView, s.values.byteOffset, n * v.element, sp + "/values");
     const std::size_t cs = v.element / nc;
     double previous = -1.0;
     for (std::size_t j = 0; j < n; ++j) {
       const double i = component_at(idx + j * isize, it, false);
       if (!(i > previous))
-        fail(sp + "/indices", "index " + std::to_string(static_cast<long long>(i)) + " at " + std::to_string(j) +
-                                  " is not above the one before (" + std::to_string(static_cast<long long>(previous)) +
+        fail(sp + "/indices", "index " + std::to_string(static_cast<long long>(i)) + " at " +
+                                  std::to_string(j) + " is not above the one before (" +
+                                  std::to_string(static_cast<long long>(previous)) +
                                   "): sparse indices must strictly increase");
       if (i >= static_cast<double>(a.count))
-        fail(sp + "/indices", "index " + std::to_string(static_cast<long long>(i)) + " at " + std::to_string(j) +
-                                  " out of range (count " + std::to_string(a.count) + ")");
+        fail(sp + "/indices", "index " + std::to_string(static_cast<long long>(i)) + " at " +
+                                  std::to_string(j) + " out of range (count " +
+                                  std::to_string(a.count) + ")");
       previous = i;
       const auto row = static_cast<std::size_t>(i);
       for (std::size_t k = 0; k < nc; ++k)
-        e.data[row * nc + k] = component_at(val + j * v.element + k * cs, v.component_type, v.normalized);
+        e.data[row * nc + k] =
+            component_at(val + j * v.element + k * cs, v.component_type, v.normalized);
     }
     return e;
   }
 
   // A per-vertex attribute: `count` elements of one of `types` (component types), VEC<n> for n in
   // [min_components, max_components], every number finite.
-  Elements attribute(int accessor, const std::string& name, std::size_t count, std::initializer_list<int> types,
-                     int min_components, int max_components) const {
+  Elements attribute(int accessor, const std::string& name, std::size_t count,
+                     std::initializer_list<int> types, int min_components,
+                     int max_components) const {
     const std::string p = accessor_pointer(accessor);
     Elements e = elements(accessor);
     bool type_ok = false;
     for (int t : types) type_ok = type_ok || t == e.component_type;
     if (!type_ok || e.components < min_components || e.components > max_components)
-      fail(p, name + ": unsupported component type " + std::to_string(e.component_type) + " or type VEC" +
-                  std::to_string(e.components));
+      fail(p, name + ": unsupported component type " + std::to_string(e.component_type) +
+                  " or type VEC" + std::to_string(e.components));
     if (e.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !e.normalized)
       fail(p + "/normalized", name + ": integer components must be normalized");
     if (e.count != count)
-      fail(p + "/count", name + ": " + std::to_string(e.count) + " elements for " + std::to_string(count) + " vertices");
+      fail(p + "/count", name + ": " + std::to_string(e.count) + " elements for " +
+                             std::to_string(count) + " vertices");
     for (std::size_t i = 0; i < e.data.size(); ++i) {
       if (!std::isfinite(e.data[i]))
-        fail(p, name + ": element " + std::to_string(i / static_cast<std::size_t>(e.components)) + " is not finite");
+        fail(p, name + ": element " + std::to_string(i / static_cast<std::size_t>(e.components)) +
+                    " is not finite");
     }
     return e;
   }
@@ -791,11 +823,14 @@ struct GltfReader {
       }
       for (const auto& [name, id] : prim.attributes) {  // UVs: checked, kept as they are
         if (name.rfind("TEXCOORD_", 0) == 0)
-          attribute(id, name, pv.count, {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, 2, 2);
+          attribute(id, name, pv.count,
+                    {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                    2, 2);
       }
       if (prim.targets.size() != mesh.primitives[0].targets.size())
-        fail(p + "/targets", std::to_string(prim.targets.size()) + " morph targets, primitive 0 has " +
+        fail(p + "/targets", std::to_string(prim.targets.size()) +
+                                 " morph targets, primitive 0 has " +
                                  std::to_string(mesh.primitives[0].targets.size()) +
                                  " (every primitive of a mesh has the same targets)");
       info.vertex_count = static_cast<int>(pv.count);
@@ -816,11 +851,14 @@ struct GltfReader {
         }
         auto col = prim.attributes.find("COLOR_0");
         if (col != prim.attributes.end()) {
-          const Elements cv = attribute(col->second, "COLOR_0", pv.count,
-                                        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, 3, 4);
+          const Elements cv =
+              attribute(col->second, "COLOR_0", pv.count,
+                        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                        3, 4);
           for (std::size_t i = 0; i < cv.count; ++i) {
-            colors.emplace_back(static_cast<float>(cv.at(i, 0)), static_cast<float>(cv.at(i, 1)), static_cast<float>(cv.at(i, 2)));
+            colors.emplace_back(static_cast<float>(cv.at(i, 0)), static_cast<float>(cv.at(i, 1)),
+                                static_cast<float>(cv.at(i, 2)));
           }
         } else {
           all_colored = false;
@@ -833,7 +871,8 @@ struct GltfReader {
             if (name != "POSITION" && name != "NORMAL") continue;
             Elements d = attribute(id, "morph target " + std::to_string(t) + " " + name, pv.count,
                                    {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                                    TINYGLTF_COMPONENT_TYPE_SHORT}, 3, 3);
+                                    TINYGLTF_COMPONENT_TYPE_SHORT},
+                                   3, 3);
             pending_targets_.push_back({t, name == "NORMAL", info.vertex_offset, std::move(d)});
           }
         }
@@ -879,14 +918,18 @@ struct GltfReader {
     if (all_colored && nv > 0) doc.colors = std::move(colors);
     const std::size_t n_targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
     std::vector<std::string> names;
-    if (mesh.extras.IsObject() && mesh.extras.Has("targetNames") && mesh.extras.Get("targetNames").IsArray()) {
+    if (mesh.extras.IsObject() && mesh.extras.Has("targetNames") &&
+        mesh.extras.Get("targetNames").IsArray()) {
       const auto& tn = mesh.extras.Get("targetNames");
       for (std::size_t t = 0; t < tn.ArrayLen(); ++t)
-        names.push_back(tn.Get(static_cast<int>(t)).IsString() ? tn.Get(static_cast<int>(t)).Get<std::string>() : std::string());
+        names.push_back(tn.Get(static_cast<int>(t)).IsString()
+                            ? tn.Get(static_cast<int>(t)).Get<std::string>()
+                            : std::string());
     }
     doc.targets.resize(n_targets);
     for (std::size_t t = 0; t < n_targets; ++t) {
-      doc.targets[t].name = t < names.size() && !names[t].empty() ? names[t] : "target_" + std::to_string(t);
+      doc.targets[t].name =
+          t < names.size() && !names[t].empty() ? names[t] : "target_" + std::to_string(t);
       doc.targets[t].position_deltas = Vertices::Zero(static_cast<long>(nv), 3);
     }
     for (const auto& pt : pending_targets_) {
@@ -894,7 +937,8 @@ struct GltfReader {
       Vertices& m = pt.normal ? target.normal_deltas : target.position_deltas;
       if (m.rows() == 0) m = Vertices::Zero(static_cast<long>(nv), 3);
       for (std::size_t i = 0; i < pt.deltas.count; ++i) {
-        for (int k = 0; k < 3; ++k) m(pt.vertex_offset + static_cast<long>(i), k) = pt.deltas.at(i, k);
+        for (int k = 0; k < 3; ++k)
+          m(pt.vertex_offset + static_cast<long>(i), k) = pt.deltas.at(i, k);
       }
     }
     std::size_t start = 0;
@@ -947,7 +991,8 @@ void write_floats(unsigned char* base, std::size_t stride, std::size_t i, const 
 // sparse object dropped (an unchanged one stays as it is). `rows(i, f)` fills row i, returns false
 // to keep the accessor's own row. Returns false when nothing was written.
 template <class Rows>
-bool rewrite_vec3(tinygltf::Model& model, const GltfReader& reader, int accessor, std::size_t count, Rows rows) {
+bool rewrite_vec3(tinygltf::Model& model, const GltfReader& reader, int accessor, std::size_t count,
+                  Rows rows) {
   auto& a = model.accessors[static_cast<std::size_t>(accessor)];
   if (!a.sparse.isSparse && a.bufferView != -1) {
     const auto v = reader.view(accessor);
@@ -971,7 +1016,8 @@ bool rewrite_vec3(tinygltf::Model& model, const GltfReader& reader, int accessor
   }
   if (!changed) return false;
   if (model.buffers.empty()) model.buffers.emplace_back();
-  a.bufferView = detail::add_view(model, packed.data(), packed.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.bufferView =
+      detail::add_view(model, packed.data(), packed.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER);
   a.byteOffset = 0;
   a.sparse.isSparse = false;
   a.sparse.count = 0;
@@ -992,19 +1038,23 @@ tinygltf::Model updated_model(const MeshDocument::Impl& doc, const Vertices& pos
     done[prim.position] = true;
     std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
     const auto count = static_cast<std::size_t>(prim.vertex_count);
-    const bool written = rewrite_vec3(copy_view.model, reader, prim.position, count, [&](std::size_t i, float* p) {
-      for (int k = 0; k < 3; ++k) {
-        p[k] = static_cast<float>(positions(prim.vertex_offset + static_cast<long>(i), k));
-        lo[static_cast<std::size_t>(k)] = std::min(lo[static_cast<std::size_t>(k)], static_cast<double>(p[k]));
-        hi[static_cast<std::size_t>(k)] = std::max(hi[static_cast<std::size_t>(k)], static_cast<double>(p[k]));
-      }
-      return true;
-    });
+    const bool written =
+        rewrite_vec3(copy_view.model, reader, prim.position, count, [&](std::size_t i, float* p) {
+          for (int k = 0; k < 3; ++k) {
+            p[k] = static_cast<float>(positions(prim.vertex_offset + static_cast<long>(i), k));
+            lo[static_cast<std::size_t>(k)] =
+                std::min(lo[static_cast<std::size_t>(k)], static_cast<double>(p[k]));
+            hi[static_cast<std::size_t>(k)] =
+                std::max(hi[static_cast<std::size_t>(k)], static_cast<double>(p[k]));
+          }
+          return true;
+        });
     auto& a = copy_view.model.accessors[static_cast<std::size_t>(prim.position)];
     if (written && prim.vertex_count > 0) a.minValues = lo, a.maxValues = hi;
     if (recompute_normals && prim.normal >= 0) {
       rewrite_vec3(copy_view.model, reader, prim.normal, count, [&](std::size_t i, float* f) {
-        const Eigen::Vector3d n = normals.row(prim.vertex_offset + static_cast<long>(i)).transpose();
+        const Eigen::Vector3d n =
+            normals.row(prim.vertex_offset + static_cast<long>(i)).transpose();
         if (!(n.squaredNorm() > 0.0)) return false;  // a vertex of no triangle: keep its normal
         for (int k = 0; k < 3; ++k) f[k] = static_cast<float>(n[k]);
         return true;
@@ -1301,7 +1351,9 @@ MeshDocument read_mesh_document(const std::string& path) {
   }
   switch (doc.format) {
     case MeshFormat::Obj: read_obj(doc); break;
-    case MeshFormat::Ply: read_ply(doc); break;
+    case MeshFormat::Ply:
+      read_ply(doc);
+      break;
     case MeshFormat::Off:
       doc.tri = read_mesh(path);
       doc.polygon_of_triangle.resize(doc.tri.face_count());

@@ -1,5 +1,5 @@
-// The files that go with a copy of an OBJ document (mesh_document.hpp, MeshDocument::companion_files):
-// its material libraries and every texture they reference.
+// The files that go with a copy of an OBJ document (mesh_document.hpp,
+// MeshDocument::companion_files): its material libraries and every texture they reference.
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -17,7 +17,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A relative path that stays inside its directory once normalised ("a/../b.png" yes, "../b.png" no).
+// A relative path that stays inside its directory once normalised ("a/../b.png" yes, "../b.png"
+// no).
 bool stays_inside(const fs::path& p) {
   if (p.empty() || p.is_absolute() || p.has_root_name() || p.has_root_directory()) return false;
   const fs::path n = p.lexically_normal();
@@ -38,9 +39,11 @@ bool is_number(std::string_view t) {
 // common map_bump / map_Bump spelling).
 bool is_texture_statement(const std::string& key) {
   std::string k = key;
-  std::transform(k.begin(), k.end(), k.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(k.begin(), k.end(), k.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (k == "map_aat") return false;  // "map_aat on": a switch, no file
-  return k.rfind("map_", 0) == 0 || k == "bump" || k == "disp" || k == "decal" || k == "refl" || k == "norm";
+  return k.rfind("map_", 0) == 0 || k == "bump" || k == "disp" || k == "decal" || k == "refl" ||
+         k == "norm";
 }
 
 // Options before the file name and how many numbers/words they take (same appendix: -blendu on,
@@ -50,8 +53,9 @@ int option_arguments(const std::string& flag, bool& up_to_three) {
   up_to_three = flag == "-o" || flag == "-s" || flag == "-t";
   if (up_to_three) return 1;
   if (flag == "-mm") return 2;
-  if (flag == "-blendu" || flag == "-blendv" || flag == "-bm" || flag == "-boost" || flag == "-cc" || flag == "-clamp" ||
-      flag == "-imfchan" || flag == "-texres" || flag == "-type")
+  if (flag == "-blendu" || flag == "-blendv" || flag == "-bm" || flag == "-boost" ||
+      flag == "-cc" || flag == "-clamp" || flag == "-imfchan" || flag == "-texres" ||
+      flag == "-type")
     return 1;
   return -1;
 }
@@ -71,7 +75,9 @@ TextureRef texture_name(const std::string& line) {
     while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
     if (i > s) tok.emplace_back(s, i);
   }
-  auto word = [&](std::size_t k) { return line.substr(tok[k].first, tok[k].second - tok[k].first); };
+  auto word = [&](std::size_t k) {
+    return line.substr(tok[k].first, tok[k].second - tok[k].first);
+  };
   std::size_t k = 1;  // after the statement's keyword
   while (k < tok.size() && line[tok[k].first] == '-' && !is_number(word(k))) {
     bool up_to_three = false;
@@ -98,8 +104,8 @@ Companions MeshDocument::companion_files() const {
   Companions out;
   if (format() != MeshFormat::Obj) return out;
   const fs::path obj_dir = fs::path(path()).parent_path();
-  std::set<std::string> taken;                  // output paths used so far (normalised)
-  std::map<std::string, std::string> copied;    // source (canonical) -> output path
+  std::set<std::string> taken;                // output paths used so far (normalised)
+  std::map<std::string, std::string> copied;  // source (canonical) -> output path
   // a file to write; false (nothing added) when another file already has that output path
   auto add = [&](const fs::path& rel, std::string bytes) {
     const std::string key = rel.lexically_normal().generic_string();
@@ -111,7 +117,8 @@ Companions MeshDocument::companion_files() const {
     const fs::path rel(lib);
     if (!stays_inside(rel)) {
       out.warnings.push_back("material library '" + lib +
-                             "' lies outside the mesh's directory: not copied (the copied OBJ names it as the input did)");
+                             "' lies outside the mesh's directory: not copied (the copied OBJ "
+                             "names it as the input did)");
       continue;
     }
     const fs::path src = obj_dir / rel;
@@ -122,7 +129,8 @@ Companions MeshDocument::companion_files() const {
     const std::string text = core::read_file(src.string());
     const std::string mtl_key = rel.lexically_normal().generic_string();
     if (!taken.insert(mtl_key).second) continue;  // named twice
-    const fs::path mtl_dir_rel = rel.lexically_normal().parent_path();  // relative to the OBJ's directory
+    const fs::path mtl_dir_rel =
+        rel.lexically_normal().parent_path();  // relative to the OBJ's directory
     const fs::path mtl_dir = src.parent_path();
     std::string rewritten;
     rewritten.reserve(text.size());
@@ -134,11 +142,15 @@ Companions MeshDocument::companion_files() const {
       std::size_t content_end = stop;
       if (content_end > pos && text[content_end - 1] == '\r') --content_end;
       const std::string line = text.substr(pos, content_end - pos);
-      const std::string terminator = text.substr(content_end, (nl == std::string::npos ? text.size() : nl + 1) - content_end);
+      const std::string terminator =
+          text.substr(content_end, (nl == std::string::npos ? text.size() : nl + 1) - content_end);
       pos = nl == std::string::npos ? text.size() : nl + 1;
       std::size_t s = line.find_first_not_of(" \t");
       const std::size_t e = s == std::string::npos ? s : line.find_first_of(" \t", s);
-      const std::string key = s == std::string::npos ? std::string() : line.substr(s, e == std::string::npos ? std::string::npos : e - s);
+      const std::string key =
+          s == std::string::npos
+              ? std::string()
+              : line.substr(s, e == std::string::npos ? std::string::npos : e - s);
       const std::string where = "'" + lib + "' line " + std::to_string(line_no);
       if (key.empty() || key[0] == '#' || !is_texture_statement(key)) {
         rewritten += line + terminator;
@@ -176,7 +188,9 @@ Companions MeshDocument::companion_files() const {
       auto it = copied.find(id);
       std::string local;
       if (it != copied.end()) {
-        local = fs::path(it->second).lexically_relative(mtl_dir_rel.empty() ? fs::path(".") : mtl_dir_rel).generic_string();
+        local = fs::path(it->second)
+                    .lexically_relative(mtl_dir_rel.empty() ? fs::path(".") : mtl_dir_rel)
+                    .generic_string();
       } else {
         const std::string stem = name.stem().string(), ext = name.extension().string();
         local = name.filename().string();
@@ -185,8 +199,9 @@ Companions MeshDocument::companion_files() const {
         copied[id] = (mtl_dir_rel / local).lexically_normal().generic_string();
         add(mtl_dir_rel / local, core::read_file(tex_src.string()));
       }
-      out.warnings.push_back("texture '" + ref.name + "' (" + where + ") lies outside the mesh's directory: copied as '" +
-                             local + "' and the .mtl line rewritten");
+      out.warnings.push_back("texture '" + ref.name + "' (" + where +
+                             ") lies outside the mesh's directory: copied as '" + local +
+                             "' and the .mtl line rewritten");
       rewritten += line.substr(0, ref.name_begin) + local + line.substr(ref.name_end) + terminator;
     }
     out.files.push_back({mtl_key, rewritten});

@@ -23,15 +23,17 @@ struct PlySlot {  // where one number of a vertex lives in the file
 struct PlyDocument {
   enum class Encoding { Ascii, BinaryLittle, BinaryBig };
   Encoding encoding = Encoding::Ascii;
-  std::string text;                      // the whole file
-  std::vector<double> xyz;               // 3 per vertex, file order
+  std::string text;                        // the whole file
+  std::vector<double> xyz;                 // 3 per vertex, file order
   std::vector<std::vector<int>> polygons;  // the face element's vertex lists
   std::vector<std::size_t> polygon_line;   // ASCII: 1-based line of each polygon, binary: 0
-  std::vector<Eigen::Vector3f> colors;     // per vertex when the vertex element has colours, else empty
-  std::array<int, 6> slot_type{};        // PLY type ids of x, y, z, nx, ny, nz (0 = absent)
+  std::vector<Eigen::Vector3f>
+      colors;                      // per vertex when the vertex element has colours, else empty
+  std::array<int, 6> slot_type{};  // PLY type ids of x, y, z, nx, ny, nz (0 = absent)
   std::vector<std::array<PlySlot, 6>> slots;  // per vertex
   bool has_normals = false;
-  std::vector<std::string> kept_properties;  // vertex properties we do not interpret (kept as they are)
+  std::vector<std::string>
+      kept_properties;  // vertex properties we do not interpret (kept as they are)
 };
 
 /// Parses PLY text; throws FormatError naming `path` and the line (ASCII / header) or the byte

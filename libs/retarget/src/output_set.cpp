@@ -16,20 +16,25 @@ OutputSet::OutputSet(std::string directory) : directory_(std::move(directory)) {
   if (directory_.empty()) throw InvalidInput("OutputSet: empty directory");
 }
 
-void OutputSet::add_writer(const std::string& relative_path, std::function<void(const std::string&)> write) {
+void OutputSet::add_writer(const std::string& relative_path,
+                           std::function<void(const std::string&)> write) {
   const fs::path p(relative_path);
   const fs::path n = p.lexically_normal();
-  if (relative_path.empty() || p.is_absolute() || p.has_root_name() || p.has_root_directory() || n.empty() ||
-      *n.begin() == ".." || n == "." || !n.has_filename())
-    throw InvalidInput("OutputSet: '" + relative_path + "' is not a path inside the output directory");
+  if (relative_path.empty() || p.is_absolute() || p.has_root_name() || p.has_root_directory() ||
+      n.empty() || *n.begin() == ".." || n == "." || !n.has_filename())
+    throw InvalidInput("OutputSet: '" + relative_path +
+                       "' is not a path inside the output directory");
   for (const auto& e : entries_) {
-    if (e.path == n.generic_string()) throw InvalidInput("OutputSet: '" + relative_path + "' given twice");
+    if (e.path == n.generic_string())
+      throw InvalidInput("OutputSet: '" + relative_path + "' given twice");
   }
   entries_.push_back({n.generic_string(), std::move(write)});
 }
 
 void OutputSet::add(const std::string& relative_path, std::string bytes) {
-  add_writer(relative_path, [bytes = std::move(bytes)](const std::string& path) { core::write_file_atomic(path, bytes); });
+  add_writer(relative_path, [bytes = std::move(bytes)](const std::string& path) {
+    core::write_file_atomic(path, bytes);
+  });
 }
 
 void OutputSet::commit() {
@@ -57,8 +62,9 @@ void OutputSet::commit() {
     for (const auto& e : entries_) {
       const fs::path final_path = dir / fs::path(e.path);
       make_dirs(final_path.parent_path());
-      const fs::path tmp = final_path.parent_path() /
-                           (final_path.stem().string() + ".part-emoface" + final_path.extension().string());
+      const fs::path tmp =
+          final_path.parent_path() /
+          (final_path.stem().string() + ".part-emoface" + final_path.extension().string());
       temporary.push_back(tmp);
       e.write(tmp.string());
       if (!fs::is_regular_file(tmp)) throw IoError("cannot write '" + final_path.string() + "'");
@@ -74,7 +80,8 @@ void OutputSet::commit() {
     std::error_code ec;
     for (const auto& p : temporary) fs::remove(p, ec);
     for (const auto& p : renamed) fs::remove(p, ec);
-    for (auto it = created_dirs.rbegin(); it != created_dirs.rend(); ++it) fs::remove(*it, ec);  // only if empty
+    for (auto it = created_dirs.rbegin(); it != created_dirs.rend(); ++it)
+      fs::remove(*it, ec);  // only if empty
     throw;
   }
 }

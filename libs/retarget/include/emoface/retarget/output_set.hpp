@@ -21,7 +21,8 @@ class OutputSet {
   void add(const std::string& relative_path, std::string bytes);
   /// A file made by `write(path)`, which must create the file at the path it is given (a temporary
   /// name with the same extension in the same directory).
-  void add_writer(const std::string& relative_path, std::function<void(const std::string& path)> write);
+  void add_writer(const std::string& relative_path,
+                  std::function<void(const std::string& path)> write);
   /// Creates the directory (and sub-directories), writes every file under a temporary name, then
   /// renames them into place. On any failure every temporary file, every file already renamed and
   /// every directory commit created is removed, and the error is rethrown; files that were there
