@@ -42,8 +42,11 @@ int main(int argc, char** argv) {
                "frames only (--out), Live Link angle columns ignored");
   app.add_option("--out", out_dir, "Directory for frame_0000.<format> ...");
   app.add_option("--format", format,
-                 "Mesh format of the frames (default: the rig's mesh kind, obj or glb). Frames are in the mesh\n"
-                 "file's own frame; obj/glb/gltf of an OBJ/glTF mesh keep its UVs, groups and materials")
+                 "Mesh format of the frames (default: the rig's mesh kind, obj, ply or glb). "
+                 "Frames are in the\n"
+                 "mesh file's own frame; obj/glb/gltf of an OBJ/glTF mesh keep its UVs, groups and "
+                 "materials,\n"
+                 "ply of a PLY mesh every property (vertex colours)")
       ->check(CLI::IsMember({"obj", "ply", "off", "glb", "gltf"}));
   app.add_option("--gltf", gltf,
                  "Also write a glTF 2.0 (.gltf or .glb) for engines: named morph targets per face "
@@ -73,7 +76,8 @@ int main(int argc, char** argv) {
     if (format.empty()) {
       const bool gltf_doc = face.document && (face.document->format() == fm::MeshFormat::Gltf ||
                                               face.document->format() == fm::MeshFormat::Glb);
-      format = gltf_doc ? "glb" : "obj";
+      const bool ply_doc = face.document && face.document->format() == fm::MeshFormat::Ply;
+      format = gltf_doc ? "glb" : ply_doc ? "ply" : "obj";
     }
     mu::SolverOptions options;
     options.delta_c = delta_c;

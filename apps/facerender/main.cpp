@@ -85,9 +85,14 @@ int main(int argc, char** argv) {
         for (long v = 0; v < in.mesh.vertices.rows(); ++v) {
           if (!rig.frame.is_identity()) in.mesh.vertices.row(v) = rig.frame.to_rig(in.mesh.vertices.row(v).transpose()).transpose();
         }
-        if (colors.empty()) colors = fm::material_colors(rig, in.mesh);
-        in.colors = colors;
-        in.paint = paint;
+        if (!doc.vertex_colors().empty() && !fm::paint_for(rig)) {
+          in.colors =
+              doc.vertex_colors();  // a user's rigged mesh: their own colours (OBJ, PLY, COLOR_0)
+        } else {
+          if (colors.empty()) colors = fm::material_colors(rig, in.mesh);
+          in.colors = colors;
+          in.paint = paint;
+        }
       } else {
         in.colors = doc.vertex_colors();  // the file's own colours, else uniform skin
       }

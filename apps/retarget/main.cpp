@@ -1,22 +1,15 @@
 // retarget: fit the built-in face (or a given rig) to any head mesh and write a complete rig for it.
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "emoface/cli/cli.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
-#include "emoface/facemesh/render.hpp"
 #include "emoface/fuzzyexpr/engine.hpp"
-#include "emoface/muscles/solver.hpp"
-#include "emoface/retarget/default_head.hpp"
 #include "emoface/retarget/io.hpp"
-#include "emoface/retarget/plot.hpp"
-#include "emoface/retarget/retarget.hpp"
-#include "emoface/retarget/transfer.hpp"
-#include "emoface/core/io.hpp"
+#include "emoface/retarget/outputs.hpp"
 
 namespace fm = emoface::facemesh;
 namespace fx = emoface::fuzzyexpr;
@@ -24,37 +17,23 @@ namespace rt = emoface::retarget;
 
 namespace {
 
-// The six emotions (thesis ch. 6 fuzzy rules, ESV 0.9; anger, disgust, fear, happiness, sadness,
-// surprise) on a face: front views in the first row, three-quarter views in the second.
+// The six emotions (thesis ch. 6 fuzzy rules, ESV 0.9) as named parameters for the sheet.
 fm::Image emotion_sheet(const fm::Face& face, int tile) {
-  fm::RenderOptions ro;
-  ro.width = tile;
-  ro.height = tile * 19 / 16;
-  const auto colors = fm::material_colors(face.rig, face.mesh);
-  const emoface::muscles::FaceSolver solver(face.mesh, face.rig);
   const fx::Engine engine;
-  std::vector<emoface::muscles::Deformation> shapes;
+  std::vector<std::map<std::string, double>> expressions;
   for (std::size_t e = 0; e < fx::kEmotionCount; ++e) {
     fx::Esv esv{};
     esv[e] = 0.9;
     const auto sides = fx::expand_to_sides(engine.convert(esv));
-    std::map<std::string, double> named;
+    auto& named = expressions.emplace_back();
     for (std::size_t i = 0; i < sides.size(); ++i) named[std::string(fx::side_parameter_names()[i])] = sides[i];
-    shapes.push_back(solver.deform(named));
   }
-  std::vector<fm::Image> tiles;
-  for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
-    ro.view = view;
-    for (const auto& d : shapes) tiles.push_back(fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, ro));
-  }
-  return fm::contact_sheet(tiles, static_cast<int>(fx::kEmotionCount));
+  return rt::expression_sheet(face, expressions, tile);
 }
 
-// --mode transfer: everything is computed first; the files are then written one by one (each
-// atomically) and removed again if a later one fails, so the output set appears all or nothing.
+// --mode transfer: everything is computed first, then written as one set (all or nothing).
 int run_transfer(const fm::Face& source, const std::string& target_path, const std::string& out_dir,
                  const std::string& landmarks_path, const rt::RetargetOptions& fit, bool no_png, bool quiet, int tile) {
-  namespace fs = std::filesystem;
   const fm::MeshDocument doc = fm::read_mesh_document(target_path);
   rt::UserLandmarks landmarks;
   if (!landmarks_path.empty()) landmarks = rt::read_landmarks(landmarks_path);
@@ -65,74 +44,22 @@ int run_transfer(const fm::Face& source, const std::string& target_path, const s
       std::fprintf(stderr, "retarget: generation %d  best E %.6g\n", p.generation, p.best_error);
   };
   rt::TransferResult r = rt::transfer_rig(source, doc.triangles(), doc.groups(), o, landmarks, progress);
-  const fm::MeshFormat format = doc.format();
-  const bool gltf = format == fm::MeshFormat::Gltf || format == fm::MeshFormat::Glb;
-  const std::string ext = gltf ? "glb" : fm::to_string(format);
-  const std::string mesh_name = "face." + ext;
-  r.face.rig.mesh_file = mesh_name;
-  const std::string rig_text = fm::format_rig(r.face.rig);
-  const std::string report_text = rt::format_transfer_report(r);
-  // The input bytes (non-glTF) and the material libraries, read before anything is written.
-  std::string mesh_bytes;
-  std::vector<std::pair<std::string, std::string>> extra;  // relative path, bytes
-  if (!gltf) mesh_bytes = emoface::core::read_file(target_path);
-  const fs::path in_dir = fs::path(target_path).parent_path();
-  for (const auto& lib : doc.material_libraries()) {
-    const fs::path rel(lib);
-    if (rel.is_absolute() || rel.lexically_normal().string().rfind("..", 0) == 0) continue;  // stays where it is
-    if (fs::exists(in_dir / rel)) extra.emplace_back(rel.lexically_normal().string(), emoface::core::read_file((in_dir / rel).string()));
-  }
-  fm::Image sheet;
-  if (!no_png) sheet = emotion_sheet(r.face, tile);
-  const fs::path dir(out_dir);
-  std::vector<fs::path> written;
-  try {
-    fs::create_directories(dir);
-    if (gltf) {
-      doc.write((dir / mesh_name).string(), doc.triangles().vertices, false, false);
-    } else {
-      emoface::core::write_file_atomic((dir / mesh_name).string(), mesh_bytes);
-    }
-    written.push_back(dir / mesh_name);
-    for (const auto& [rel, bytes] : extra) {
-      fs::create_directories((dir / rel).parent_path());
-      emoface::core::write_file_atomic((dir / rel).string(), bytes);
-      written.push_back(dir / rel);
-    }
-    emoface::core::write_file_atomic((dir / "face.rig").string(), rig_text);
-    written.push_back(dir / "face.rig");
-    emoface::core::write_file_atomic((dir / "report.json").string(), report_text);
-    written.push_back(dir / "report.json");
-    if (!no_png) {
-      fm::write_png((dir / "emotions.png").string(), sheet);
-      written.push_back(dir / "emotions.png");
-    }
-  } catch (...) {
-    std::error_code ec;
-    for (const auto& p : written) fs::remove(p, ec);
-    throw;
-  }
-  if (!quiet) {
-    const auto& rep = r.report;
-    std::fprintf(stderr, "retarget: transfer onto %ld vertices (%zu components): registration RMS %.4g -> %.4g (input units), "
-                 "%zu lip-bound, %zu jaw, %zu mouth bag; parts:", static_cast<long>(r.face.mesh.vertices.rows()), rep.components,
-                 rep.registration.initial_rms / rep.scale, rep.registration.final_rms / rep.scale, rep.lip_bound, rep.jaw_vertices,
-                 rep.mouth_bag);
-    for (const auto& p : rep.parts) std::fprintf(stderr, " %s=%s", p.name.c_str(), fm::to_string(p.kind).c_str());
-    for (const auto& w : rep.warnings) std::fprintf(stderr, "\nretarget: warning: %s", w.c_str());
-    std::fprintf(stderr, "\nretarget: wrote %s\n", out_dir.c_str());
-  }
+  const fm::Image sheet = no_png ? fm::Image{} : emotion_sheet(r.face, tile);
+  rt::write_transfer_outputs(doc, r, out_dir, no_png ? nullptr : &sheet);
+  if (!quiet) std::fputs(rt::transfer_summary(r, out_dir).c_str(), stderr);
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Rig a head mesh with the built-in face's muscles (thesis ch. 3 fit + dense registration).\n"
-               "--mode transfer (default): OUT/face.<ext> is the input file itself (copied byte for byte, .mtl too;\n"
-               "glTF input gives face.glb), OUT/face.rig rigs it in its own frame and units, OUT/report.json.\n"
-               "--mode deform-source: the thesis' literal export (the built-in face bent into the target's shape).\n"
-               "Example: retarget --target head.obj --out rigged --seed 7 --generations 40"};
+  CLI::App app{
+      "Rig a head mesh with the built-in face's muscles (thesis ch. 3 fit + dense registration).\n"
+      "--mode transfer (default): OUT/face.<ext> is the input file itself (copied byte for byte,\n"
+      "with its .mtl files and their textures; glTF input gives face.glb), OUT/face.rig rigs it\n"
+      "in its own frame and units, OUT/report.json; written all or nothing.\n"
+      "--mode deform-source: the thesis' literal export (the built-in face bent to the target).\n"
+      "Example: retarget --target head.obj --out rigged --seed 7 --generations 40"};
   std::string target_path, out_dir, source_rig, up, front, align_mode = "auto", projection = "evaluate_only";
   rt::RetargetOptions o;
   bool no_png = false, quiet = false;
@@ -185,12 +112,7 @@ int main(int argc, char** argv) {
   return emoface::cli::run("retarget", [&]() {
     if (!make_default.empty()) {
       const rt::DefaultHeadReport rep = rt::write_default_face_files(make_default);
-      if (!quiet)
-        std::fprintf(stderr, "retarget: default face: %zu head vertices, eyeballs %zu + %zu (sockets %zu + %zu), "
-                     "teeth %zu + %zu, tongue %zu, lashes %zu, neck caps %zu; wrote %s\n",
-                     rep.head_vertices, rep.eyeball_vertices[0], rep.eyeball_vertices[1], rep.socket_vertices[0],
-                     rep.socket_vertices[1], rep.upper_teeth, rep.lower_teeth, rep.tongue, rep.lashes, rep.neck_cap,
-                     make_default.c_str());
+      if (!quiet) std::fputs(rt::default_face_summary(rep, make_default).c_str(), stderr);
       return 0;
     }
     if (target_path.empty() || out_dir.empty()) throw emoface::cli::UsageError("--target and --out are required");
@@ -202,8 +124,8 @@ int main(int argc, char** argv) {
     if (rt::to_string(o.align.up.value_or(rt::Axis::PosY)).substr(1) == rt::to_string(o.align.front.value_or(rt::Axis::PosZ)).substr(1))
       throw emoface::cli::UsageError("--up and --front must be perpendicular axes");
     const fm::Face source = source_rig.empty() ? fm::make_generic_face() : fm::load_face(source_rig);
-    if (transfer_flag) mode = "transfer";
-    if (mode == "transfer") return run_transfer(source, target_path, out_dir, landmarks_path, o, no_png, quiet, tile);
+    if (transfer_flag || mode == "transfer")
+      return run_transfer(source, target_path, out_dir, landmarks_path, o, no_png, quiet, tile);
     if (!landmarks_path.empty()) throw emoface::cli::UsageError("--landmarks needs --mode transfer");
     fm::MeshReadReport read_report;
     const fm::Mesh target = fm::read_mesh(target_path, fm::MeshReadOptions{true}, &read_report);
@@ -216,39 +138,10 @@ int main(int argc, char** argv) {
                      p.best_error, p.mutation_rate, p.evaluations);
     };
     const rt::RetargetResult r = rt::retarget_face(source, target, o, progress);
-    if (!quiet && r.cleaning.kept_components < r.cleaning.components)
-      std::fprintf(stderr, "retarget: dropped %zu of %zu components outside the head (%zu faces)\n",
-                   r.cleaning.components - r.cleaning.kept_components, r.cleaning.components, r.cleaning.dropped_faces);
-    if (!quiet) std::fprintf(stderr, "retarget: alignment (%s): rotation %.1f deg about (%.3f, %.3f, %.3f), scale %.6g, confidence %.2f; %s\n",
-                             rt::to_string(r.alignment.report.method).c_str(), r.alignment.report.angle_deg, r.alignment.report.axis.x(),
-                             r.alignment.report.axis.y(), r.alignment.report.axis.z(), r.alignment.scale, r.alignment.report.confidence,
-                             r.alignment.report.message.c_str());
-    const std::filesystem::path dir(out_dir);
-    std::filesystem::create_directories(dir);
-    fm::Face face = r.face;
-    face.rig.mesh_file = "face.obj";
-    fm::save_face((dir / "face.rig").string(), face);
-    fm::write_mesh((dir / "target_aligned.obj").string(), r.aligned_target);
-    rt::write_report((dir / "report.json").string(), r);
-    if (!no_png) {
-      fm::RenderOptions ro;
-      ro.width = tile;
-      ro.height = tile * 19 / 16;
-      const auto colors = fm::material_colors(face.rig);
-      std::vector<fm::Image> overlay;
-      for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
-        ro.view = view;
-        overlay.push_back(fm::render(r.aligned_target, {}, {}, ro));
-        overlay.push_back(fm::render(face.mesh, colors, {}, ro));
-      }
-      fm::write_png((dir / "overlay.png").string(), fm::contact_sheet(overlay, 2));
-      fm::write_png((dir / "error_curve.png").string(), rt::plot_series({r.ga.error_curve}));
-      fm::write_png((dir / "emotions.png").string(), emotion_sheet(face, tile));  // thesis ch. 6 rules
-    }
-    std::fprintf(stderr, "retarget: E %.6g -> %.6g (%d generations, %ld evaluations, %.1f s)", r.ga.initial_error,
-                 r.ga.best_error, r.ga.generations, r.ga.evaluations, r.ga.seconds);
-    if (r.refine.ran) std::fprintf(stderr, " -> refined %.6g (%d iterations, %.1f s)", r.refine.final_error, r.refine.iterations, r.refine.seconds);
-    std::fprintf(stderr, "; wrote %s\n", out_dir.c_str());
+    if (!quiet) std::fputs(rt::fit_summary(r).c_str(), stderr);
+    const fm::Image emotions = no_png ? fm::Image{} : emotion_sheet(r.face, tile);
+    rt::write_deform_source_outputs(r, out_dir, !no_png, tile, &emotions);
+    std::fputs(rt::fit_result_line(r, out_dir).c_str(), stderr);
     return 0;
   });
 }

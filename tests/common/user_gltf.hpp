@@ -3,7 +3,9 @@
 // with inverse bind matrices, JOINTS_0/WEIGHTS_0), a UV set with a texture under a named PBR
 // material, one morph target of theirs ("user_smile") and an animation of theirs (the jaw joint) —
 // written from any triangle mesh (e.g. the face under test). Used to check that our glTF writers
-// keep everything of theirs (tests/retarget/app_test.cpp, tests/gltf/make_user_gltf.cpp).
+// keep everything of theirs (tests/retarget/app_test.cpp, tests/gltf/make_user_gltf.cpp). With
+// `sparse_target` their target is a sparse accessor (no buffer view: zeros, then the moved rows),
+// as engines export morph targets (glTF 2.0 §3.6.2.3).
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -50,7 +52,7 @@ inline void user_gltf_bounds(tinygltf::Model& m, int accessor, const std::vector
 /// The model (metres, the mesh's frame): node 0 "user_head" (mesh 0, skin 0, a scene root), node 1
 /// "neck" (joint, at (0, −0.1, 0)) with child node 2 "jaw_bone" (joint, (0, 0.04, 0.03) from the
 /// neck); vertices below y = −0.05 follow the jaw joint, the rest the neck.
-inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh) {
+inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh, bool sparse_target = false) {
   tinygltf::Model m;
   m.asset.version = "2.0";
   m.asset.generator = "a user's modelling tool";
@@ -102,6 +104,36 @@ inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh) {
   const int t = user_gltf_accessor(m, smile.data(), smile.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
                                    TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
   user_gltf_bounds(m, t, smile);
+  if (sparse_target) {  // the same accessor, sparse: indices (uint32) and values of the moved rows
+    std::vector<std::uint32_t> rows;
+    std::vector<float> values;
+    for (std::size_t i = 0; i < nv; ++i) {
+      if (smile[3 * i + 1] != 0.0f) {
+        rows.push_back(static_cast<std::uint32_t>(i));
+        values.insert(values.end(), smile.begin() + static_cast<long>(3 * i),
+                      smile.begin() + static_cast<long>(3 * i + 3));
+      }
+    }
+    const int iv =
+        m.accessors[static_cast<std::size_t>(user_gltf_accessor(
+                        m, rows.data(), rows.size() * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                        TINYGLTF_TYPE_SCALAR, rows.size()))]
+            .bufferView;
+    const int vv = m.accessors[static_cast<std::size_t>(user_gltf_accessor(
+                                   m, values.data(), values.size() * 4,
+                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, rows.size()))]
+                       .bufferView;
+    m.accessors.resize(m.accessors.size() - 2);  // only their views are used
+    auto& a = m.accessors[static_cast<std::size_t>(t)];
+    a.bufferView = -1;
+    a.sparse.isSparse = true;
+    a.sparse.count = static_cast<int>(rows.size());
+    a.sparse.indices.bufferView = iv;
+    a.sparse.indices.byteOffset = 0;
+    a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    a.sparse.values.bufferView = vv;
+    a.sparse.values.byteOffset = 0;
+  }
   p.targets.push_back({{"POSITION", t}});
   p.material = 0;
   tinygltf::Mesh head;
@@ -181,9 +213,10 @@ inline tinygltf::Model user_gltf_model(const facemesh::Mesh& mesh) {
   return m;
 }
 
-/// Writes user_gltf_model(mesh) to `path` (.gltf with the buffer embedded, or .glb).
-inline bool write_user_gltf(const std::string& path, const facemesh::Mesh& mesh) {
-  tinygltf::Model m = user_gltf_model(mesh);
+/// Writes user_gltf_model(mesh, sparse_target) to `path` (.gltf with the buffer embedded, or .glb).
+inline bool write_user_gltf(const std::string& path, const facemesh::Mesh& mesh,
+                            bool sparse_target = false) {
+  tinygltf::Model m = user_gltf_model(mesh, sparse_target);
   tinygltf::TinyGLTF w;
   const bool glb = path.size() > 4 && path.substr(path.size() - 4) == ".glb";
   // keep the image as its data URI (never decoded/re-encoded)

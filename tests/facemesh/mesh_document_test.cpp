@@ -651,6 +651,255 @@ TEST_F(MeshDocumentTest, RejectsBadGltf) {
   expect_gltf_error(path("g.glb"), "");
 }
 
+// ---- glTF sparse accessors (glTF 2.0 §3.6.2.3) ----
+
+// Makes accessor `id` sparse: `rows` (indices) replaced by `values` (packed, the accessor's element
+// type, float), indices of `index_type`; without `keep_base` the buffer view goes (zeros below).
+void make_sparse(tinygltf::Model& m, int id, const std::vector<std::uint32_t>& rows,
+                 const std::vector<float>& values, bool keep_base,
+                 int index_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+  auto& a = m.accessors[static_cast<std::size_t>(id)];
+  std::vector<unsigned char> idx;
+  for (std::uint32_t r : rows) {
+    if (index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
+      idx.push_back(static_cast<unsigned char>(r));
+    const int size = index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
+                     : index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT ? 4
+                                                                          : 2;
+    if (size == 2) {
+      const auto s = static_cast<std::uint16_t>(r);
+      idx.insert(idx.end(), reinterpret_cast<const unsigned char*>(&s),
+                 reinterpret_cast<const unsigned char*>(&s) + 2);
+    } else if (size == 4) {
+      idx.insert(idx.end(), reinterpret_cast<const unsigned char*>(&r),
+                 reinterpret_cast<const unsigned char*>(&r) + 4);
+    }
+  }
+  const int iv = add_view(m, idx.data(), idx.size());
+  const int vv = add_view(m, values.data(), values.size() * 4);
+  if (!keep_base) a.bufferView = -1;
+  a.sparse.isSparse = true;
+  a.sparse.count = static_cast<int>(rows.size());
+  a.sparse.indices.bufferView = iv;
+  a.sparse.indices.byteOffset = 0;
+  a.sparse.indices.componentType = index_type;
+  a.sparse.values.bufferView = vv;
+  a.sparse.values.byteOffset = 0;
+}
+
+// The character with its blink target sparse (zeros + one row, as engines export targets), the
+// second primitive's target sparse too, and the quad's POSITION sparse over its base view (vertex 2
+// raised to z = 0.25).
+tinygltf::Model sparse_character() {
+  tinygltf::Model m = character();
+  auto& p0 = m.meshes[0].primitives[0];
+  make_sparse(m, p0.targets[0].at("POSITION"), {0}, {0, 0, 0.1f}, false);
+  make_sparse(m, m.meshes[0].primitives[1].targets[0].at("POSITION"), {2}, {0.5f, 0, 0}, false,
+              TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[1].targets[0].at("POSITION"))]
+      .maxValues = {0.5, 0, 0};
+  make_sparse(m, p0.attributes.at("POSITION"), {2}, {1, 1, 0.25f}, true,
+              TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+  m.accessors[static_cast<std::size_t>(p0.attributes.at("POSITION"))].maxValues = {1, 1, 0.25};
+  return m;
+}
+
+TEST_F(MeshDocumentTest, ReadsSparseAccessors) {
+  for (const bool binary : {false, true}) {
+    const std::string in = path(binary ? "s.glb" : "s.gltf");
+    save(sparse_character(), in, binary);
+    const MeshDocument doc = read_mesh_document(in);
+    const Mesh& t = doc.triangles();
+    ASSERT_EQ(t.vertex_count(), 7u);
+    EXPECT_EQ(Eigen::Vector3d(t.vertices.row(2).transpose()),
+              Eigen::Vector3d(1, 1, 0.25));  // replaced
+    EXPECT_EQ(Eigen::Vector3d(t.vertices.row(3).transpose()), Eigen::Vector3d(0, 1, 0));  // base
+    ASSERT_EQ(doc.morph_targets().size(), 1u);
+    const MorphTarget& blink = doc.morph_targets()[0];
+    EXPECT_EQ(blink.name, "blink");
+    ASSERT_EQ(blink.position_deltas.rows(), 7);
+    EXPECT_EQ(blink.normal_deltas.rows(), 0);
+    Vertices expected = Vertices::Zero(7, 3);
+    expected(0, 2) = 0.1f;  // float in the file
+    expected(6, 0) = 0.5;   // the second primitive's row 2 = vertex 4 + 2
+    EXPECT_EQ(blink.position_deltas, expected);
+
+    // written unchanged: the sparse accessors stay sparse, the same numbers come back
+    doc.write(path("same.glb"), t.vertices, false);
+    const tinygltf::Model same = load(path("same.glb"));
+    EXPECT_TRUE(same.accessors[static_cast<std::size_t>(
+                                   same.meshes[0].primitives[0].attributes.at("POSITION"))]
+                    .sparse.isSparse);
+    EXPECT_TRUE(same.accessors[static_cast<std::size_t>(
+                                   same.meshes[0].primitives[0].targets[0].at("POSITION"))]
+                    .sparse.isSparse);
+    const MeshDocument again = read_mesh_document(path("same.glb"));
+    EXPECT_EQ(again.triangles().vertices, t.vertices);
+    EXPECT_EQ(again.morph_targets()[0].position_deltas, expected);
+
+    // moved: the sparse POSITION becomes dense with every row; the targets stay sparse
+    Vertices moved = t.vertices;
+    moved(1, 1) = -0.5;
+    doc.write(path("moved.gltf"), moved, false);
+    const tinygltf::Model m = load(path("moved.gltf"));
+    const auto& pa =
+        m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].attributes.at("POSITION"))];
+    EXPECT_FALSE(pa.sparse.isSparse);
+    EXPECT_EQ(floats(m, m.meshes[0].primitives[0].attributes.at("POSITION")),
+              (std::vector<float>{0, 0, 0, 1, -0.5f, 0, 1, 1, 0.25f, 0, 1, 0}));
+    EXPECT_EQ(pa.minValues, (std::vector<double>{0, -0.5, 0}));
+    EXPECT_TRUE(
+        m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].targets[0].at("POSITION"))]
+            .sparse.isSparse);
+    const MeshDocument back = read_mesh_document(path("moved.gltf"));
+    EXPECT_EQ(back.triangles().vertices, moved);
+    EXPECT_EQ(back.morph_targets()[0].position_deltas, expected);
+  }
+}
+
+TEST_F(MeshDocumentTest, SparseTargetsSurviveAddingOurs) {
+  save(sparse_character(), path("s.glb"), true);
+  const MeshDocument doc = read_mesh_document(path("s.glb"));
+  Vertices smile = Vertices::Zero(7, 3);
+  smile(3, 1) = 0.125;
+  doc.write_gltf_with_targets(path("out.glb"), {MorphTarget{"smile", smile, {}}});
+  const MeshDocument back = read_mesh_document(path("out.glb"));
+  ASSERT_EQ(back.morph_targets().size(), 2u);
+  EXPECT_EQ(back.morph_targets()[0].name, "blink");
+  EXPECT_EQ(back.morph_targets()[0].position_deltas, doc.morph_targets()[0].position_deltas);
+  EXPECT_EQ(back.morph_targets()[1].name, "smile");
+  EXPECT_EQ(back.morph_targets()[1].position_deltas, smile);
+  EXPECT_EQ(back.triangles().vertices, doc.triangles().vertices);
+}
+
+TEST_F(MeshDocumentTest, RejectsBadSparseAccessors) {
+  const auto target_of = [](const tinygltf::Model& m) {
+    return m.meshes[0].primitives[0].targets[0].at("POSITION");
+  };
+  struct Case {
+    const char* name;
+    std::function<void(tinygltf::Model&)> damage;
+    std::string pointer_tail;  // after /accessors/<target>
+  };
+  const std::vector<Case> cases = {
+      {"index out of range",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1, 4}, {0, 0, 1, 0, 0, 1}, false);
+       },
+       "/sparse/indices"},
+      {"indices not increasing",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {2, 1}, {0, 0, 1, 0, 0, 1}, false);
+       },
+       "/sparse/indices"},
+      {"repeated index",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1, 1}, {0, 0, 1, 0, 0, 1}, false);
+       },
+       "/sparse/indices"},
+      {"count above the accessor's",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {0, 1, 2, 3, 4}, std::vector<float>(15, 0.0f), false);
+       },
+       "/sparse/count"},
+      {"count 0",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.count = 0;
+       },
+       "/sparse/count"},
+      {"float indices",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, 0, 1}, false, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.componentType =
+             TINYGLTF_COMPONENT_TYPE_FLOAT;
+       },
+       "/sparse/indices/componentType"},
+      {"signed short indices",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.componentType =
+             TINYGLTF_COMPONENT_TYPE_SHORT;
+       },
+       "/sparse/indices/componentType"},
+      {"truncated indices",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.count = 2;
+       },
+       "/sparse/indices"},
+      {"truncated values",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1, 2}, {0, 0, 1}, false);
+       },
+       "/sparse/values"},
+      {"values offset beyond the view",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.values.byteOffset = 1 << 30;
+       },
+       "/sparse/values"},
+      {"negative indices offset",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.byteOffset = -4;
+       },
+       "/sparse/indices"},
+      {"no such values view",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
+         m.accessors[static_cast<std::size_t>(target_of(m))].sparse.values.bufferView = 999;
+       },
+       "/sparse/values/bufferView"},
+      {"strided indices view",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, 0, 1}, false);
+         m
+             .bufferViews[static_cast<std::size_t>(
+                 m.accessors[static_cast<std::size_t>(target_of(m))].sparse.indices.bufferView)]
+             .byteStride = 4;
+       },
+       "/sparse/indices/bufferView"},
+      {"NaN value",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {1}, {0, std::nanf(""), 1}, false);
+       },
+       ""},
+      {"infinite value",
+       [&](tinygltf::Model& m) {
+         make_sparse(m, target_of(m), {3}, {0, 0, std::numeric_limits<float>::infinity()}, false);
+       },
+       ""},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    tinygltf::Model m = character();
+    c.damage(m);
+    save(m, path("bad.gltf"), false);
+    expect_gltf_error(path("bad.gltf"),
+                      "/accessors/" + std::to_string(target_of(m)) + c.pointer_tail);
+  }
+  {  // a sparse POSITION with NaN: the POSITION accessor is named
+    tinygltf::Model m = character();
+    const int pos = m.meshes[0].primitives[1].attributes.at("POSITION");
+    make_sparse(m, pos, {0}, {std::nanf(""), 0, 0}, true);
+    save(m, path("nan.glb"), true);
+    expect_gltf_error(path("nan.glb"), "/accessors/" + std::to_string(pos));
+  }
+  {  // primitives with different target counts
+    tinygltf::Model m = character();
+    m.meshes[0].primitives[1].targets.clear();
+    save(m, path("t.gltf"), false);
+    expect_gltf_error(path("t.gltf"), "/meshes/0/primitives/1/targets");
+  }
+  {  // a target with the wrong number of elements
+    tinygltf::Model m = character();
+    m.accessors[static_cast<std::size_t>(target_of(m))].count = 3;
+    save(m, path("c.gltf"), false);
+    expect_gltf_error(path("c.gltf"), "/accessors/" + std::to_string(target_of(m)) + "/count");
+  }
+}
+
 TEST_F(MeshDocumentTest, LoadFaceReadsObjThroughTheDocument) {
   save_face(path("face.rig"), make_generic_face());
   const Face face = load_face(path("face.rig"));

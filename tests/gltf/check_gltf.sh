@@ -32,5 +32,13 @@ fi
 "$BUILD/apps/retarget/retarget" --target "$WORK/user.gltf" --out "$WORK/user_rig" --generations 2 --population 6 \
   --quiet --no-png
 "$BUILD/apps/faceanim/faceanim" --rig "$WORK/user_rig/face.rig" --params "$WORK/p.csv" --gltf "$WORK/user_anim.glb"
+# the same with their morph target as a sparse accessor (as engines export them): the transfer keeps
+# it, faceanim adds ours after it
+"$BUILD/tests/make_user_gltf" "$WORK/user_sparse.gltf" --sparse
+"$BUILD/apps/retarget/retarget" --target "$WORK/user_sparse.gltf" --out "$WORK/user_sparse_rig" --generations 2 \
+  --population 6 --quiet --no-png
+"$BUILD/apps/faceanim/faceanim" --rig "$WORK/user_sparse_rig/face.rig" --params "$WORK/p.csv" \
+  --gltf "$WORK/user_sparse_anim.glb"
 node "$SRC/tests/gltf/validate.mjs" "$WORK/faceanim.gltf" "$WORK/faceanim.glb" "$WORK/arkit.glb" "$WORK/obie/face.glb" \
-  "$WORK/user.gltf" "$WORK/user_anim.glb"
+  "$WORK/user.gltf" "$WORK/user_anim.glb" "$WORK/user_sparse.gltf" "$WORK/user_sparse_rig/face.glb" \
+  "$WORK/user_sparse_anim.glb"

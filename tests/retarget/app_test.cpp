@@ -17,6 +17,7 @@
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/gltf.hpp"
 #include "emoface/facemesh/io.hpp"
+#include "emoface/facemesh/mesh_document.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 #include "user_gltf.hpp"
 
@@ -127,6 +128,67 @@ TEST(RetargetApp, TransferKeepsTheUsersFileAndRigsIt) {
   EXPECT_EQ(slurp(out2 / "face.rig"), slurp(out / "face.rig"));
 }
 
+// The .mtl's textures go along (relative layout kept, names with spaces, option flags); one from
+// outside the input's directory is copied in under its base name and the .mtl line rewritten; a
+// missing one is a warning in report.json. A failure while writing leaves nothing of the set
+// behind.
+TEST(RetargetApp, TransferCopiesTheTextures) {
+  TempDir t;
+  const auto in = t.path / "in" / "user";
+  fs::create_directories(in / "textures");
+  fs::create_directories(t.path / "elsewhere");
+  write_user_obj(in / "head.obj");
+  const std::string mtl =
+      "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd -s 1 1 1 -bm 0.5 textures/skin tone.png\n"
+      "bump ../../elsewhere/bump.png\nmap_Ks missing.png\nnewmtl eye\nKd 1 1 1\n";
+  std::ofstream(in / "head.mtl") << mtl;
+  std::ofstream(in / "textures" / "skin tone.png") << "PNG skin";
+  std::ofstream(t.path / "elsewhere" / "bump.png") << "PNG bump";
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + (in / "head.obj").string() + " --out " + out.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            0);
+  EXPECT_EQ(slurp(out / "face.obj"), slurp(in / "head.obj"));
+  EXPECT_EQ(slurp(out / "textures" / "skin tone.png"), "PNG skin");
+  EXPECT_EQ(slurp(out / "bump.png"), "PNG bump");
+  std::string expected = mtl;
+  expected.replace(expected.find("../../elsewhere/bump.png"), 24, "bump.png");
+  EXPECT_EQ(slurp(out / "head.mtl"), expected);
+  EXPECT_FALSE(fs::exists(t.path / "in" / "bump.png"));
+  const std::string report = slurp(out / "report.json");
+  EXPECT_NE(report.find("texture 'missing.png' ('head.mtl' line 5) not found"), std::string::npos)
+      << report;
+  EXPECT_NE(report.find("copied as 'bump.png'"), std::string::npos);
+  // report.json cannot be written (a directory in its place): none of the set is left
+  const auto blocked = t.path / "blocked";
+  fs::create_directories(blocked / "report.json");
+  EXPECT_EQ(run("--target " + (in / "head.obj").string() + " --out " + blocked.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            2);
+  std::size_t n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(blocked)) ++n, (void)e;
+  EXPECT_EQ(n, 1u);  // only the directory that was there
+}
+
+// A second real mesh: MediaPipe's canonical face model (Apache-2.0, ../shared/meshes only, never in
+// the repository) is a face mask, not a head — refused with a clear message, nothing written.
+TEST(RetargetApp, TransferRefusesAFaceMask) {
+  const std::string mask =
+      std::string(EMOFACE_SOURCE_DIR) + "/../shared/meshes/mediapipe_canonical_face_model.obj";
+  if (!fs::exists(mask)) GTEST_SKIP() << "../shared/meshes absent";
+  TempDir t;
+  const auto out = t.path / "out";
+  const int status =
+      std::system((std::string(RETARGET_EXE) + " --target " + mask + " --out " + out.string() +
+                   " --quiet --no-png 2>" + (t.path / "err.txt").string())
+                      .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_NE(slurp(t.path / "err.txt").find("no top of head (a face mask"), std::string::npos)
+      << slurp(t.path / "err.txt");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(RetargetApp, TransferWritesNothingOnBadInput) {
   TempDir t;
   const auto in = t.path / "in";
@@ -151,8 +213,7 @@ TEST(RetargetApp, TransferWritesNothingOnBadInput) {
   EXPECT_EQ(run("--target " + (in / "nan.obj").string() + " --out " + out.string() + " --quiet"), 2);
   std::ofstream(in / "nofaces.obj") << "v 0 0 0\nv 1 1 0\nv 0 0 1\n";
   EXPECT_EQ(run("--target " + (in / "nofaces.obj").string() + " --out " + out.string() + " --quiet"), 2);
-  EXPECT_FALSE(fs::exists(out / "face.rig"));
-  EXPECT_FALSE(fs::exists(out / "report.json"));
+  EXPECT_FALSE(fs::exists(out));  // not even the directory
   // --landmarks without transfer is a usage error
   EXPECT_EQ(run("--mode deform-source --target " + (in / "head.obj").string() + " --out " + out.string() + " --landmarks " +
                 (in / "lm.json").string()), 1);
@@ -174,6 +235,34 @@ TEST(RetargetApp, TransferOfGltfWritesGlb) {
   for (Eigen::Index v = 0; v < face.mesh.vertices.rows(); ++v)
     worst = std::max(worst, (rigged.rig.frame.to_mesh(rigged.mesh.vertices.row(v).transpose()) - face.mesh.vertices.row(v).transpose()).norm());
   EXPECT_LT(worst, 1e-6);  // glTF stores float32
+}
+
+// A user's glTF whose own morph target is a sparse accessor (as engines export them, glTF 2.0
+// §3.6.2.3): the transfer reads it and writes it back — still sparse, the same deltas.
+TEST(RetargetApp, TransferKeepsSparseMorphTargets) {
+  TempDir t;
+  const auto face = emoface::facemesh::make_default_face();
+  const auto in = t.path / "user.glb";
+  ASSERT_TRUE(emoface::testing::write_user_gltf(in.string(), face.mesh, true));
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + in.string() + " --out " + out.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            0);
+  const auto before = emoface::facemesh::read_mesh_document(in.string());
+  const auto after = emoface::facemesh::read_mesh_document((out / "face.glb").string());
+  ASSERT_EQ(before.morph_targets().size(), 1u);
+  ASSERT_EQ(after.morph_targets().size(), 1u);
+  EXPECT_EQ(after.morph_targets()[0].name, "user_smile");
+  EXPECT_GT(before.morph_targets()[0].position_deltas.maxCoeff(), 0.0019);  // 2 mm rows read
+  EXPECT_EQ(after.morph_targets()[0].position_deltas, before.morph_targets()[0].position_deltas);
+  EXPECT_EQ(after.triangles().vertices, before.triangles().vertices);
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, (out / "face.glb").string())) << err;
+  EXPECT_TRUE(
+      m.accessors[static_cast<std::size_t>(m.meshes[0].primitives[0].targets[0].at("POSITION"))]
+          .sparse.isSparse);
 }
 
 #ifdef FACEANIM_EXE
@@ -214,6 +303,96 @@ TEST(RetargetApp, FaceanimAnimatesTheTransferredMesh) {
   ASSERT_EQ(a.vertices.rows(), b.vertices.rows());
   EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-6);
 }
+// A scanner's binary PLY with vertex colours and a property of its own: the transfer copies it, the
+// faceanim frames are that PLY with only the moved vertices' x/y/z bytes changed (colours and the
+// unknown property kept), and facerender shows the file's colours on the user's rig.
+TEST(RetargetApp, PlyColoursSurviveTransferAndAnimation) {
+  TempDir t;
+  const auto face = emoface::facemesh::make_generic_face();
+  const auto& v = face.mesh.vertices;
+  std::string ply = "ply\nformat binary_little_endian 1.0\ncomment a scanner\nelement vertex " +
+                    std::to_string(v.rows()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar "
+                    "red\nproperty uchar green\n"
+                    "property uchar blue\nproperty float confidence\nelement face " +
+                    std::to_string(face.mesh.faces.rows()) +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
+  auto put = [&ply](const void* p, std::size_t n) { ply.append(static_cast<const char*>(p), n); };
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const auto f = static_cast<float>(v(i, k));
+      put(&f, 4);
+    }
+    const unsigned char rgb[3] = {40, static_cast<unsigned char>(v(i, 0) > 0 ? 200 : 90),
+                                  60};  // green, darker on the right
+    put(rgb, 3);
+    const float confidence = 0.75f;
+    put(&confidence, 4);
+  }
+  for (Eigen::Index f = 0; f < face.mesh.faces.rows(); ++f) {
+    const unsigned char n = 3;
+    put(&n, 1);
+    for (int k = 0; k < 3; ++k) put(&face.mesh.faces(f, k), 4);
+  }
+  std::ofstream(t.path / "scan.ply", std::ios::binary) << ply;
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + (t.path / "scan.ply").string() + " --out " + out.string() +
+                " --generations 2 --population 6 --quiet --no-png"),
+            0);
+  EXPECT_TRUE(slurp(out / "face.ply") == ply);  // byte for byte (not printed: binary)
+  int status = 0;
+#ifdef FACEANIM_EXE
+  std::ofstream(t.path / "p.csv")
+      << "masseter,zygomatic_major_l,zygomatic_major_r\n0,0,0\n1,0.8,0.8\n";
+  const auto frames = t.path / "frames";
+  status = std::system((std::string(FACEANIM_EXE) + " --rig " + (out / "face.rig").string() +
+                        " --params " + (t.path / "p.csv").string() + " --out " + frames.string() +
+                        " 2>/dev/null")
+                           .c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const std::string open = slurp(frames / "frame_0001.ply");
+  ASSERT_EQ(open.size(), ply.size());  // the same binary layout
+  const auto in_doc = emoface::facemesh::read_mesh_document((t.path / "scan.ply").string());
+  const auto frame = emoface::facemesh::read_mesh_document((frames / "frame_0001.ply").string());
+  EXPECT_EQ(frame.vertex_colors(), in_doc.vertex_colors());
+  ASSERT_EQ(frame.vertex_colors().size(), static_cast<std::size_t>(v.rows()));
+  std::size_t moved = 0, other_bytes_changed = 0;
+  const std::size_t body = ply.find("end_header\n") + 11;
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    moved += (frame.triangles().vertices.row(i) - in_doc.triangles().vertices.row(i)).norm() > 0.0;
+    const std::size_t rec = body + static_cast<std::size_t>(i) * 19;
+    other_bytes_changed += open.compare(rec + 12, 7, ply, rec + 12, 7) != 0;  // colour + confidence
+  }
+  EXPECT_GT(moved, 300u);
+  EXPECT_EQ(other_bytes_changed, 0u);
+  EXPECT_TRUE(open.substr(body + static_cast<std::size_t>(v.rows()) * 19) ==
+              ply.substr(body + static_cast<std::size_t>(v.rows()) * 19));
+  EXPECT_TRUE(open.substr(0, body) == ply.substr(0, body));  // the header
+  // neutral: every vertex back where the user had it (float file, through the rig frame and back)
+  const auto neutral = emoface::facemesh::read_mesh_document((frames / "frame_0000.ply").string());
+  EXPECT_LT((neutral.triangles().vertices - in_doc.triangles().vertices).cwiseAbs().maxCoeff(),
+            1e-6);
+  EXPECT_EQ(neutral.vertex_colors(), in_doc.vertex_colors());
+#endif
+#ifdef FACERENDER_EXE
+  // facerender on the user's rig: the file's colours, not the rig's material colours
+  emoface::facemesh::write_mesh((t.path / "plain.ply").string(),
+                                emoface::facemesh::read_mesh((out / "face.ply").string()));
+  for (const char* m : {"face", "plain"}) {
+    const std::string mesh =
+        m == std::string("face") ? (out / "face.ply").string() : (t.path / "plain.ply").string();
+    status = std::system((std::string(FACERENDER_EXE) + " " + mesh + " --rig " +
+                          (out / "face.rig").string() + " --out " +
+                          (t.path / (std::string(m) + ".png")).string() + " 2>/dev/null")
+                             .c_str());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << m;
+  }
+  EXPECT_NE(slurp(t.path / "face.png"), slurp(t.path / "plain.png"));
+  if (const char* keep = std::getenv("EMOFACE_KEEP_PNG"))
+    fs::copy_file(t.path / "face.png", keep, fs::copy_options::overwrite_existing);
+#endif
+}
+
 // A user's own glTF (skin with inverse bind matrices, UVs + texture under their material, a target
 // and an animation of theirs), rigged by the transfer and animated by faceanim --gltf: everything
 // of theirs comes back unchanged, our targets (parameters + the 52 ARKit shapes) and our weights

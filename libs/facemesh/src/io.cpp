@@ -398,7 +398,7 @@ Face load_face(const std::string& rig_path) {
   } catch (const InvalidInput& e) {
     throw FormatError(where, e.what());
   }
-  if (format == MeshFormat::Ply || format == MeshFormat::Off) {
+  if (format == MeshFormat::Off) {
     face.mesh = read_mesh(mesh_path);
   } else {
     auto document = std::make_shared<MeshDocument>(read_mesh_document(mesh_path));
@@ -445,7 +445,9 @@ void write_face_mesh(const std::string& path, const Face& face, const Vertices& 
   const bool doc_fits = doc && doc->triangles().vertices.rows() == positions.rows() && doc->triangles().faces == face.mesh.faces;
   const bool doc_gltf = doc_fits && (doc->format() == MeshFormat::Gltf || doc->format() == MeshFormat::Glb);
   const Vertices file = to_mesh_frame(face.rig, positions, doc_fits ? &doc->triangles().vertices : nullptr);
-  if (doc_fits && ((doc->format() == MeshFormat::Obj && format == MeshFormat::Obj) || (doc_gltf && gltf))) {
+  const bool same_kind = doc_fits && doc->format() == format &&
+                         (format == MeshFormat::Obj || format == MeshFormat::Ply);
+  if (same_kind || (doc_gltf && gltf)) {
     doc->write(path, file);
   } else if (gltf) {
     throw InvalidInput("'" + path + "': a .gltf/.glb mesh file needs a face whose mesh is a glTF document");

@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <set>
@@ -22,6 +24,7 @@
 #include "emoface/core/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 #include "gltf_buffers.hpp"
+#include "ply_document.hpp"
 
 namespace emoface::facemesh {
 
@@ -40,6 +43,8 @@ struct MeshDocument::Impl {
   bool has_uvs = false;
   std::vector<Eigen::Vector3f> colors;
   std::vector<std::string> material_libraries;
+  std::vector<MorphTarget> targets;                // glTF: the first mesh's own morph targets
+  std::shared_ptr<const detail::PlyDocument> ply;  // PLY: the file, kept whole
 
   // OBJ: the file text and its logical lines (a line continued with '\' spans several physical lines).
   enum class LineKind { Other, Vertex, Normal };
@@ -109,6 +114,7 @@ const std::vector<MeshGroup>& MeshDocument::groups() const { return impl_->group
 bool MeshDocument::has_uvs() const { return impl_->has_uvs; }
 const std::vector<Eigen::Vector3f>& MeshDocument::vertex_colors() const { return impl_->colors; }
 const std::vector<std::string>& MeshDocument::material_libraries() const { return impl_->material_libraries; }
+const std::vector<MorphTarget>& MeshDocument::morph_targets() const { return impl_->targets; }
 
 namespace {
 
@@ -442,18 +448,82 @@ void write_obj(const MeshDocument::Impl& doc, const std::string& path, const Ver
   core::write_file_atomic(path, out);
 }
 
-void copy_material_libraries(const MeshDocument::Impl& doc, const std::string& path) {
-  const fs::path from_dir = fs::path(doc.path).parent_path();
+void copy_material_libraries(const MeshDocument& document, const std::string& path) {
+  const fs::path from_dir = fs::path(document.path()).parent_path();
   const fs::path to_dir = fs::path(path).parent_path();
   std::error_code ec;
   if (fs::equivalent(from_dir.empty() ? "." : from_dir, to_dir.empty() ? "." : to_dir, ec)) return;
-  for (const auto& lib : doc.material_libraries) {
-    const fs::path src = from_dir / lib;
-    if (!fs::is_regular_file(src)) continue;  // a missing .mtl is the user's; the OBJ still reads
-    const fs::path dst = to_dir / lib;
+  // the .mtl files and their textures (a missing one is the user's; the OBJ still reads)
+  for (const auto& file : document.companion_files().files) {
+    const fs::path dst = to_dir / file.path;
     fs::create_directories(dst.parent_path(), ec);
-    core::write_file_atomic(dst.string(), core::read_file(src.string()));
+    core::write_file_atomic(dst.string(), file.bytes);
   }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// PLY (ply_document.hpp: our parser keeps every element and property)
+
+void read_ply(MeshDocument::Impl& doc) {
+  auto ply =
+      std::make_shared<detail::PlyDocument>(detail::parse_ply(core::read_file(doc.path), doc.path));
+  const std::size_t nv = ply->xyz.size() / 3;
+  doc.tri.vertices.resize(static_cast<long>(nv), 3);
+  std::copy(ply->xyz.begin(), ply->xyz.end(), doc.tri.vertices.data());
+  std::vector<std::array<int, 3>> faces;
+  std::vector<std::size_t> line_of;
+  MeshGroup group;
+  for (std::size_t p = 0; p < ply->polygons.size(); ++p) {
+    const auto& poly = ply->polygons[p];
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
+      if (is_degenerate(doc.tri.vertices, poly[0], poly[k], poly[k + 1])) {
+        ++doc.dropped;
+        continue;
+      }
+      group.faces.push_back(static_cast<int>(faces.size()));
+      faces.push_back({poly[0], poly[k], poly[k + 1]});
+      doc.polygon_of_triangle.push_back(static_cast<int>(p));
+      line_of.push_back(ply->polygon_line[p]);
+    }
+  }
+  SourceLocation where;
+  where.file = doc.path;
+  if (faces.empty())
+    throw FormatError(where, ply->polygons.empty() ? "no faces" : "no non-degenerate triangle");
+  doc.tri.faces.resize(static_cast<long>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k)
+      doc.tri.faces(static_cast<long>(f), k) = faces[f][static_cast<std::size_t>(k)];
+  }
+  const int bad = overshared_edge(doc.tri.faces, group.faces);
+  if (bad >= 0) {
+    where.line = line_of[static_cast<std::size_t>(bad)];
+    throw FormatError(
+        where, "face " + std::to_string(doc.polygon_of_triangle[static_cast<std::size_t>(bad)]) +
+                   ": an edge shared by more than two triangles (non-manifold)");
+  }
+  doc.groups.push_back(std::move(group));
+  doc.colors = ply->colors;
+  doc.ply = std::move(ply);
+}
+
+void write_ply_document(const MeshDocument::Impl& doc, const std::string& path,
+                        const Vertices& positions, bool recompute_normals) {
+  const Vertices& old = doc.tri.vertices;
+  std::vector<char> dirty(static_cast<std::size_t>(old.rows()), 0);
+  Vertices normals;
+  if (recompute_normals && doc.ply->has_normals) {
+    normals = vertex_normals(positions, doc.tri.faces);
+    const Faces& F = doc.tri.faces;
+    for (long f = 0; f < F.rows(); ++f) {
+      bool moved = false;
+      for (int k = 0; k < 3; ++k)
+        moved = moved || !same_bits(old.data() + 3 * F(f, k), positions.data() + 3 * F(f, k));
+      if (!moved) continue;
+      for (int k = 0; k < 3; ++k) dirty[static_cast<std::size_t>(F(f, k))] = 1;
+    }
+  }
+  core::write_file_atomic(path, detail::write_ply(*doc.ply, positions, normals, dirty));
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -491,7 +561,34 @@ struct GltfReader {
     }
   }
 
-  // Where element i of the accessor lives; checks every bound before anything is read or allocated.
+  std::string accessor_pointer(int accessor) const {
+    return "/accessors/" + std::to_string(accessor);
+  }
+
+  const tinygltf::Accessor& accessor_at(int accessor) const {
+    if (accessor < 0 || static_cast<std::size_t>(accessor) >= doc.model.accessors.size())
+      fail(accessor_pointer(accessor), "no such accessor");
+    return doc.model.accessors[static_cast<std::size_t>(accessor)];
+  }
+
+  // The bytes of buffer view `index` (bounds checked against its buffer); `what` names the
+  // referrer.
+  const tinygltf::BufferView& buffer_view(int index, const std::string& what) const {
+    if (index < 0 || static_cast<std::size_t>(index) >= doc.model.bufferViews.size())
+      fail(what, "buffer view " + std::to_string(index) + " missing or out of range");
+    const auto& bv = doc.model.bufferViews[static_cast<std::size_t>(index)];
+    const std::string bp = "/bufferViews/" + std::to_string(index);
+    if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= doc.model.buffers.size())
+      fail(bp + "/buffer", "out of range");
+    const auto& buffer = doc.model.buffers[static_cast<std::size_t>(bv.buffer)];
+    if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset)
+      fail(bp, "exceeds its buffer");
+    return bv;
+  }
+
+  // Where element i of a dense accessor lives; checks every bound before anything is read or
+  // allocated. A sparse accessor, or one without a buffer view (zeros), has no such place: refused
+  // here (read them with elements(); the writer makes them dense first, dense_copy).
   struct View {
     const unsigned char* base = nullptr;
     unsigned char* mutable_base = nullptr;
@@ -500,28 +597,32 @@ struct GltfReader {
     bool normalized = false;
   };
   View view(int accessor) const {
-    const std::string p = "/accessors/" + std::to_string(accessor);
-    if (accessor < 0 || static_cast<std::size_t>(accessor) >= doc.model.accessors.size()) fail(p, "no such accessor");
-    const auto& a = doc.model.accessors[static_cast<std::size_t>(accessor)];
-    if (a.sparse.isSparse) fail(p + "/sparse", "sparse accessors are not supported");
-    if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= doc.model.bufferViews.size()) fail(p + "/bufferView", "missing or out of range");
-    const auto& bv = doc.model.bufferViews[static_cast<std::size_t>(a.bufferView)];
-    if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= doc.model.buffers.size()) fail("/bufferViews/" + std::to_string(a.bufferView) + "/buffer", "out of range");
-    auto& buffer = const_cast<tinygltf::Buffer&>(doc.model.buffers[static_cast<std::size_t>(bv.buffer)]);
+    const std::string p = accessor_pointer(accessor);
+    const auto& a = accessor_at(accessor);
+    if (a.sparse.isSparse) fail(p + "/sparse", "a sparse accessor has no dense storage");
+    return base_view(accessor);
+  }
+  // The accessor's base storage (its buffer view), sparse or not.
+  View base_view(int accessor) const {
+    const std::string p = accessor_pointer(accessor);
+    const auto& a = accessor_at(accessor);
     View v;
     v.component_type = a.componentType;
     v.components = components(a.type);
     const std::size_t cs = component_size(a.componentType);
     if (cs == 0 || v.components == 0) fail(p, "unsupported component type or type");
     v.element = cs * static_cast<std::size_t>(v.components);
-    v.stride = bv.byteStride ? bv.byteStride : v.element;
     v.count = a.count;
     v.normalized = a.normalized;
-    if (v.stride < v.element) fail("/bufferViews/" + std::to_string(a.bufferView) + "/byteStride", "smaller than the element");
-    if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset) {
-      fail("/bufferViews/" + std::to_string(a.bufferView), "exceeds its buffer");
-    }
     if (a.count > kMaxElements) fail(p + "/count", "count " + std::to_string(a.count) + " too large");
+    if (a.bufferView == -1) return v;  // no buffer view: zeros (glTF 2.0 §3.6.2.3), base == nullptr
+    const auto& bv = buffer_view(a.bufferView, p + "/bufferView");
+    auto& buffer =
+        const_cast<tinygltf::Buffer&>(doc.model.buffers[static_cast<std::size_t>(bv.buffer)]);
+    v.stride = bv.byteStride ? bv.byteStride : v.element;
+    if (v.stride < v.element)
+      fail("/bufferViews/" + std::to_string(a.bufferView) + "/byteStride",
+           "smaller than the element");
     if (a.count > 0) {
       const std::size_t need = a.byteOffset + v.stride * (a.count - 1) + v.element;
       if (a.byteOffset > bv.byteLength || need > bv.byteLength) fail(p + "/count", "count " + std::to_string(a.count) + " exceeds its buffer view");
@@ -532,18 +633,35 @@ struct GltfReader {
   }
 
   static double component(const View& v, std::size_t i, int k) {
-    const unsigned char* p = v.base + i * v.stride + static_cast<std::size_t>(k) * (v.element / static_cast<std::size_t>(v.components));
-    switch (v.component_type) {
+    return component_at(
+        v.base + i * v.stride +
+            static_cast<std::size_t>(k) * (v.element / static_cast<std::size_t>(v.components)),
+        v.component_type, v.normalized);
+  }
+  // One component; normalised integers mapped as glTF 2.0 §3.11 ("Animations": c / (2^n − 1),
+  // signed max(c / (2^(n−1) − 1), −1)), the same mapping the spec gives for vertex attributes.
+  static double component_at(const unsigned char* p, int type, bool normalized) {
+    switch (type) {
       case TINYGLTF_COMPONENT_TYPE_FLOAT: {
         float f;
         std::memcpy(&f, p, 4);
         return f;
       }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return v.normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        const auto c = static_cast<std::int8_t>(*p);
+        return normalized ? std::max(c / 127.0, -1.0) : c;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        std::int16_t s;
+        std::memcpy(&s, p, 2);
+        return normalized ? std::max(s / 32767.0, -1.0) : s;
+      }
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
         std::uint16_t s;
         std::memcpy(&s, p, 2);
-        return v.normalized ? s / 65535.0 : s;
+        return normalized ? s / 65535.0 : s;
       }
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
         std::uint32_t s;
@@ -552,6 +670,116 @@ struct GltfReader {
       }
       default: return std::numeric_limits<double>::quiet_NaN();
     }
+  }
+
+  // An accessor's elements as numbers (count × components, row-major), dense or sparse: glTF 2.0
+  // §3.6.2.3 "Sparse accessors": the base buffer view (zeros without one), then sparse.count
+  // elements replaced, at indices (UNSIGNED_BYTE/SHORT/INT, strictly increasing, < count) read from
+  // sparse.indices, by the tightly packed values of sparse.values. Every bound is checked before
+  // reading; errors name the accessor's JSON pointer.
+  struct Elements {
+    std::vector<double> data;
+    std::size_t count = 0;
+    int components = 0, component_type = 0;
+    bool normalized = false, sparse = false;
+    double at(std::size_t i, int k) const {
+      return data[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(k)];
+    }
+  };
+  Elements elements(int accessor) const {
+    const std::string p = accessor_pointer(accessor);
+    const auto& a = accessor_at(accessor);
+    const View v = base_view(accessor);
+    Elements e;
+    e.count = v.count;
+    e.components = v.components;
+    e.component_type = v.component_type;
+    e.normalized = v.normalized;
+    e.sparse = a.sparse.isSparse;
+    const auto nc = static_cast<std::size_t>(v.components);
+    e.data.assign(v.count * nc, 0.0);
+    if (v.base) {
+      for (std::size_t i = 0; i < v.count; ++i) {
+        for (int k = 0; k < v.components; ++k)
+          e.data[i * nc + static_cast<std::size_t>(k)] = component(v, i, k);
+      }
+    }
+    if (!a.sparse.isSparse) return e;
+    const auto& s = a.sparse;
+    const std::string sp = p + "/sparse";
+    if (s.count < 1) fail(sp + "/count", "must be at least 1, got " + std::to_string(s.count));
+    if (static_cast<std::size_t>(s.count) > a.count)
+      fail(sp + "/count",
+           std::to_string(s.count) + " exceeds the accessor's count " + std::to_string(a.count));
+    const auto n = static_cast<std::size_t>(s.count);
+    const int it = s.indices.componentType;
+    if (it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && it != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(sp + "/indices/componentType",
+           "must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, got " + std::to_string(it));
+    // the indices and values views: tightly packed (no byteStride), inside their views
+    auto packed_span = [&](int view_index, int offset, std::size_t bytes,
+                           const std::string& where) {
+      const auto& bv = buffer_view(view_index, where + "/bufferView");
+      if (bv.byteStride != 0)
+        fail(where + "/bufferView", "a sparse accessor's buffer view must not have a byteStride");
+      if (offset < 0 || static_cast<std::size_t>(offset) > bv.byteLength ||
+          bytes > bv.byteLength - static_cast<std::size_t>(offset))
+        fail(where, std::to_string(n) + " sparse elements exceed buffer view " +
+                        std::to_string(view_index));
+      return doc.model.buffers[static_cast<std::size_t>(bv.buffer)].data.data() + bv.byteOffset +
+             static_cast<std::size_t>(offset);
+    };
+    const std::size_t isize = component_size(it);
+    const unsigned char* idx =
+        packed_span(s.indices.bufferView, s.indices.byteOffset, n * isize, sp + "/indices");
+    const unsigned char* val =
+        packed_span(s.values.bufferView, s.values.byteOffset, n * v.element, sp + "/values");
+    const std::size_t cs = v.element / nc;
+    double previous = -1.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double i = component_at(idx + j * isize, it, false);
+      if (!(i > previous))
+        fail(sp + "/indices", "index " + std::to_string(static_cast<long long>(i)) + " at " +
+                                  std::to_string(j) + " is not above the one before (" +
+                                  std::to_string(static_cast<long long>(previous)) +
+                                  "): sparse indices must strictly increase");
+      if (i >= static_cast<double>(a.count))
+        fail(sp + "/indices", "index " + std::to_string(static_cast<long long>(i)) + " at " +
+                                  std::to_string(j) + " out of range (count " +
+                                  std::to_string(a.count) + ")");
+      previous = i;
+      const auto row = static_cast<std::size_t>(i);
+      for (std::size_t k = 0; k < nc; ++k)
+        e.data[row * nc + k] =
+            component_at(val + j * v.element + k * cs, v.component_type, v.normalized);
+    }
+    return e;
+  }
+
+  // A per-vertex attribute: `count` elements of one of `types` (component types), VEC<n> for n in
+  // [min_components, max_components], every number finite.
+  Elements attribute(int accessor, const std::string& name, std::size_t count,
+                     std::initializer_list<int> types, int min_components,
+                     int max_components) const {
+    const std::string p = accessor_pointer(accessor);
+    Elements e = elements(accessor);
+    bool type_ok = false;
+    for (int t : types) type_ok = type_ok || t == e.component_type;
+    if (!type_ok || e.components < min_components || e.components > max_components)
+      fail(p, name + ": unsupported component type " + std::to_string(e.component_type) +
+                  " or type VEC" + std::to_string(e.components));
+    if (e.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !e.normalized)
+      fail(p + "/normalized", name + ": integer components must be normalized");
+    if (e.count != count)
+      fail(p + "/count", name + ": " + std::to_string(e.count) + " elements for " +
+                             std::to_string(count) + " vertices");
+    for (std::size_t i = 0; i < e.data.size(); ++i) {
+      if (!std::isfinite(e.data[i]))
+        fail(p, name + ": element " + std::to_string(i / static_cast<std::size_t>(e.components)) +
+                    " is not finite");
+    }
+    return e;
   }
 
   void read() {
@@ -586,16 +814,25 @@ struct GltfReader {
       auto pos = prim.attributes.find("POSITION");
       if (pos == prim.attributes.end()) fail(p + "/attributes", "no POSITION");
       info.position = pos->second;
-      const View pv = view(info.position);
+      const Elements pv = elements(info.position);
       if (pv.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || pv.components != 3) fail("/accessors/" + std::to_string(info.position), "POSITION must be float VEC3");
       auto nrm = prim.attributes.find("NORMAL");
       if (nrm != prim.attributes.end()) {
-        const View nv = view(nrm->second);
-        if (nv.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || nv.components != 3 || nv.count != pv.count) {
-          fail("/accessors/" + std::to_string(nrm->second), "NORMAL must be float VEC3 with one entry per vertex");
-        }
+        attribute(nrm->second, "NORMAL", pv.count, {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3, 3);
         info.normal = nrm->second;
       }
+      for (const auto& [name, id] : prim.attributes) {  // UVs: checked, kept as they are
+        if (name.rfind("TEXCOORD_", 0) == 0)
+          attribute(id, name, pv.count,
+                    {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                    2, 2);
+      }
+      if (prim.targets.size() != mesh.primitives[0].targets.size())
+        fail(p + "/targets", std::to_string(prim.targets.size()) +
+                                 " morph targets, primitive 0 has " +
+                                 std::to_string(mesh.primitives[0].targets.size()) +
+                                 " (every primitive of a mesh has the same targets)");
       info.vertex_count = static_cast<int>(pv.count);
       info.triangles = prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == -1;
       auto known = offset_of.find(info.position);
@@ -607,21 +844,37 @@ struct GltfReader {
         offset_of[info.position] = info.vertex_offset;
         for (std::size_t i = 0; i < pv.count; ++i) {
           for (int c = 0; c < 3; ++c) {
-            const double x = component(pv, i, c);
+            const double x = pv.at(i, c);
             if (!std::isfinite(x)) fail("/accessors/" + std::to_string(info.position), "vertex " + std::to_string(i) + " is not finite");
             xyz.push_back(x);
           }
         }
         auto col = prim.attributes.find("COLOR_0");
         if (col != prim.attributes.end()) {
-          const View cv = view(col->second);
-          if (cv.count != pv.count || cv.components < 3) fail("/accessors/" + std::to_string(col->second), "COLOR_0 needs one RGB(A) per vertex");
+          const Elements cv =
+              attribute(col->second, "COLOR_0", pv.count,
+                        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                        3, 4);
           for (std::size_t i = 0; i < cv.count; ++i) {
-            colors.emplace_back(static_cast<float>(component(cv, i, 0)), static_cast<float>(component(cv, i, 1)), static_cast<float>(component(cv, i, 2)));
+            colors.emplace_back(static_cast<float>(cv.at(i, 0)), static_cast<float>(cv.at(i, 1)),
+                                static_cast<float>(cv.at(i, 2)));
           }
         } else {
           all_colored = false;
           colors.resize(xyz.size() / 3, Eigen::Vector3f::Ones());
+        }
+        // morph targets (glTF 2.0 §3.7.2.2): POSITION / NORMAL deltas, dense or sparse, checked and
+        // read; other target attributes (TANGENT, ...) are kept in the file, not read
+        for (std::size_t t = 0; t < prim.targets.size(); ++t) {
+          for (const auto& [name, id] : prim.targets[t]) {
+            if (name != "POSITION" && name != "NORMAL") continue;
+            Elements d = attribute(id, "morph target " + std::to_string(t) + " " + name, pv.count,
+                                   {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                    TINYGLTF_COMPONENT_TYPE_SHORT},
+                                   3, 3);
+            pending_targets_.push_back({t, name == "NORMAL", info.vertex_offset, std::move(d)});
+          }
         }
       }
       if (prim.attributes.count("TEXCOORD_0")) doc.has_uvs = true;
@@ -635,7 +888,7 @@ struct GltfReader {
       }
       std::vector<long> ids;
       if (prim.indices >= 0) {
-        const View iv = view(prim.indices);
+        const Elements iv = elements(prim.indices);
         if (iv.components != 1 || (iv.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
                                    iv.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
                                    iv.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
@@ -643,7 +896,7 @@ struct GltfReader {
         }
         ids.reserve(iv.count);
         for (std::size_t i = 0; i < iv.count; ++i) {
-          const auto id = static_cast<long>(component(iv, i, 0));
+          const auto id = static_cast<long>(iv.at(i, 0));
           if (id >= static_cast<long>(pv.count)) fail("/accessors/" + std::to_string(prim.indices), "index " + std::to_string(id) + " at " + std::to_string(i) + " out of range (" + std::to_string(pv.count) + " vertices)");
           ids.push_back(id);
         }
@@ -663,6 +916,31 @@ struct GltfReader {
     doc.tri.vertices.resize(static_cast<long>(nv), 3);
     std::copy(xyz.begin(), xyz.end(), doc.tri.vertices.data());
     if (all_colored && nv > 0) doc.colors = std::move(colors);
+    const std::size_t n_targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+    std::vector<std::string> names;
+    if (mesh.extras.IsObject() && mesh.extras.Has("targetNames") &&
+        mesh.extras.Get("targetNames").IsArray()) {
+      const auto& tn = mesh.extras.Get("targetNames");
+      for (std::size_t t = 0; t < tn.ArrayLen(); ++t)
+        names.push_back(tn.Get(static_cast<int>(t)).IsString()
+                            ? tn.Get(static_cast<int>(t)).Get<std::string>()
+                            : std::string());
+    }
+    doc.targets.resize(n_targets);
+    for (std::size_t t = 0; t < n_targets; ++t) {
+      doc.targets[t].name =
+          t < names.size() && !names[t].empty() ? names[t] : "target_" + std::to_string(t);
+      doc.targets[t].position_deltas = Vertices::Zero(static_cast<long>(nv), 3);
+    }
+    for (const auto& pt : pending_targets_) {
+      auto& target = doc.targets[pt.target];
+      Vertices& m = pt.normal ? target.normal_deltas : target.position_deltas;
+      if (m.rows() == 0) m = Vertices::Zero(static_cast<long>(nv), 3);
+      for (std::size_t i = 0; i < pt.deltas.count; ++i) {
+        for (int k = 0; k < 3; ++k)
+          m(pt.vertex_offset + static_cast<long>(i), k) = pt.deltas.at(i, k);
+      }
+    }
     std::size_t start = 0;
     for (auto& [group, end] : pending_groups_) {
       for (std::size_t i = start; i < end; ++i) {
@@ -692,12 +970,58 @@ struct GltfReader {
     }
   }
 
+  struct PendingTarget {
+    std::size_t target;
+    bool normal;
+    int vertex_offset;
+    Elements deltas;
+  };
+  std::vector<PendingTarget> pending_targets_;
   std::vector<std::array<int, 4>> pending_;
   std::vector<std::pair<MeshGroup, std::size_t>> pending_groups_;
 };
 
 void write_floats(unsigned char* base, std::size_t stride, std::size_t i, const float xyz[3]) {
   std::memcpy(base + i * stride, xyz, 3 * sizeof(float));
+}
+
+// A model with POSITION (and NORMAL) of the first mesh replaced; min/max updated.
+// New float VEC3 rows for an accessor. A dense accessor is written in place; a sparse one (or one
+// without a buffer view) whose rows change becomes dense: a new buffer view with every row, the
+// sparse object dropped (an unchanged one stays as it is). `rows(i, f)` fills row i, returns false
+// to keep the accessor's own row. Returns false when nothing was written.
+template <class Rows>
+bool rewrite_vec3(tinygltf::Model& model, const GltfReader& reader, int accessor, std::size_t count,
+                  Rows rows) {
+  auto& a = model.accessors[static_cast<std::size_t>(accessor)];
+  if (!a.sparse.isSparse && a.bufferView != -1) {
+    const auto v = reader.view(accessor);
+    float f[3];
+    for (std::size_t i = 0; i < count; ++i) {
+      if (rows(i, f)) write_floats(v.mutable_base, v.stride, i, f);
+    }
+    return true;
+  }
+  const GltfReader::Elements e = reader.elements(accessor);
+  std::vector<float> packed(count * 3);
+  bool changed = false;
+  for (std::size_t i = 0; i < count; ++i) {
+    float f[3];
+    const bool set = rows(i, f);
+    for (int k = 0; k < 3; ++k) {
+      const auto old = static_cast<float>(e.at(i, k));
+      packed[3 * i + static_cast<std::size_t>(k)] = set ? f[k] : old;
+      changed = changed || (set && std::memcmp(&f[k], &old, 4) != 0);
+    }
+  }
+  if (!changed) return false;
+  if (model.buffers.empty()) model.buffers.emplace_back();
+  a.bufferView =
+      detail::add_view(model, packed.data(), packed.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.byteOffset = 0;
+  a.sparse.isSparse = false;
+  a.sparse.count = 0;
+  return true;
 }
 
 // A model with POSITION (and NORMAL) of the first mesh replaced; min/max updated.
@@ -712,27 +1036,29 @@ tinygltf::Model updated_model(const MeshDocument::Impl& doc, const Vertices& pos
   for (const auto& prim : doc.primitives) {
     if (done[prim.position]) continue;
     done[prim.position] = true;
-    auto v = reader.view(prim.position);
     std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
-    for (int i = 0; i < prim.vertex_count; ++i) {
-      float p[3];
-      for (int k = 0; k < 3; ++k) {
-        p[k] = static_cast<float>(positions(prim.vertex_offset + i, k));
-        lo[static_cast<std::size_t>(k)] = std::min(lo[static_cast<std::size_t>(k)], static_cast<double>(p[k]));
-        hi[static_cast<std::size_t>(k)] = std::max(hi[static_cast<std::size_t>(k)], static_cast<double>(p[k]));
-      }
-      write_floats(v.mutable_base, v.stride, static_cast<std::size_t>(i), p);
-    }
+    const auto count = static_cast<std::size_t>(prim.vertex_count);
+    const bool written =
+        rewrite_vec3(copy_view.model, reader, prim.position, count, [&](std::size_t i, float* p) {
+          for (int k = 0; k < 3; ++k) {
+            p[k] = static_cast<float>(positions(prim.vertex_offset + static_cast<long>(i), k));
+            lo[static_cast<std::size_t>(k)] =
+                std::min(lo[static_cast<std::size_t>(k)], static_cast<double>(p[k]));
+            hi[static_cast<std::size_t>(k)] =
+                std::max(hi[static_cast<std::size_t>(k)], static_cast<double>(p[k]));
+          }
+          return true;
+        });
     auto& a = copy_view.model.accessors[static_cast<std::size_t>(prim.position)];
-    if (prim.vertex_count > 0) a.minValues = lo, a.maxValues = hi;
+    if (written && prim.vertex_count > 0) a.minValues = lo, a.maxValues = hi;
     if (recompute_normals && prim.normal >= 0) {
-      auto nv = reader.view(prim.normal);
-      for (int i = 0; i < prim.vertex_count; ++i) {
-        const Eigen::Vector3d n = normals.row(prim.vertex_offset + i).transpose();
-        if (!(n.squaredNorm() > 0.0)) continue;  // a vertex of no triangle: keep its normal
-        const float f[3] = {static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z())};
-        write_floats(nv.mutable_base, nv.stride, static_cast<std::size_t>(i), f);
-      }
+      rewrite_vec3(copy_view.model, reader, prim.normal, count, [&](std::size_t i, float* f) {
+        const Eigen::Vector3d n =
+            normals.row(prim.vertex_offset + static_cast<long>(i)).transpose();
+        if (!(n.squaredNorm() > 0.0)) return false;  // a vertex of no triangle: keep its normal
+        for (int k = 0; k < 3; ++k) f[k] = static_cast<float>(n[k]);
+        return true;
+      });
     }
   }
   return std::move(copy_view.model);
@@ -827,9 +1153,15 @@ void MeshDocument::write(const std::string& path, const Vertices& positions, boo
     case MeshFormat::Obj:
       if (mesh_format_from_path(path) != MeshFormat::Obj) throw InvalidInput("'" + path + "': an OBJ document is written as .obj");
       write_obj(doc, path, positions, recompute_normals);
-      if (copy_materials) copy_material_libraries(doc, path);
+      if (copy_materials) copy_material_libraries(*this, path);
       return;
     case MeshFormat::Ply:
+      if (mesh_format_from_path(path) == MeshFormat::Ply) {
+        write_ply_document(doc, path, positions, recompute_normals);
+        return;
+      }
+      write_mesh(path, Mesh{positions, doc.tri.faces});
+      return;
     case MeshFormat::Off:
       write_mesh(path, Mesh{positions, doc.tri.faces});
       return;
@@ -1020,6 +1352,8 @@ MeshDocument read_mesh_document(const std::string& path) {
   switch (doc.format) {
     case MeshFormat::Obj: read_obj(doc); break;
     case MeshFormat::Ply:
+      read_ply(doc);
+      break;
     case MeshFormat::Off:
       doc.tri = read_mesh(path);
       doc.polygon_of_triangle.resize(doc.tri.face_count());

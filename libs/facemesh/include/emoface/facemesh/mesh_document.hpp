@@ -1,17 +1,20 @@
 #pragma once
 // A user's mesh file as a document: read once, keep everything the user made (UVs, normals, groups,
-// objects, materials, other meshes, morph targets, skins), expose the triangles emoface works on, and
-// write the same file back with new vertex positions. Used by `retarget --transfer` (the output rig's
-// mesh *is* the user's mesh) and by `faceanim` frames on a transferred rig.
+// objects, materials, other meshes, morph targets, skins), expose the triangles emoface works on,
+// and write the same file back with new vertex positions. Used by `retarget --transfer` (the output
+// rig's mesh *is* the user's mesh) and by `faceanim` frames on a transferred rig.
 //
 //   MeshDocument doc = read_mesh_document("head.obj");   // .obj, .ply, .off, .gltf, .glb
-//   const Mesh& tri = doc.triangles();                   // input frame and units, vertex order kept
-//   doc.write("frame_0001.obj", deformed_vertices);      // everything else unchanged
+//   const Mesh& tri = doc.triangles();                   // input frame and units, vertex order
+//   kept doc.write("frame_0001.obj", deformed_vertices);      // everything else unchanged
 //
-// OBJ is parsed here (not through OpenMesh) so that the vertex order is exactly the file's `v` order and
-// every other line survives verbatim; polygons are fan-triangulated for triangles(). glTF 2.0 goes through
-// tinygltf: the first mesh, all of its triangle primitives (vertices of primitive k follow those of k−1).
-// PLY and OFF are read with read_mesh and written with write_mesh (no extra content to keep).
+// OBJ is parsed here (not through OpenMesh) so that the vertex order is exactly the file's `v`
+// order and every other line survives verbatim; polygons are fan-triangulated for triangles().
+// glTF 2.0 goes through tinygltf: the first mesh, all of its triangle primitives (vertices of
+// primitive k follow those of k−1). PLY is parsed here too (ASCII and binary): every element and
+// property is kept, vertex colours are read, and writing patches only the x/y/z (and nx/ny/nz)
+// numbers of moved vertices. OFF is read with read_mesh and written with write_mesh (no extra
+// content to keep).
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +48,19 @@ struct DocumentTargetsReport {
   std::size_t sparse_accessors = 0, dense_accessors = 0;
 };
 
+/// A file that goes with a copy of a document: its path relative to the copy's directory (inside
+/// it,
+/// '/' separated) and its bytes.
+struct CompanionFile {
+  std::string path;
+  std::string bytes;
+};
+/// MeshDocument::companion_files: what to write beside a copy, and what could not be (warnings).
+struct Companions {
+  std::vector<CompanionFile> files;
+  std::vector<std::string> warnings;
+};
+
 struct MeshGroup {
   std::string object;    ///< OBJ `o` (or glTF mesh name), may be empty
   std::string group;     ///< OBJ `g` (or "primitive_<k>"), may be empty
@@ -73,21 +89,39 @@ class MeshDocument {
   const std::vector<MeshGroup>& groups() const;
   /// Texture coordinates present (OBJ `vt` referenced by faces, glTF TEXCOORD_0).
   bool has_uvs() const;
-  /// Per-vertex colours when every vertex has one (OBJ `v x y z r g b`, glTF COLOR_0 on every primitive),
-  /// else empty. PLY colour properties are not read (PLY/OFF documents go through read_mesh).
+  /// Per-vertex colours when every vertex has one (OBJ `v x y z r g b`, glTF COLOR_0 on every
+  /// primitive, PLY red/green/blue (or diffuse_*) as uchar/ushort (scaled to 0-1) or float/double),
+  /// else empty.
   const std::vector<Eigen::Vector3f>& vertex_colors() const;
   /// OBJ `mtllib` files named by the document (paths as written, relative to the file's directory).
   const std::vector<std::string>& material_libraries() const;
+  /// OBJ: the files a copy of this document written into another directory needs — every `mtllib`
+  /// and every texture its `map_*`/`bump`/`disp`/`decal`/`refl`/`norm` statements name (option
+  /// flags such as `-s 1 1 1 -bm 0.5` skipped, names with spaces kept), at the same paths relative
+  /// to the copy as to the original. Nothing lands outside the copy's directory: a texture with an
+  /// absolute path or one leaving the mesh's directory (`..`) is copied in beside its .mtl under
+  /// its base name (made unique) and the .mtl line rewritten to name it; a material library outside
+  /// it is not copied. Missing files are warnings, not errors. Empty for other formats. Reads the
+  /// files; throws IoError when an existing one cannot be read.
+  Companions companion_files() const;
+  /// glTF: the first mesh's own morph targets (dense or sparse accessors), in file order: name from
+  /// mesh.extras.targetNames ("target_<k>" when unnamed), POSITION deltas per vertex of triangles()
+  /// (#V by 3, the file's frame and units; zero rows where a primitive's target has no POSITION),
+  /// NORMAL deltas likewise or empty when no primitive has any. Empty for other formats.
+  const std::vector<MorphTarget>& morph_targets() const;
 
   /// Writes the document with `positions` (#V by 3, input frame) in place of the original vertex
-  /// positions; everything else byte for byte where the format allows (OBJ: only the numbers of the `v`
-  /// lines whose position changed (bit comparison) change, `%.17g`, colours on them kept; with
-  /// `recompute_normals` each `vn` used by a triangle with a moved vertex is recomputed, area-weighted;
-  /// glTF: POSITION (and NORMAL when recompute_normals) data of the first mesh rewritten in place,
-  /// min/max updated; `path` may be .gltf (buffers embedded) or .glb). `positions` equal to
-  /// triangles().vertices reproduces the input file byte for byte for OBJ. Copies the OBJ's material libraries next to `path` when `copy_materials`
-  /// and the target directory differs. Atomic (temporary file + rename); throws InvalidInput on a size
-  /// mismatch or non-finite positions, IoError on failure.
+  /// positions; everything else byte for byte where the format allows (OBJ: only the numbers of the
+  /// `v` lines whose position changed (bit comparison) change, `%.17g`, colours on them kept; with
+  /// `recompute_normals` each `vn` used by a triangle with a moved vertex is recomputed,
+  /// area-weighted; glTF: POSITION (and NORMAL when recompute_normals) data of the first mesh
+  /// rewritten in place, min/max updated (a sparse one that changes is written dense); `path` may
+  /// be .gltf (buffers embedded) or .glb; PLY to .ply: only the x/y/z numbers (tokens or bytes) of
+  /// moved vertices change, nx/ny/nz recomputed around them with `recompute_normals`, every other
+  /// property kept). `positions` equal to triangles().vertices reproduces the input file byte for
+  /// byte for OBJ and PLY. Copies the OBJ's material libraries and their textures (companion_files)
+  /// next to `path` when `copy_materials` and the target directory differs. Atomic (temporary file
+  /// + rename); throws InvalidInput on a size mismatch or non-finite positions, IoError on failure.
   void write(const std::string& path, const Vertices& positions, bool recompute_normals = true,
              bool copy_materials = true) const;
 
