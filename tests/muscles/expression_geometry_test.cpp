@@ -170,7 +170,7 @@ TEST_P(ExpressionGeometry, Disgust) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Faces, ExpressionGeometry, ::testing::Values(0, 1),
-                         [](const auto& info) { return std::string(subject(info.param).name); });
+                         [](const auto& p) { return std::string(subject(p.param).name); });
 
 }  // namespace
 }  // namespace emoface::muscles
