@@ -66,7 +66,8 @@ TEST(Expressions, EyesNarrowButNeverShut) {
   fear[fx::index(fx::Emotion::Fear)] = 0.9;
   surprise[fx::index(fx::Emotion::Surprise)] = 0.9;
   EXPECT_LT(aperture_fraction(parameters(anger)), 0.85);  // AU7: narrowed
-  EXPECT_LT(aperture_fraction(parameters(fear)), 0.85);
+  // fear: AU5 over a slight AU7 (docs/fuzzyexpr.md, deviations): opened, never narrowed
+  EXPECT_GT(aperture_fraction(parameters(fear)), 1.0);
   EXPECT_GT(aperture_fraction(parameters(surprise)), 1.15);  // AU5: opened
 }
 

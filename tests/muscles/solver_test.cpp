@@ -164,11 +164,21 @@ TEST(FaceSolver, ConvergesAsDeltaCShrinks) {
 }
 
 TEST(FaceSolver, RegionCutOff) {
-  // frontalis_lateralis_r may move only the right upper face (Table 2.1: region 5).
+  // frontalis_lateralis_r may move only its regions: the right upper face (Table 2.1: region 5)
+  // and, below the brow, the right upper lid and middle face (issue 14: the zone's fall-off reaches
+  // them; cut at the border it left a fold), never the left side or the lower face.
   const auto d = solver().deform(values({{"frontalis_lateralis_r", 1.0}}));
   const auto regions = fm::region_vertices(face().rig);
   std::vector<char> allowed(face().mesh.vertex_count(), 0);
-  for (int v : regions[static_cast<std::size_t>(fm::Region::RightUpperFace)]) allowed[static_cast<std::size_t>(v)] = 1;
+  for (const auto& m : face().rig.muscles) {
+    if (m.parameter != "frontalis_lateralis_r") continue;
+    for (auto r : m.regions) {
+      ASSERT_TRUE(r == fm::Region::RightUpperFace || r == fm::Region::RightUpperEyelid ||
+                  r == fm::Region::RightMiddleFace)
+          << fm::to_string(r);
+      for (int v : regions[static_cast<std::size_t>(r)]) allowed[static_cast<std::size_t>(v)] = 1;
+    }
+  }
   std::size_t moved = 0;
   for (long v = 0; v < d.vertices.rows(); ++v) {
     const bool changed = d.vertices.row(v) != face().mesh.vertices.row(v);
@@ -293,6 +303,43 @@ TEST(FaceSolver, PalpebralisTightensTheLidsButNeverClosesThem) {
   EXPECT_THROW(bad.validate(), InvalidInput);
 }
 
+TEST(FaceSolver, CheekRaiserPushesTheLowerLidUpButNeverShutsTheEye) {
+  // FACS AU6 (orbitalis): SolverOptions::lid_cheek_raise turns the lower lid up by
+  // lid_cheek_raise·close_angle·s at orbitalis level s; 0 (the default) leaves the lids alone.
+  const auto& eye = face().rig.eyes[0];
+  SolverOptions o;
+  o.eyelid_coupling = EyelidCoupling::Off;
+  const auto named = values({{"orbicularis_oculi_orbitalis_r", 0.8}});
+  const auto plain = FaceSolver(face().mesh, face().rig, o).deform(named);
+  o.lid_cheek_raise = 0.3;
+  const auto raised = FaceSolver(face().mesh, face().rig, o).deform(named);
+  int checked = 0;
+  for (std::size_t k = 0; k < eye.lower_lid.size(); ++k) {
+    if (eye.lower_lid_weights[k] < 0.999) continue;
+    EXPECT_NEAR(lid_angle(eye, plain.vertices, eye.lower_lid[k]), 0.0, 1e-9);
+    EXPECT_NEAR(lid_angle(eye, raised.vertices, eye.lower_lid[k]),
+                0.3 * 0.8 * eye.close_angle * eye.lower_lid_weights[k], 1e-9);
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
+  const double a0 = eye_aperture(face().rig, face().mesh.vertices, 0);
+  EXPECT_LT(eye_aperture(face().rig, raised.vertices, 0),
+            eye_aperture(face().rig, plain.vertices, 0));
+  // tightener and cheek at their maxima: the lower lid's share is capped, the eye stays open
+  o.lid_cheek_raise = 0.6;
+  const auto all = FaceSolver(face().mesh, face().rig, o)
+                       .deform(values({{"orbicularis_oculi_palpebralis_r", 1.0},
+                                       {"orbicularis_oculi_orbitalis_r", 1.0}}));
+  EXPECT_GT(eye_aperture(face().rig, all.vertices, 0), 0.1 * a0);
+  SolverOptions bad;
+  bad.lid_cheek_raise = 0.61;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad.lid_cheek_raise = -0.01;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad.lid_cheek_raise = std::nan("");
+  EXPECT_THROW(bad.validate(), InvalidInput);
+}
+
 TEST(FaceSolver, BlinkClosesOnlyItsLidAndOverridesTheLevator) {
   const auto& right = face().rig.eyes[0];
   const auto& left = face().rig.eyes[1];
@@ -347,11 +394,19 @@ TEST(FaceSolver, WrinklesAlongNormalsOnlyInTheBand) {
   EXPECT_LE(diff, 0.0016 + 1e-12);  // never more than the wrinkle height a
   EXPECT_TRUE(std::any_of(with.crease.begin(), with.crease.end(), [](auto c) { return c != 0; }));
   EXPECT_TRUE(std::none_of(without.crease.begin(), without.crease.end(), [](auto c) { return c != 0; }));
-  // wrinkles only on the forehead (upper face)
+  // wrinkles on the forehead (upper face); the frontalis also lifts the upper lids' skin (issue 14:
+  // its zone would otherwise end in a fold at the region border), where the band's lower edge
+  // leaves at most a faint ridge (< 0.5 mm, at the lid fold)
   for (long v = 0; v < with.vertices.rows(); ++v) {
-    if ((with.vertices.row(v) - without.vertices.row(v)).norm() > 0.0) {
+    const double d = (with.vertices.row(v) - without.vertices.row(v)).norm();
+    if (d > 0.0) {
       const auto r = face().rig.regions[static_cast<std::size_t>(v)];
-      ASSERT_TRUE(r == fm::Region::RightUpperFace || r == fm::Region::LeftUpperFace) << v;
+      const bool forehead = r == fm::Region::RightUpperFace || r == fm::Region::LeftUpperFace;
+      const bool lid = r == fm::Region::RightUpperEyelid || r == fm::Region::LeftUpperEyelid;
+      ASSERT_TRUE(forehead || lid) << v << " " << fm::to_string(r);
+      if (lid) {
+        ASSERT_LT(d, 0.0005) << v;
+      }
     }
   }
 }

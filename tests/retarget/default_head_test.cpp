@@ -3,6 +3,7 @@
 // tongue, lashes) are bound through the rig so that the solver moves them; bad input.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -170,11 +171,10 @@ TEST(DefaultFace, TeethHiddenBehindClosedLips) {
   EXPECT_LT(parts_front, lips_front - 0.005);
 }
 
-// KNOWN DEFECT (disabled, docs/facemesh.md "The default face"): the transfer binds the inside of
-// MakeHuman's lower lip to the upper lip's part of the lip surface, so an opened jaw stretches a
-// curtain of lip triangles across the mouth and hides the teeth (0 teeth pixels at masseter 1).
-// Enable once the transfer's lip classification on MakeHuman is fixed (branch s2-transfer).
-TEST(DefaultFace, DISABLED_TeethShowWhenTheMouthOpens) {
+// Rendered with the teeth pure green: the opened jaw shows them (it used to stretch a curtain of lip
+// triangles across the mouth: the transfer bound the inside of MakeHuman's lower lip to the upper
+// lip's part of the lip surface; fixed by binding the lips by the head's own slit, s3-mouth).
+TEST(DefaultFace, TeethShowWhenTheMouthOpens) {
   const fm::Face face = fm::make_default_face();
   const mu::FaceSolver solver(face.mesh, face.rig);
   fm::RenderOptions o;
@@ -184,7 +184,9 @@ TEST(DefaultFace, DISABLED_TeethShowWhenTheMouthOpens) {
   const mu::Deformation d = solver.deform(std::map<std::string, double>{{"masseter", 1.0}});
   const fm::Image open = fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, o,
                                     fm::paint_for(face.rig));
-  EXPECT_GT(teeth_pixels(open), 300) << "the open mouth shows no teeth";
+  const int px = teeth_pixels(open);
+  std::printf("teeth pixels at masseter 1: %d\n", px);
+  EXPECT_GT(px, 300) << "the open mouth shows no teeth";
 }
 
 TEST(DefaultFace, BadInputWritesNothing) {

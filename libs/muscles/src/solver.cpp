@@ -74,6 +74,7 @@ void SolverOptions::validate() const {
         "lid_tighten_upper must be in [0, 0.6]");
   check(lid_tighten_lower >= 0.0 && lid_tighten_lower <= 0.6,
         "lid_tighten_lower must be in [0, 0.6]");
+  check(lid_cheek_raise >= 0.0 && lid_cheek_raise <= 0.6, "lid_cheek_raise must be in [0, 0.6]");
   check(lid_tighten_upper + lid_tighten_lower <= 0.8,
         "lid_tighten_upper + lid_tighten_lower must be <= 0.8 (the tightener never shuts the eye)");
   check(funnel_extrusion >= 0.0 && funnel_extrusion <= 0.05, "funnel_extrusion must be in [0, 0.05]");
@@ -693,8 +694,12 @@ void FaceSolver::apply_lids_jaw_lips(const std::vector<double>& values, const st
     const double upper =
         eye.close_angle * ((1.0 - blink) * options_.lid_tighten_upper * tight + blink) -
         (1.0 - blink) * values[opening_param_[e]] * eye.open_angle;
-    const double lower =
-        -eye.close_angle * ((1.0 - blink) * options_.lid_tighten_lower * tight + 0.2 * blink);
+    // lower lid: the tightener (AU7) and the cheek pushed up by the orbitalis (AU6), capped so
+    // that they never meet the tightened upper lid
+    const double lower_raise =
+        std::min(options_.lid_tighten_lower * tight + options_.lid_cheek_raise * lids[e].squeezing,
+                 0.8 - options_.lid_tighten_upper);
+    const double lower = -eye.close_angle * ((1.0 - blink) * lower_raise + 0.2 * blink);
     if (upper != 0.0) {
       for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {
         const int v = eye.upper_lid[k];

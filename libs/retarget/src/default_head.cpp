@@ -340,71 +340,11 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
     rig.parts.push_back(p);
   }
 
-  // ---- Mouth bag (stop-gap until the transfer classifies MakeHuman's lower lip itself: today it
-  // takes the front of the lower lip for mouth bag, which gives it jaw weights about 0.5 from the
-  // geodesic share and a curtain across the opened mouth). The bag and the lower lip's front get jaw
-  // weights from their height against the lips' contact line instead: 1 below, 0 above, blended over
-  // ±1.5 mm at the lips widening by 10 % of the depth behind them (a soft fold at the back of the
-  // bag); the bag's forward-facing front (the lower lip) is bound to the lip surface (below).
-  {
-    // the lips' front at the middle, and the contact line: 1 mm below the front vertex bound
-    // deepest into the lips (largest v) there — the lips meet at it
-    double front = -1e9;
-    for (const auto& lb : tr.lips.bound) {
-      const Vec3& p = b.v[static_cast<std::size_t>(lb.vertex)];
-      if (std::abs(p.x()) < 0.01) front = std::max(front, p.z());
-    }
-    double contact = 0.0, deepest = -1.0;
-    for (const auto& lb : tr.lips.bound) {
-      const Vec3& p = b.v[static_cast<std::size_t>(lb.vertex)];
-      if (std::abs(p.x()) < 0.01 && p.z() > front - 0.003 && lb.v > deepest) deepest = lb.v, contact = p.y() - 0.001;
-    }
-    if (deepest < 0.0) throw InvalidInput("default head: no lip vertex at the middle of the mouth");
-    std::map<int, std::size_t> jaw_index;
-    for (std::size_t k = 0; k < rig.jaw.vertices.size(); ++k) jaw_index[rig.jaw.vertices[k]] = k;
-    for (int v = 0; v < nh; ++v) {
-      if (!in_bag(v)) continue;
-      const Vec3& p = b.v[static_cast<std::size_t>(v)];
-      const double band = 0.0015 + 0.1 * std::max(0.0, front - p.z());
-      const double t = std::clamp((contact + band - p.y()) / (2.0 * band), 0.0, 1.0);
-      const double w = t * t * (3.0 - 2.0 * t);
-      const auto it = jaw_index.find(v);
-      if (it != jaw_index.end()) {
-        rig.jaw.weights[it->second] = w;
-      } else if (w > 0.0) {
-        jaw_index[v] = rig.jaw.vertices.size();
-        rig.jaw.vertices.push_back(v), rig.jaw.weights.push_back(w);
-      }
-      // the lower lip's outside (not facing far down, within 9 mm of the lips' front, up to 2 cm
-      // below the contact line): lip-coloured, and bound to the lower half of the lip B-spline
-      // surface like the transfer binds lips, by the closest of 192×48 samples of S(u, v) (u in the
-      // lower lip's half, u ∈ (0.5, 1)), weight 1 within 3 mm of the surface fading to 0 at 8 mm
-      // (MakeHuman's lower lip is fuller than the generic's; no seam with the chin)
-      if (head_normals(v, 2) > -0.5 && p.z() > front - 0.009 && p.y() < contact && p.y() > contact - 0.02) {
-        b.mat[static_cast<std::size_t>(v)] = fm::Material::Lip;
-        double best = 1e9, bu = 0.0, bv = 0.0;
-        for (int i = 0; i <= 192; ++i)
-          for (int j = 0; j <= 48; ++j) {
-            const double u = 0.5 + 0.5 * i / 192.0 - (i == 192 ? 1e-9 : 0.0), vv = j / 48.0;
-            const double d = (lip_surface_point(rig.lips, u, vv) - p).norm();
-            if (d < best) best = d, bu = u, bv = vv;
-          }
-        const double tl = std::clamp((best - 0.003) / 0.005, 0.0, 1.0);
-        const double wl = 1.0 - tl * tl * (3.0 - 2.0 * tl);
-        if (wl > 0.0) {
-          fm::LipBinding lb;
-          lb.vertex = v, lb.u = bu, lb.v = bv, lb.weight = wl;
-          lb.offset = p - lip_surface_point(rig.lips, bu, bv);
-          rig.lips.bound.push_back(lb);
-          ++rep.lower_lip_bound;
-        }
-      }
-    }
-    std::sort(rig.lips.bound.begin(), rig.lips.bound.end(),
-              [](const fm::LipBinding& x, const fm::LipBinding& y) { return x.vertex < y.vertex; });
-  }
+  // (The stop-gap that re-weighted the bag's jaw and bound the lower lip's front here is gone: the
+  // transfer now keeps the bag out of the lips, binds by the target's own slit and weights the
+  // bag's jaw by its height against the slit; docs/retarget.md "Lips".)
 
-  // ---- Colours around the mouth (stop-gap, like the two above): the transfer leaves lip material on
+  // ---- Colours around the mouth (kept as a guard): the transfer may leave lip material on
   // skin vertices that the lip surface does not drive, and mouth-bag material on vertices of the
   // face's outside at the mouth corners — dark and pink spikes around the lips. Lip colour only where
   // the lip surface drives the vertex (weight ≥ 0.5); bag colour only where the surface does not face

@@ -138,6 +138,7 @@ std::string format_transfer_report(const TransferResult& result, bool include_ti
   }
   auto& c = t["counts"];
   c["lip_bound"] = r.lip_bound, c["lip_full"] = r.lip_full, c["jaw"] = r.jaw_vertices, c["mouth_bag"] = r.mouth_bag;
+  c["lip_bag_bound"] = r.lip_bag_bound;
   c["lid_right"] = r.lid_vertices[0], c["lid_left"] = r.lid_vertices[1];
   c["eye_hole_right"] = r.eye_hole_vertices[0], c["eye_hole_left"] = r.eye_hole_vertices[1];
   c["mouth_slit_points"] = r.mouth_slit_points;  // 1.3

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -290,6 +291,48 @@ Eigen::Vector3d polyline_at(const fm::Vertices& X, const std::vector<int>& ids, 
   return X.row(ids.back()).transpose();
 }
 
+// The lip grid fitted to the target's own lips: the registered generic's lips are a smooth
+// surface of the generic's shape (MakeHuman's fuller lower lip lay up to 9 mm in front of it), and
+// a bound vertex keeps its offset from S(u, v) constant in the rig frame, so a large offset does not
+// turn or stretch with the lip and tears it off its neighbours. The control points C = C0 + D take
+// the displacement D that minimises  Σ_i |S_D(u_i, v_i) − x_i|²  over the full-weight bindings
+// + λ_s Σ_(grid neighbours a, b) |D_a − D_b|² + λ_0 Σ |D|²  (a smooth displacement of the whole
+// grid; the three coordinates decouple: one 144×144 LDLT). The offsets are then recomputed (the
+// neutral face is kept exactly).
+void refit_lip_grid(fm::LipGrid& lips, const fm::Vertices& X) {
+  constexpr int na = fm::LipGrid::kAround, nc = na * fm::LipGrid::kAcross;
+  constexpr double smooth = 0.3, ridge = 0.02;
+  if (lips.control_points.size() != static_cast<std::size_t>(nc)) return;
+  Eigen::MatrixXd N = Eigen::MatrixXd::Zero(nc, nc);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nc, 3);
+  int data = 0;
+  for (const auto& b : lips.bound) {
+    if (b.weight < 0.999) continue;
+    const auto terms = fm::lip_surface_terms(b.u, b.v);
+    const Eigen::Vector3d o = X.row(b.vertex).transpose() - lip_surface_point(lips, b.u, b.v);
+    for (const auto& t : terms) {
+      for (const auto& q : terms) N(t.control, q.control) += t.weight * q.weight;
+      rhs.row(t.control) += t.weight * o.transpose();
+    }
+    ++data;
+  }
+  if (data < nc / 4) return;  // too few lip vertices to say where the lips are
+  for (int r = 0; r < fm::LipGrid::kAcross; ++r)
+    for (int c = 0; c < na; ++c) {
+      const int a = r * na + c;
+      N(a, a) += ridge;
+      for (const int b : {r * na + (c + 1) % na, (r + 1) * na + c}) {
+        if (b >= nc) continue;
+        N(a, a) += smooth, N(b, b) += smooth, N(a, b) -= smooth, N(b, a) -= smooth;
+      }
+    }
+  const Eigen::MatrixXd D = N.ldlt().solve(rhs);
+  for (int k = 0; k < nc; ++k)
+    lips.control_points[static_cast<std::size_t>(k)] += D.row(k).transpose();
+  for (auto& b : lips.bound)
+    b.offset = X.row(b.vertex).transpose() - lip_surface_point(lips, b.u, b.v);
+}
+
 }  // namespace
 
 void UserLandmarks::validate(std::size_t vertex_count) const {
@@ -510,10 +553,30 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
           adj0[static_cast<std::size_t>(b)].push_back(a);
         }
       const fm::Vertices n0 = fm::vertex_normals(T, target.faces);
-      const LidMargin slit =
-          find_lid_margin(T, target.faces, n0, adj0, head.vertices,
-                          std::vector<std::uint8_t>(static_cast<std::size_t>(nv), 0), probe,
-                          opening, 0.8 * inner_width);
+      LidMargin slit = find_lid_margin(T, target.faces, n0, adj0, head.vertices,
+                                       std::vector<std::uint8_t>(static_cast<std::size_t>(nv), 0),
+                                       probe, opening, 0.8 * inner_width);
+      // The crease search also collects creases near the mouth that are no slit (MakeHuman: the
+      // nostrils 23 mm above it and the bag's floor 18 mm below, 32 of the 85 vertices); the slit
+      // rows are a thin band about the line through the slit's corners (its extremes in x) and
+      // lie in front of them: each row keeps the vertices within 15 % of the slit's width of
+      // that line's height and no more than 10 % of it behind the corners (polyline_at assumes
+      // one row; a stray nostril vertex put the contact line 20 mm up).
+      auto clean_row = [&](std::vector<int>& row) {
+        if (row.size() < 3 || !(slit.width > 0.0)) return;
+        const Eigen::Vector3d a = T.row(row.front()).transpose(), b = T.row(row.back()).transpose();
+        std::vector<int> kept;
+        for (int q : row) {
+          const double t = b.x() > a.x() ? std::clamp((T(q, 0) - a.x()) / (b.x() - a.x()), 0.0, 1.0)
+                                         : 0.5;
+          const Eigen::Vector3d l = (1.0 - t) * a + t * b;
+          if (std::abs(T(q, 1) - l.y()) < 0.15 * slit.width &&
+              T(q, 2) > std::min(a.z(), b.z()) - 0.1 * slit.width)
+            kept.push_back(q);
+        }
+        if (kept.size() >= 2) row = kept;
+      };
+      if (slit.ok) clean_row(slit.upper), clean_row(slit.lower);
       if (slit.ok && slit.width > 0.6 * inner_width && slit.width < 1.6 * inner_width) {
         closed_slit = slit.kind == "crease";
         mouth_probe = probe;
@@ -540,6 +603,23 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
         for (const auto& [k, q] : mouth)
           off += (q - fg.row(ib[static_cast<std::size_t>(k)]).transpose()).norm() / 8.0;
         if (off > 0.01 * hh) {
+          // the outer mouth corners (48, 54) go with them, at the source's own offset from its
+          // inner corners (scaled by the widths): left to the fit they stayed where the fit put
+          // the mouth (MakeHuman: 13 mm outside the slit's corners, the lip grid and the
+          // zygomatic insertion as wide)
+          const auto& sv = source.mesh.vertices;
+          const double s_inner = (sv.row(ib[64]) - sv.row(ib[60])).norm();
+          for (const auto& [outer, inner] : {std::pair{48, 60}, std::pair{54, 64}}) {
+            if (!(s_inner > 0.0)) break;
+            const auto it = std::find_if(mouth.begin(), mouth.end(),
+                                         [&](const auto& m) { return m.first == inner; });
+            if (it == mouth.end()) continue;
+            Eigen::Vector3d d = (sv.row(ib[static_cast<std::size_t>(outer)]) -
+                                 sv.row(ib[static_cast<std::size_t>(inner)]))
+                                    .transpose() *
+                                (slit.width / s_inner);
+            mouth.push_back({outer, it->second + d});
+          }
           for (const auto& m : mouth) given.push_back(m);
           rep.mouth_slit_points = mouth.size();
         }
@@ -744,6 +824,12 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     for (int k = 0; k < 3; ++k) all = all && lip_sample(gsurf.faces(f, k));
     if (!all) continue;
     lip_face[static_cast<std::size_t>(f)] = 1;
+    // the per-lip indices (a vertex re-bound to its own lip) hold the outer rows only: the inner
+    // rows carry no data term in the registration and may fold out in front of the lip
+    bool outer_rows = true;
+    for (int k = 0; k < 3; ++k)
+      outer_rows = outer_rows && (gsurf.faces(f, k) - lip_first) / lip_na <= lip_nac - 2;
+    if (!outer_rows) continue;
     const double u = face_uv(static_cast<int>(f), Eigen::Vector3d::Constant(1.0 / 3.0)).x();
     (std::sin(2 * kPi * u) >= 0.0 ? upper_face : lower_face)[static_cast<std::size_t>(f)] = 1;
   }
@@ -793,8 +879,16 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     // a cone's apex may disagree), or near it and facing the same way; a mouth bag faces into the
     // mouth.
     const bool on_surface = h.distance < 0.001 * head_height_rig;
+    // A lip vertex lies near the registered lips (within 4 % of the head height, ≈ 9 mm: a fuller
+    // lip than the generic's) and, behind a closed mouth's slit, faces away from the mouth cavity;
+    // the bag's floor and roof (up to 22 mm from the lips on MakeHuman) used to be bound to the
+    // lip surface with weight 1 and tore across the mouth under every muscle.
+    const bool lip_facing =
+        !closed_slit ||
+        n.dot((p - mouth_probe).normalized()) > 0.0 || h.distance < 0.0025 * head_height_rig;
     if (lip_face[static_cast<std::size_t>(h.face)] &&
-        (agree || h.distance < 0.0025 * head_height_rig))
+        (agree || h.distance < 0.0025 * head_height_rig) &&
+        h.distance < 0.04 * head_height_rig && lip_facing)
       on_lip[static_cast<std::size_t>(v)] = 1;
     else if (cavity_face[static_cast<std::size_t>(h.face)]
                  ? on_surface
@@ -880,6 +974,24 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
   const auto bu = geodesic(T, adjacency, upper_lip, bag_only);
   const auto bl = geodesic(T, adjacency, lower_lip, bag_only);
   // ---- lips: bindings ----
+  // Which lip each lip vertex belongs to, by the target's own slit: the geodesic distance from
+  // the slit's upper row and from its lower row (corners left out) through the lip vertices alone.
+  // The two rows are joined only at the corners and through the bag, so a vertex of the lower
+  // lip's front, even one standing at the height of the contact, lies near the lower row and far
+  // from the upper (round a corner). Heights against the slit were tried first and split the
+  // row of vertices at the contact (spikes from the upper lip in an opened mouth).
+  std::vector<double> slit_du, slit_dl;
+  if (slit_upper.size() > 2 && slit_lower.size() > 2) {
+    std::vector<std::uint8_t> lip_allowed(static_cast<std::size_t>(nv), 0);
+    for (int v : head.vertices)
+      lip_allowed[static_cast<std::size_t>(v)] = on_lip[static_cast<std::size_t>(v)];
+    const std::vector<int> su(slit_upper.begin() + 1, slit_upper.end() - 1),
+        sl(slit_lower.begin() + 1, slit_lower.end() - 1);
+    for (int v : su) lip_allowed[static_cast<std::size_t>(v)] = 1;
+    for (int v : sl) lip_allowed[static_cast<std::size_t>(v)] = 1;
+    slit_du = geodesic(T, adjacency, su, lip_allowed);
+    slit_dl = geodesic(T, adjacency, sl, lip_allowed);
+  }
   std::vector<double> jaw_w(static_cast<std::size_t>(nv), 0.0);
   for (int v : head.vertices) {
     const auto& h = hit[static_cast<std::size_t>(v)];
@@ -895,8 +1007,37 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       // onto the other. Where the mesh says clearly which lip the vertex belongs to (geodesic
       // distances through the lips and the bag) and that lip's surface is about as near, it is used
       // instead.
-      if ((std::isfinite(uq) || std::isfinite(lq)) && std::abs(s) > 0.3 &&
-          std::min(uq, lq) < 0.8 * std::max(uq, lq)) {
+      // Between the slit's corners a vertex clearly above or below the slit's middle line (by
+      // 3 % of its width) belongs to that lip; at the contact the nearer slit row decides (above;
+      // one at most 0.8 of the other), else the height: the lips' rows then cannot cross the
+      // target's contact line (on
+      // MakeHuman the generic's contact row sat 3 mm below the head's: vertices of the upper lip
+      // were bound to the lower lip and the jaw pulled them through the upper lip's rows).
+      int slit_side = 0;
+      if (!slit_du.empty()) {
+        const double x0 = T(slit_upper.front(), 0), x1 = T(slit_upper.back(), 0);
+        const double ys = 0.5 * (polyline_at(T, slit_upper, T(v, 0)).y() +
+                                 polyline_at(T, slit_lower, T(v, 0)).y());
+        const double a = slit_du[static_cast<std::size_t>(v)],
+                     c = slit_dl[static_cast<std::size_t>(v)];
+        if (T(v, 0) > x0 && T(v, 0) < x1 && std::abs(T(v, 1) - ys) > 0.03 * slit_width)
+          slit_side = T(v, 1) > ys ? 1 : -1;  // clearly above or below the slit's middle line
+        else if (std::isfinite(a) && (!std::isfinite(c) || a < 0.8 * c))
+          slit_side = 1;
+        else if (std::isfinite(c) && (!std::isfinite(a) || c < 0.8 * a))
+          slit_side = -1;
+        else if (T(v, 0) > x0 && T(v, 0) < x1)
+          slit_side = T(v, 1) >= ys ? 1 : -1;
+      }
+      if (slit_side != 0) {
+        detail::SurfaceHit alt;
+        if (slit_side > 0 && !upper_index.empty())
+          alt = upper_index.closest(T.row(v).transpose());
+        if (slit_side < 0 && !lower_index.empty())
+          alt = lower_index.closest(T.row(v).transpose());
+        if (alt.face >= 0) lh = alt;
+      } else if ((std::isfinite(uq) || std::isfinite(lq)) && std::abs(s) > 0.3 &&
+                 std::min(uq, lq) < 0.8 * std::max(uq, lq)) {
         const bool is_upper = uq <= lq;
         detail::SurfaceHit alt;
         if (is_upper && s < 0.0 && !upper_index.empty())
@@ -912,8 +1053,15 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       b.offset = T.row(v).transpose() - lip_surface_point(rig.lips, b.u, b.v);
       b.weight = 1.0;
       rig.lips.bound.push_back(b);
+      // lip colour only on the target's own lips: inside the border row, and between the
+      // corners of its slit (+4 % of its width); the generic's lips reach past a narrower mouth's
+      // corners, and coloured the skin beside them in pink spikes
+      bool coloured = uv.y() >= 1.0 / (lip_nac - 1) - 1e-9;
+      if (!slit_upper.empty() && slit_width > 0.0)
+        coloured = coloured && T(v, 0) > T(slit_upper.front(), 0) - 0.04 * slit_width &&
+                   T(v, 0) < T(slit_upper.back(), 0) + 0.04 * slit_width;
       rig.materials[static_cast<std::size_t>(v)] =
-          uv.y() < 1.0 / (lip_nac - 1) - 1e-9 ? fm::Material::Skin : fm::Material::Lip;
+          coloured ? fm::Material::Lip : fm::Material::Skin;
       rig.regions[static_cast<std::size_t>(v)] = fm::Region::Rest;
       continue;
     }
@@ -928,12 +1076,15 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       if (closed_slit) {
         // a closed mouth's bag hangs behind a slit the geodesics reach along its whole length,
         // so most of the bag is about as far from either lip: the height against the slit
-        // decides instead (below it follows the jaw, above it stays; the fold within ±1/8 of the
-        // slit's width)
-        const double ys = 0.5 * (polyline_at(T, slit_upper, T(v, 0)).y() +
-                                 polyline_at(T, slit_lower, T(v, 0)).y());
-        jaw_w[static_cast<std::size_t>(v)] =
-            1.0 - smoothstep(-0.125 * slit_width, 0.125 * slit_width, T(v, 1) - ys);
+        // decides instead (below it follows the jaw, above it stays; the fold was within ±1/8 of
+        // the slit's width: 6 mm on MakeHuman pulled the inside of the upper lip down with the
+        // jaw in spikes), so ±3 % of the width at the slit widening by 10 % of the depth behind
+        const Eigen::Vector3d su = polyline_at(T, slit_upper, T(v, 0)),
+                              sl = polyline_at(T, slit_lower, T(v, 0));
+        const double ys = 0.5 * (su.y() + sl.y());
+        const double band =
+            0.03 * slit_width + 0.1 * std::max(0.0, 0.5 * (su.z() + sl.z()) - T(v, 2));
+        jaw_w[static_cast<std::size_t>(v)] = 1.0 - smoothstep(-band, band, T(v, 1) - ys);
       }
       rig.materials[static_cast<std::size_t>(v)] = fm::Material::MouthInterior;
       continue;
@@ -978,6 +1129,72 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
   }
   std::sort(rig.lips.bound.begin(), rig.lips.bound.end(),
             [](const fm::LipBinding& a, const fm::LipBinding& b) { return a.vertex < b.vertex; });
+  refit_lip_grid(rig.lips, T);
+  // The mouth bag next to the lips follows them: its vertices within 20 % of the mouth's width
+  // (geodesic, through the bag) of a lip vertex are bound to that lip vertex's (u, v) with a weight
+  // falling from 1 at the lip to 0 (smoothstep). Before, the bag stood still (or turned with the
+  // jaw) while the lips in front of it moved, and poked through the upper lip under fear and
+  // hung in spikes from it in an opened mouth.
+  {
+    const double mouth_w =
+        slit_width > 0.0
+            ? slit_width
+            : (rig.lips.control_points[0] - rig.lips.control_points[fm::LipGrid::kAround / 2])
+                  .norm();
+    const double reach = 0.35 * mouth_w;
+    // one search per lip; a bag vertex follows the lip on its side of the bag's fold (its jaw
+    // weight: below the fold the lower lip, above it the upper)
+    std::array<std::vector<double>, 2> d;
+    std::array<std::vector<int>, 2> from;
+    std::vector<int> seed_binding(static_cast<std::size_t>(nv), -1);
+    for (int side = 0; side < 2; ++side) {
+      d[side].assign(static_cast<std::size_t>(nv), std::numeric_limits<double>::infinity());
+      from[side].assign(static_cast<std::size_t>(nv), -1);
+      using Item = std::pair<double, int>;
+      std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
+      for (std::size_t k = 0; k < rig.lips.bound.size(); ++k) {
+        const auto& b = rig.lips.bound[k];
+        if (b.weight < 0.999 || !on_lip[static_cast<std::size_t>(b.vertex)] ||
+            (std::sin(2 * kPi * b.u) >= 0.0) != (side == 0))
+          continue;
+        seed_binding[static_cast<std::size_t>(b.vertex)] = static_cast<int>(k);
+        d[side][static_cast<std::size_t>(b.vertex)] = 0.0;
+        from[side][static_cast<std::size_t>(b.vertex)] = b.vertex;
+        q.push({0.0, b.vertex});
+      }
+      while (!q.empty()) {
+        const auto [dist, v] = q.top();
+        q.pop();
+        if (dist > d[side][static_cast<std::size_t>(v)] || dist > reach) continue;
+        for (int w : adjacency[static_cast<std::size_t>(v)]) {
+          if (!bag[static_cast<std::size_t>(w)]) continue;
+          const double nd = dist + (T.row(v) - T.row(w)).norm();
+          if (nd < d[side][static_cast<std::size_t>(w)]) {
+            d[side][static_cast<std::size_t>(w)] = nd;
+            from[side][static_cast<std::size_t>(w)] = from[side][static_cast<std::size_t>(v)];
+            q.push({nd, w});
+          }
+        }
+      }
+    }
+    std::vector<fm::LipBinding> added;
+    for (int v : head.vertices) {
+      if (!bag[static_cast<std::size_t>(v)]) continue;
+      const int side = jaw_w[static_cast<std::size_t>(v)] > 0.5 ? 1 : 0;
+      if (!(d[side][static_cast<std::size_t>(v)] < reach)) continue;
+      const auto& src = rig.lips.bound[static_cast<std::size_t>(
+          seed_binding[static_cast<std::size_t>(from[side][static_cast<std::size_t>(v)])])];
+      fm::LipBinding b;
+      b.vertex = v, b.u = src.u, b.v = src.v;
+      b.weight = 1.0 - smoothstep(0.0, reach, d[side][static_cast<std::size_t>(v)]);
+      b.offset = T.row(v).transpose() - lip_surface_point(rig.lips, b.u, b.v);
+      if (b.weight > 1e-3) added.push_back(b);
+    }
+    rig.lips.bound.insert(rig.lips.bound.end(), added.begin(), added.end());
+    std::sort(rig.lips.bound.begin(), rig.lips.bound.end(),
+              [](const fm::LipBinding& a, const fm::LipBinding& b) { return a.vertex < b.vertex; });
+    rep.lip_bag_bound = added.size();
+  }
   for (const auto& b : rig.lips.bound) {
     ++rep.lip_bound;
     if (b.weight >= 1.0) ++rep.lip_full;

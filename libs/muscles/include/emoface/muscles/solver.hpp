@@ -62,6 +62,13 @@ struct SolverOptions {
   /// lower lid (docs/muscles.md, deviations).
   double lid_tighten_upper = 0.20;
   double lid_tighten_lower = 0.50;
+  /// Orbicularis oculi pars orbitalis (FACS AU6, the cheek raiser) bunches the cheek against the
+  /// lower lid and pushes it up (Ekman & Friesen 1975: "lower eyelid is pushed up ... by the
+  /// cheek"): at orbitalis level s the lower lid turns up by a further
+  /// lid_cheek_raise·close_angle·s, in [0, 0.6]. The lower lid's total (tightener + cheek) is
+  /// capped at 0.8 − lid_tighten_upper of close_angle, so the two together never shut the eye
+  /// either (issue 14).
+  double lid_cheek_raise = 0.0;
   void validate() const;
 };
 

@@ -110,6 +110,7 @@ struct TransferReport {
   std::vector<PartReport> parts;
   std::size_t lip_bound = 0;  ///< vertices bound to the lip surface (any weight)
   std::size_t lip_full = 0;   ///< of which with weight 1
+  std::size_t lip_bag_bound = 0;  ///< of which mouth-bag vertices next to the lips (following them)
   std::size_t jaw_vertices = 0;
   std::size_t mouth_bag = 0;  ///< vertices of a mouth bag (jaw weights from geodesic distances)
   std::array<std::size_t, 2> lid_vertices{};  ///< per eye, upper + lower

@@ -1,0 +1,176 @@
+// Issue 14 part 2: what an observer sees of each emotion, measured on the geometry of both faces
+// (the procedural generic face and the default MakeHuman head rigged by transfer), against the FACS
+// action units Ekman & Friesen (1975) give for the expression (the basis of thesis ch. 6; AU list
+// in thesis Appendix A): happiness AU6+12, fear AU1+2+4+5+20(+26), surprise AU1+2+5+26, disgust
+// AU9+10. Each emotion at 0.9 through the default rule base (fuzzyexpr) and the solver, compared
+// with neutral.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "emoface/facemesh/default_face.hpp"
+#include "emoface/fuzzyexpr/engine.hpp"
+#include "emoface/muscles/solver.hpp"
+
+namespace emoface::muscles {
+namespace {
+
+namespace fm = facemesh;
+namespace fx = fuzzyexpr;
+
+struct Subject {
+  const char* name;
+  fm::Face face;
+};
+
+const Subject& subject(int i) {
+  static const Subject generic{"generic", fm::make_generic_face()};
+  static const Subject head{"default", fm::make_default_face()};
+  return i == 0 ? generic : head;
+}
+
+class ExpressionGeometry : public ::testing::TestWithParam<int> {
+ protected:
+  const fm::Face& face() const { return subject(GetParam()).face; }
+  const char* face_name() const { return subject(GetParam()).name; }
+
+  fm::Vertices deform(fx::Emotion e, double level) const {
+    static const fx::Engine engine;
+    fx::Esv esv{};
+    esv[fx::index(e)] = level;
+    const fx::SideParameters sides = fx::expand_to_sides(engine.convert(esv));
+    std::vector<double> v(kParameterCount, 0.0);
+    for (std::size_t i = 0; i < sides.size(); ++i) v[i] = sides[i];
+    const FaceSolver solver(face().mesh, face().rig);
+    return solver.deform(v).vertices;
+  }
+  const fm::Vertices& neutral() const { return face().mesh.vertices; }
+
+  int landmark(const std::string& name) const {
+    for (const auto& l : face().rig.retarget_landmarks)
+      if (l.name == name) return l.vertex;
+    throw std::runtime_error("no landmark " + name);
+  }
+  Eigen::Vector3d at(const fm::Vertices& X, int v) const { return X.row(v).transpose(); }
+  Eigen::Vector3d at(const fm::Vertices& X, const std::string& name) const {
+    return at(X, landmark(name));
+  }
+  // iBUG 68 (0-based): 17–21 brow on the image's left (subject's right), 22–26 the other brow.
+  Eigen::Vector3d ibug(const fm::Vertices& X, int i) const {
+    return at(X, face().rig.ibug68.at(static_cast<std::size_t>(i)));
+  }
+  // Mean rise (m) of the two brows (iBUG 18–20 and 23–25: the middle of each brow) and of the
+  // inner brow ends (21, 22).
+  double brow_rise(const fm::Vertices& X) const {
+    double s = 0.0;
+    for (int i : {18, 19, 20, 23, 24, 25}) s += ibug(X, i).y() - ibug(neutral(), i).y();
+    return s / 6.0;
+  }
+  double inner_brow_rise(const fm::Vertices& X) const {
+    return 0.5 *
+           (ibug(X, 21).y() - ibug(neutral(), 21).y() + ibug(X, 22).y() - ibug(neutral(), 22).y());
+  }
+  double inner_brow_gap(const fm::Vertices& X) const {
+    return std::abs(ibug(X, 22).x() - ibug(X, 21).x());
+  }
+  double aperture(const fm::Vertices& X) const {
+    return 0.5 * (eye_aperture(face().rig, X, 0) + eye_aperture(face().rig, X, 1));
+  }
+  // The cheek below eye e (AU6 raises it): the skin vertex nearest to the point 18 mm below the
+  // eye centre and one eye radius in front of it.
+  int infraorbital(int e) const {
+    const auto& eye = face().rig.eyes.at(static_cast<std::size_t>(e));
+    const Eigen::Vector3d target = eye.centre + Eigen::Vector3d(0.0, -0.018, eye.radius);
+    int best = -1;
+    double best_d = 1e9;
+    const fm::Region cheek = e == 0 ? fm::Region::RightMiddleFace : fm::Region::LeftMiddleFace;
+    for (int v = 0; v < static_cast<int>(face().rig.regions.size()); ++v) {
+      if (face().rig.regions[static_cast<std::size_t>(v)] != cheek) continue;
+      const double d = (at(neutral(), v) - target).norm();
+      if (d < best_d) best_d = d, best = v;
+    }
+    return best;
+  }
+  double corner_rise(const fm::Vertices& X) const {
+    return 0.5 * (at(X, "mouth_corner_r").y() - at(neutral(), "mouth_corner_r").y() +
+                  at(X, "mouth_corner_l").y() - at(neutral(), "mouth_corner_l").y());
+  }
+  double mouth_width(const fm::Vertices& X) const {
+    return (at(X, "mouth_corner_l") - at(X, "mouth_corner_r")).norm();
+  }
+};
+
+constexpr double mm = 1e-3;
+
+TEST_P(ExpressionGeometry, Happiness) {
+  const auto X = deform(fx::Emotion::Happiness, 0.9);
+  const double rise = corner_rise(X), widen = mouth_width(X) - mouth_width(neutral());
+  const double cheek = 0.5 * (at(X, infraorbital(0)).y() - at(neutral(), infraorbital(0)).y() +
+                              at(X, infraorbital(1)).y() - at(neutral(), infraorbital(1)).y());
+  const double lids = aperture(X) / aperture(neutral());
+  std::printf(
+      "%s happiness 0.9: corners up %.1f mm, mouth wider by %.1f mm, cheeks up %.1f mm, "
+      "aperture %.2f of neutral\n",
+      face_name(), rise / mm, widen / mm, cheek / mm, lids);
+  EXPECT_GT(rise, 3.0 * mm);   // AU12: corners up ...
+  EXPECT_GT(widen, 4.0 * mm);  // ... and back
+  EXPECT_GT(cheek, 1.5 * mm);  // AU6: cheeks raised
+  EXPECT_GT(lids, 0.5);        // not squinting (lid_cheek_raise is 0 by default, see solver.hpp)
+}
+
+TEST_P(ExpressionGeometry, Surprise) {
+  const auto X = deform(fx::Emotion::Surprise, 0.9);
+  const double brow = brow_rise(X), inner = inner_brow_rise(X);
+  const double gap = inner_brow_gap(X) - inner_brow_gap(neutral());
+  const double lids = aperture(X) / aperture(neutral());
+  std::printf(
+      "%s surprise 0.9: brows up %.1f mm (inner %.1f), inner-brow gap %+.1f mm, "
+      "aperture %.2f of neutral\n",
+      face_name(), brow / mm, inner / mm, gap / mm, lids);
+  EXPECT_GT(brow, 6.0 * mm);  // AU1+2: brows high
+  EXPECT_GT(inner, 5.0 * mm);
+  EXPECT_GT(gap, -1.0 * mm);  // no AU4: the brows are not drawn together
+  EXPECT_GT(lids, 1.15);      // AU5
+}
+
+TEST_P(ExpressionGeometry, Fear) {
+  const auto X = deform(fx::Emotion::Fear, 0.9);
+  const double inner = inner_brow_rise(X);
+  const double gap = inner_brow_gap(X) - inner_brow_gap(neutral());
+  const double lids = aperture(X) / aperture(neutral());
+  const double widen = mouth_width(X) - mouth_width(neutral());
+  std::printf(
+      "%s fear 0.9: inner brows up %.1f mm, inner-brow gap %+.1f mm, aperture %.2f of "
+      "neutral, mouth wider by %.1f mm\n",
+      face_name(), inner / mm, gap / mm, lids, widen / mm);
+  EXPECT_GT(inner, 2.0 * mm);  // AU1
+  EXPECT_LT(gap, -0.2 * mm);   // AU4: drawn together (weakly on the default head: 0.3 mm)
+  EXPECT_GT(lids, 1.0);        // AU5 wins over AU7: the eyes open, never narrow
+  EXPECT_GT(widen, 2.0 * mm);  // AU20: lips stretched sideways
+}
+
+TEST_P(ExpressionGeometry, Disgust) {
+  const auto X = deform(fx::Emotion::Disgust, 0.9);
+  const double lip = at(X, "upper_lip_centre").y() - at(neutral(), "upper_lip_centre").y();
+  // the upper lip beside the philtrum (iBUG 50, 52) rises with AU10
+  const double lip_side =
+      0.5 * (ibug(X, 50).y() - ibug(neutral(), 50).y() + ibug(X, 52).y() - ibug(neutral(), 52).y());
+  // the nasal wing (iBUG 31, 35) rises with AU9
+  const double wing =
+      0.5 * (ibug(X, 31).y() - ibug(neutral(), 31).y() + ibug(X, 35).y() - ibug(neutral(), 35).y());
+  std::printf(
+      "%s disgust 0.9: upper lip up %.1f mm (beside the philtrum %.1f), nasal wings up "
+      "%.1f mm\n",
+      face_name(), lip / mm, lip_side / mm, wing / mm);
+  EXPECT_GT(lip_side, 2.0 * mm);  // AU10
+  EXPECT_GT(wing, 1.0 * mm);      // AU9
+}
+
+INSTANTIATE_TEST_SUITE_P(Faces, ExpressionGeometry, ::testing::Values(0, 1),
+                         [](const auto& p) { return std::string(subject(p.param).name); });
+
+}  // namespace
+}  // namespace emoface::muscles
