@@ -256,3 +256,22 @@ TEST(DefaultHeadMouth, LipColourOnlyOnTheLips) {
       1e3 * c0.x(), 1e3 * c1.x(), beyond, 1e3 * worst);
   EXPECT_EQ(beyond, 0);
 }
+
+// The mouth's iBUG landmarks lie on the head's own lips: the upper lip's outer centre (51) above
+// the corners (60, 64) and the lower lip's (57) below them, each by at least 10 % of the inner
+// mouth width (MakeHuman's lower lip centre used to sit 3 mm below the corners, at the slit), and
+// the inner upper and lower points (61/67, 62/66, 63/65) on different vertices (a closed slit's two
+// rows are 1.4 mm apart; 61 and 67 used to share one).
+TEST(DefaultHeadMouth, MouthLandmarksOnTheirOwnLips) {
+  const auto& f = built().head;
+  const auto& V = f.mesh.vertices;
+  const auto& ib = f.rig.ibug68;
+  const double line = 0.5 * (V(ib[60], 1) + V(ib[64], 1)), w = inner_width(f);
+  std::printf("iBUG 51 %.1f %%, 57 %.1f %% of the inner width above the corners\n",
+              100 * (V(ib[51], 1) - line) / w, 100 * (V(ib[57], 1) - line) / w);
+  EXPECT_GT(V(ib[51], 1) - line, 0.1 * w);
+  EXPECT_LT(V(ib[57], 1) - line, -0.1 * w);
+  for (const auto& [up, low] : {std::pair{61, 67}, std::pair{62, 66}, std::pair{63, 65}})
+    EXPECT_NE(ib[static_cast<std::size_t>(up)], ib[static_cast<std::size_t>(low)])
+        << up << "/" << low;
+}
