@@ -1688,9 +1688,38 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     if (p.kind == UserLandmarkKind::Vertex) user_vertex[k] = p.vertex;
     if (p.kind == UserLandmarkKind::Point) user_vertex[k] = nearest_head(al.apply(p.point), d);
   }
+  // The mouth's landmarks (48–67 are lip samples of the generic) from the lip grid fitted to the
+  // target's lips, on the target's own lip of that side (the full-weight lip vertices above or
+  // below its slit): the registered generic's lips lie off a fuller or differently set mouth
+  // (MakeHuman: iBUG 57, the lower lip's centre, sat at the height of the corners, and 61 and 67
+  // on one vertex of the closed slit).
+  std::array<std::vector<int>, 2> lip_side;  // 0 upper, 1 lower
+  for (const auto& b : rig.lips.bound)
+    if (b.weight >= 0.999 && on_lip[static_cast<std::size_t>(b.vertex)])
+      lip_side[std::sin(2 * kPi * b.u) >= 0.0 ? 0 : 1].push_back(b.vertex);
+  auto mouth_landmark = [&](int gv, const Eigen::Vector3d& fallback, Eigen::Vector3d& p) {
+    if (!lip_sample(gv) || lip_side[0].empty() || lip_side[1].empty()) {
+      p = fallback;
+      return -1;
+    }
+    const Eigen::Vector2d uv = lip_uv(gv);
+    p = lip_surface_point(rig.lips, uv.x(), uv.y());
+    const double sn = std::sin(2 * kPi * uv.x());
+    int best = -1;
+    double bd = std::numeric_limits<double>::infinity();
+    for (int side = 0; side < 2; ++side) {
+      if ((side == 0 && sn < -0.2) || (side == 1 && sn > 0.2)) continue;
+      for (int v : lip_side[side]) {
+        const double d = (T.row(v).transpose() - p).norm();
+        if (d < bd) bd = d, best = v;
+      }
+    }
+    return best;
+  };
   for (int k = 0; k < 68; ++k) {
     const int gv = srig.ibug68[static_cast<std::size_t>(k)];
-    const Eigen::Vector3d p = G.row(gv).transpose();
+    Eigen::Vector3d p = G.row(gv).transpose();
+    const int on_mouth = mouth_landmark(gv, p, p);
     LandmarkConfidence lc;
     lc.index = k;
     double d = 0.0;
@@ -1701,6 +1730,7 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       lc.confidence = 1.0;
     } else {
       lc.vertex = nearest_head(p, d);
+      if (on_mouth >= 0) lc.vertex = on_mouth, d = (T.row(on_mouth).transpose() - p).norm();
       lc.source = "fit";
       lc.confidence = std::exp(-std::pow(d / (0.01 * head_height_rig), 2));
     }
