@@ -23,6 +23,21 @@ std::string minimal(const std::string& body) {
   return R"({"format": "emoface.obie.match", "version": "1.0", "domain": "d.domain", )" + body + "}";
 }
 
+// The unknown-field rule (docs/formats.md, core::JsonReader): a 1.0 match rejects a field it does
+// not know, naming it; a 1.1 match may add fields (ignored); known fields are still checked.
+TEST(Match, UnknownFieldRule) {
+  const std::string body = R"("events": [{"minute": 3, "action": "", "colour": 2}], "venue": "x")";
+  EXPECT_EQ(error_of(minimal(body)), "m.json: at /venue: unknown field \"venue\"");
+  EXPECT_EQ(error_of(minimal(body.substr(0, body.find(", \"venue\"")))),
+            "m.json: at /events/0/colour: unknown field \"colour\"");
+  std::string newer = minimal(body);
+  newer.replace(newer.find("\"1.0\""), 5, "\"1.1\"");
+  EXPECT_EQ(error_of(newer), "no error");
+  EXPECT_EQ(parse_match(newer, "m.json").events.size(), 1u);
+  newer.replace(newer.find("\"minute\": 3"), 11, "\"minute\": -3");
+  EXPECT_NE(error_of(newer).find("/events/0/minute"), std::string::npos);
+}
+
 TEST(Match, ParsesTheShortMatch) {
   const MatchScript m = parse_match(test::short_match_json(), "/some/dir/short.json");
   EXPECT_EQ(m.title, "short");
