@@ -78,6 +78,30 @@ TEST_F(Bundle, AFailureLeavesNothingHalfWritten) {
   EXPECT_EQ(entries(), 1u);
 }
 
+TEST_F(Bundle, StagedPathsKeepTheExtensionAndMustBeWritten) {
+  {
+    OutputBundle b;
+    const std::string temp = b.stage_path(path("out/video.mp4"));
+    EXPECT_EQ(fs::path(temp).extension(), ".mp4");
+    EXPECT_EQ(fs::path(temp).parent_path(), fs::path(path("out")));
+    std::ofstream(temp) << "movie";
+    b.add(path("out/a.txt"), "a");
+    EXPECT_FALSE(fs::exists(path("out/video.mp4")));
+    b.commit();
+  }
+  EXPECT_EQ(read_file(path("out/video.mp4")), "movie");
+  {
+    OutputBundle b;
+    const std::string temp = b.stage_path(path("lost.glb"));
+    fs::remove(temp);  // the writer failed to produce it
+    b.add(path("b.txt"), "b");
+    EXPECT_THROW(b.commit(), IoError);
+  }
+  EXPECT_FALSE(fs::exists(path("lost.glb")));
+  EXPECT_FALSE(fs::exists(path("b.txt")));
+  EXPECT_THROW(OutputBundle().stage_path("-"), InvalidInput);
+}
+
 TEST_F(Bundle, DirectoriesAndMisuse) {
   fs::create_directories(path("d"));
   OutputBundle b;

@@ -17,11 +17,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// ".bundle<random>.<name>" beside the target: hidden, and the extension (.mp4, .glb) is kept for
+// writers that choose the format by it.
 std::string temp_name(const std::string& path) {
   static thread_local std::mt19937_64 gen{std::random_device{}()};
-  char suffix[40];
-  std::snprintf(suffix, sizeof suffix, ".bundle%016llx", static_cast<unsigned long long>(gen()));
-  return path + suffix;
+  char prefix[40];
+  std::snprintf(prefix, sizeof prefix, ".bundle%016llx.", static_cast<unsigned long long>(gen()));
+  const fs::path p(path);
+  return (p.parent_path() / (prefix + p.filename().string())).string();
 }
 
 void write_whole(const std::string& temp, const std::string& target, std::string_view data) {
@@ -55,6 +58,12 @@ OutputBundle::~OutputBundle() {
     std::error_code ec;
     fs::remove(*it, ec);  // only if empty: never a file someone else put there
   }
+}
+
+std::string OutputBundle::stage_path(const std::string& path) {
+  if (path == "-") throw InvalidInput("OutputBundle: standard output cannot be staged as a path");
+  add(path, {});  // checks, directories, an empty temporary file
+  return files_.back().temp.empty() ? files_.back().target : files_.back().temp;
 }
 
 void OutputBundle::add(const std::string& path, std::string_view content) {

@@ -25,6 +25,11 @@ class OutputBundle {
   /// commit(), never replaced. Throws IoError (the bundle stays uncommitted) or InvalidInput for
   /// a path staged twice.
   void add(const std::string& path, std::string_view content);
+  /// Stages a file the caller writes itself (a video through ffmpeg, a glTF writer that takes a
+  /// path): returns a temporary path beside `path`, with the same file name extension, for the
+  /// caller to write before commit(), which renames it into place (IoError if it was not written).
+  /// Missing parent directories are created as in add().
+  std::string stage_path(const std::string& path);
   /// Renames every staged file into place, in the order staged, then writes standard output.
   /// Throws IoError if a rename fails (the files renamed before it stay; the rest are removed).
   void commit();
