@@ -114,7 +114,7 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
               << rep.max_weight_error << "\n";
   }
   stage_database(bundle, a.out, db);
-  stage_animation_pictures(bundle, g, all, pics);  // the video last, then everything is committed
+  stage_animation_pictures(bundle, g, all, pics);
   bundle.commit();
   return cli::kExitOk;
 }

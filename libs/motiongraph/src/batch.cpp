@@ -301,12 +301,12 @@ void stage_animation_pictures(core::OutputBundle& bundle, const MotionGraph& g,
       bundle.add(a.frames_dir + name, encode_png(img));
     }
   }
-  if (!a.video.empty()) {  // last: the other outputs are staged already
+  if (!a.video.empty()) {
     core::VideoOptions vo;
     vo.width = a.video_width;
     vo.height = a.video_height;
     vo.fps = a.fps > 0.0 ? a.fps : g.frame_rate;
-    core::VideoWriter video(a.video, vo);
+    core::VideoWriter video(bundle.stage_path(a.video), vo);  // renamed into place on commit
     const View view = fit_view(all, vo.width, vo.height);
     for (const Pose& pose : all) {
       Image img(vo.width, vo.height);

@@ -105,10 +105,9 @@ struct AnimationPictures {
   bool any() const { return !(sheet.empty() && plot.empty() && frames_dir.empty() && video.empty()); }
 };
 
-/// Stages the PNGs of `frames` (poses of the graph's reduced landmarks, coloured by region) into
-/// `bundle`, then writes the video (atomic on its own), so a failing video leaves the bundle
-/// uncommitted: call it after staging the other outputs, and commit after it. InvalidInput for a
-/// weight graph (no landmarks to draw) or no frames.
+/// Stages the PNGs and the video of `frames` (poses of the graph's reduced landmarks, coloured by
+/// region) into `bundle` (the video rendered into a staged path, renamed on commit). InvalidInput
+/// for a weight graph (no landmarks to draw) or no frames.
 void stage_animation_pictures(core::OutputBundle& bundle, const MotionGraph& graph,
                               const std::vector<Pose>& frames, const AnimationPictures& pictures);
 
