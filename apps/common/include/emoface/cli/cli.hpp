@@ -53,6 +53,23 @@ using core::Shard;
 /// core::parse_shard, with its errors as UsageError (exit code 1).
 Shard parse_shard(std::string_view text);
 
+/// The one progress display of the apps (issue 18): on a terminal (stderr is a TTY) a bar redrawn
+/// in place, "stage      [#####.....]  50% 5/10"; otherwise — a log file, a pipe — one plain line per
+/// 10 % and per stage, "<tool>: stage 50% (5/10)"; nothing when quiet.
+class ProgressBar {
+ public:
+  ProgressBar(std::string tool, bool quiet);
+  /// Reports `done` of `total` items of `stage` (total 0: ignored).
+  void update(std::string_view stage, std::size_t done, std::size_t total);
+  bool on_terminal() const noexcept { return tty_; }
+
+ private:
+  std::string tool_;
+  bool quiet_, tty_;
+  int last_pct_ = -1;
+  std::string stage_;
+};
+
 /// An output stream that is either stdout ("-") or a file written atomically: nothing appears at
 /// `path` unless commit() is called.
 class Output {
