@@ -5,7 +5,9 @@
 #include <charconv>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "emoface/core/errors.hpp"
 
@@ -89,6 +91,25 @@ void Output::commit() {
   } else if (std::fflush(stdout) != 0) {
     throw IoError("<stdout>: write failed");
   }
+}
+
+Input::Input(const std::string& path, bool rewindable) : name_(path == "-" ? "<stdin>" : path) {
+  if (path != "-") {
+    auto file = std::make_unique<std::ifstream>(path, std::ios::binary);
+    if (!*file) throw IoError(path + ": cannot open for reading");
+    owned_ = std::move(file);
+  } else if (rewindable) {
+    std::ostringstream all;
+    all << std::cin.rdbuf();
+    owned_ = std::make_unique<std::istringstream>(all.str());
+  }
+  in_ = owned_ ? owned_.get() : &std::cin;
+}
+
+void Input::rewind() {
+  if (!owned_) throw InvalidInput(name_ + ": cannot rewind standard input");
+  in_->clear();
+  in_->seekg(0);
 }
 
 ProgressBar::ProgressBar(std::string tool, bool quiet)

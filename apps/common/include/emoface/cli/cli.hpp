@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cstddef>
 #include <functional>
+#include <istream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,6 +69,23 @@ class ProgressBar {
   bool quiet_, tty_;
   int last_pct_ = -1;
   std::string stage_;
+};
+
+/// An input stream that is either stdin ("-") or a file. With `rewindable`, stdin is read into
+/// memory once so the input can be read twice (a first pass counting records for --shard).
+class Input {
+ public:
+  Input(const std::string& path, bool rewindable);
+  std::istream& stream() noexcept { return *in_; }
+  /// The file name, or "<stdin>".
+  const std::string& name() const noexcept { return name_; }
+  /// Back to the start (only when rewindable or a file).
+  void rewind();
+
+ private:
+  std::string name_;
+  std::unique_ptr<std::istream> owned_;
+  std::istream* in_ = nullptr;
 };
 
 /// An output stream that is either stdout ("-") or a file written atomically: nothing appears at
