@@ -438,15 +438,7 @@ int dot(const Args& a) {
   GraphDotOptions o;
   o.depth = a.depth;
   o.edge_weights = a.edge_weights;
-  const std::string text = region_graph_dot(*region, o);
-  const auto ext = std::filesystem::path(a.out).extension().string();
-  if (ext == ".svg" || ext == ".png" || ext == ".pdf") {
-    core::render_dot(text, a.out);
-  } else {
-    cli::Output out(a.out);
-    out.write(text);
-    out.commit();
-  }
+  core::write_dot(region_graph_dot(*region, o), a.out);
   return cli::kExitOk;
 }
 
