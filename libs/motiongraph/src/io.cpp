@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <tuple>
+#include <utility>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -24,18 +26,21 @@ constexpr core::FormatVersion kVersion{1, 0};
 constexpr std::size_t kMaxLandmarks = 100000;
 
 [[noreturn]] void fail(const std::string& file, const std::string& pointer, const std::string& msg) {
-  SourceLocation where;
-  where.file = file;
-  where.json_pointer = pointer;
-  throw FormatError(where, msg);
+  throw FormatError({file, pointer, 0, 0}, msg);
 }
 [[noreturn]] void fail_line(const std::string& file, std::size_t line, std::size_t column,
                             const std::string& msg) {
-  SourceLocation where;
-  where.file = file;
-  where.line = line;
-  where.column = column;
-  throw FormatError(where, msg);
+  throw FormatError({file, "", line, column}, msg);
+}
+
+// The header fields both JSON documents share: dimensions (1 = weights, 2, 3) and frame rate.
+std::pair<int, double> dimensions_and_rate(const core::JsonValue& doc) {
+  const core::JsonValue jdims = doc.at("dimensions");
+  const std::size_t dims = jdims.index(3);
+  if (dims < 1) jdims.fail("dimensions must be 1 (weights), 2 or 3");
+  const double rate = doc.at("frame_rate").number();
+  if (!(rate > 0.0)) doc.at("frame_rate").fail("frame_rate must be > 0");
+  return {static_cast<int>(dims), rate};
 }
 
 using core::JsonValue;
@@ -142,14 +147,10 @@ Database parse_database_json(std::string_view text, const std::string& file, OnE
   const core::JsonReader reader(text, file, "landmark_database", kVersion);
   const JsonValue doc = reader.root();
   Database db;
-  const JsonValue jdims = doc.at("dimensions");
-  const std::size_t dims = jdims.index(3);
-  if (dims < 1) jdims.fail("dimensions must be 1 (weights), 2 or 3");
-  db.dimensions = static_cast<int>(dims);
+  std::tie(db.dimensions, db.frame_rate) = dimensions_and_rate(doc);
+  const auto dims = static_cast<std::size_t>(db.dimensions);
   db.landmark_count = doc.at("landmark_count").index(kMaxLandmarks);
   if (db.landmark_count == 0) doc.at("landmark_count").fail("landmark_count must be > 0");
-  db.frame_rate = doc.at("frame_rate").number();
-  if (!(db.frame_rate > 0.0)) doc.at("frame_rate").fail("frame_rate must be > 0");
   if (auto ids = doc.find("landmark_ids")) db.landmark_ids = indices(*ids, std::size_t{1} << 30);
   const JsonValue seqs = doc.at("sequences").expect_array();
   const auto width = static_cast<Eigen::Index>(db.landmark_count * dims);
@@ -402,12 +403,8 @@ MotionGraph parse_graph_json(std::string_view text, const std::string& file) {
   const core::JsonReader reader(text, file, "motion_graph", kVersion);
   const JsonValue doc = reader.root();
   MotionGraph g;
-  const JsonValue jdims = doc.at("dimensions");
-  const std::size_t dims = jdims.index(3);
-  if (dims < 1) jdims.fail("dimensions must be 1 (weights), 2 or 3");
-  g.dimensions = static_cast<int>(dims);
-  g.frame_rate = doc.at("frame_rate").number();
-  if (!(g.frame_rate > 0.0)) doc.at("frame_rate").fail("frame_rate must be > 0");
+  std::tie(g.dimensions, g.frame_rate) = dimensions_and_rate(doc);
+  const auto dims = static_cast<std::size_t>(g.dimensions);
   g.lambda = doc.at("lambda").number();
   if (g.lambda < 0.0) doc.at("lambda").fail("lambda must be >= 0");
   constexpr std::size_t kMaxCount = std::size_t{1} << 40;
