@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/obie/bundle.hpp"
 #include "test_match.hpp"
 
 namespace emoface::obie {
@@ -180,6 +181,24 @@ TEST(Match, ValidateCatchesWhatTheReaderCatches) {
   bad = m;
   bad.key_moments[0].minute = std::nan("");
   EXPECT_THROW(write_match(bad), InvalidInput);
+}
+
+}  // namespace
+}  // namespace emoface::obie
+
+namespace emoface::obie {
+namespace {
+
+TEST(KeyMoment, ParsesMinuteAndOptionalLabel) {
+  const KeyMoment a = parse_key_moment("12:the against team scores");
+  EXPECT_EQ(a.minute, 12.0);
+  EXPECT_EQ(a.label, "the against team scores");
+  const KeyMoment b = parse_key_moment("40.5");
+  EXPECT_EQ(b.minute, 40.5);
+  EXPECT_EQ(b.label, "");
+  EXPECT_EQ(parse_key_moment("3:a:b").label, "a:b");
+  for (const char* bad : {"", ":x", "x:y", "12x:y", "nan:x", "1e999"})
+    EXPECT_THROW(parse_key_moment(bad), InvalidInput) << bad;
 }
 
 }  // namespace
