@@ -12,10 +12,10 @@
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/bundle.hpp"
 #include "emoface/core/errors.hpp"
+#include "emoface/core/graphviz.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/motiongraph/batch.hpp"
 #include "emoface/motiongraph/capture.hpp"
-#include "emoface/core/graphviz.hpp"
 #include "emoface/motiongraph/dot.hpp"
 #include "emoface/motiongraph/evaluate.hpp"
 #include "emoface/motiongraph/io.hpp"
@@ -33,7 +33,8 @@ using namespace motiongraph;
 namespace {
 
 OnError on_error(const Args& a) {
-  return cli::parse_enum<OnError>(a.on_error, core::on_error_from_string, "--on-error", "stop|skip");
+  return cli::parse_enum<OnError>(a.on_error, core::on_error_from_string, "--on-error",
+                                  "stop|skip");
 }
 
 // A database to --out: CSV for a .csv name, else JSON ("-": JSON on stdout).
@@ -92,8 +93,8 @@ GraphOptions graph_options(const Args& a, int dimensions) {
 // the weight outputs: every output computed and staged, then all committed (core::OutputBundle).
 int write_animation(const Args& a, const MotionGraph& g, const std::vector<Sequence>& seqs) {
   const bool weights = is_weight_space(g.dimensions);
-  AnimationPictures pics{a.sheet, a.plot, a.frames_dir, a.video, a.columns, a.every,
-                         a.cell_width, a.video_width, a.video_height, a.fps};
+  AnimationPictures pics{a.sheet, a.plot,       a.frames_dir,  a.video,        a.columns,
+                         a.every, a.cell_width, a.video_width, a.video_height, a.fps};
   if (weights && pics.any())
     throw cli::UsageError("--video, --sheet, --plot and --frames-dir draw landmarks: not for a weight graph "
                           "(use --params and faceanim)");
@@ -106,10 +107,12 @@ int write_animation(const Args& a, const MotionGraph& g, const std::vector<Seque
   // Weight graphs: the weights as Live Link Face CSV, the face parameters through the ARKit mapping
   // (exact, no landmark fit; bridge/weight_space.hpp).
   if (!a.livelink_out.empty())
-    bundle.add(a.livelink_out, bridge::live_link_csv(bridge::weight_take(g, all, "synth"), g.frame_rate));
+    bundle.add(a.livelink_out,
+               bridge::live_link_csv(bridge::weight_take(g, all, "synth"), g.frame_rate));
   if (!a.params_out.empty()) {
     bridge::WeightDriveReport rep;
-    bundle.add(a.params_out, muscles::format_parameter_frames_csv(bridge::weight_parameters(g, all, &rep)));
+    bundle.add(a.params_out,
+               muscles::format_parameter_frames_csv(bridge::weight_parameters(g, all, &rep)));
     std::cerr << "mgraph: " << rep.frames << " frames of face parameters, largest weight error "
               << rep.max_weight_error << "\n";
   }
@@ -176,7 +179,8 @@ int generate(const Args& a) {
   db.frame_rate = o.frame_rate;
   const std::size_t count = synthetic_sequence_count(o);
   const auto [first, last] = shard.block(count);
-  for (std::size_t i = first; i < last; ++i) db.sequences.push_back(synthetic_sequence(*model, o, i));
+  for (std::size_t i = first; i < last; ++i)
+    db.sequences.push_back(synthetic_sequence(*model, o, i));
   if (db.sequences.empty()) throw InvalidInput("--shard " + a.shard + " owns none of the " + std::to_string(count) + " sequences");
   core::OutputBundle bundle;
   if (!a.sheet.empty()) {
@@ -195,8 +199,8 @@ int generate(const Args& a) {
       }
     std::vector<int> all_ids(68);
     for (int i = 0; i < 68; ++i) all_ids[static_cast<std::size_t>(i)] = i;
-    bundle.add(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width, a.cell_width * 7 / 8,
-                                                 contours_for(all_ids))));
+    bundle.add(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
+                                                 a.cell_width * 7 / 8, contours_for(all_ids))));
   }
   stage_database(bundle, a.out, db);
   bundle.commit();
@@ -226,7 +230,8 @@ int synth(const Args& a) {
   o.synthesis.path_fraction = a.hint;
   o.synthesis.smoothing.sigmoid = !a.no_sigmoid;
   o.idle_after = a.idle_after;
-  if (a.requests.empty()) return write_animation(a, g, synthesize_chain(g, a.labels, a.seed, "", o));
+  if (a.requests.empty())
+    return write_animation(a, g, synthesize_chain(g, a.labels, a.seed, "", o));
   // Batch (motiongraph/batch.hpp): request r uses the seed stream r, and a shard takes its
   // contiguous block of the requests (bad ones count), so shard outputs concatenate to one run.
   const cli::Shard shard = cli::parse_shard(a.shard);
@@ -235,7 +240,8 @@ int synth(const Args& a) {
   const std::vector<Sequence> seqs =
       synthesize_requests(g, records, shard.block(records.size()), a.seed, o, on_error(a), &report);
   for (const std::string& m : report.skipped) std::cerr << "mgraph: skipped: " << m << "\n";
-  if (!report.skipped.empty()) std::cerr << "mgraph: " << report.skipped.size() << " request(s) skipped\n";
+  if (!report.skipped.empty())
+    std::cerr << "mgraph: " << report.skipped.size() << " request(s) skipped\n";
   if (seqs.empty()) throw InvalidInput("no request produced an animation (shard " + a.shard + ")");
   return write_animation(a, g, seqs);
 }
@@ -277,8 +283,8 @@ int eval(const Args& a) {
   eo.shard_count = shard.count;
   if (shard.count > 1) {
     const auto [first, last] = shard.block(data.samples.size());
-    std::printf("shard %zu/%zu: samples [%zu, %zu) of %zu (graphs from the whole database)\n", shard.index,
-                shard.count, first, last, data.samples.size());
+    std::printf("shard %zu/%zu: samples [%zu, %zu) of %zu (graphs from the whole database)\n",
+                shard.index, shard.count, first, last, data.samples.size());
   }
   const char* unit = weights ? "(weight)" : "(px)";
   std::printf("%10s %14s %7s %22s %22s%s\n", "threshold", "compression %", "nodes", "length diff (frames)",

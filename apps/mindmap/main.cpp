@@ -9,13 +9,13 @@
 
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/bundle.hpp"
+#include "emoface/core/graphviz.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/version.hpp"
-#include "emoface/core/graphviz.hpp"
+#include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmap/chart.hpp"
 #include "emoface/mindmap/dot.hpp"
 #include "emoface/mindmap/io.hpp"
-#include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmotion/behaviour.hpp"
 #include "emoface/mindmotion/crowd.hpp"
 #include "emoface/mindmotion/outputs.hpp"
@@ -91,19 +91,21 @@ int simulate(Args& a) {
   // Every file staged, then all written (or none: core::OutputBundle).
   emoface::core::OutputBundle bundle;
   const std::string report = mo::stage_simulation_outputs(
-      bundle, a.out, maps, r, {graph ? &*graph : nullptr, fitter.get(), a.motion, a.chart, !a.no_charts, a.weights});
+      bundle, a.out, maps, r,
+      {graph ? &*graph : nullptr, fitter.get(), a.motion, a.chart, !a.no_charts, a.weights});
   bundle.commit();
   std::cout << report;
   for (const auto& s : r.copied)
     std::cout << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time << " s\n";
-  std::cout << r.actions.size() << " action(s) by " << maps.size() << " character(s) over " << r.duration
-            << " s; wrote " << bundle.size() << " file(s) to " << a.out << "\n";
+  std::cout << r.actions.size() << " action(s) by " << maps.size() << " character(s) over "
+            << r.duration << " s; wrote " << bundle.size() << " file(s) to " << a.out << "\n";
   return cli::kExitOk;
 }
 
 int crowd(Args& a) {
   a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
-  a.render.view = emoface::facemesh::view_from_string(a.view);  // checked by CLI11 (IsMember) when parsing
+  a.render.view =
+      emoface::facemesh::view_from_string(a.view);  // checked by CLI11 (IsMember) when parsing
   apply_motion_options(a);
   mo::CrowdOptions co;
   co.simulation = a.sim;
@@ -120,19 +122,22 @@ int crowd(Args& a) {
   const mg::MotionGraph graph = a.graph.empty() ? mo::default_motion_graph() : mg::read_graph(a.graph);
   if (a.graph.empty())
     std::cout << "built the default synthetic motion graph in "
-              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
+              << " s\n";
   const std::vector<mm::MindMap> maps = mm::read_mind_map_dir(a.maps, mo::graph_labels(graph));
   for (const auto& m : maps) mo::character_file_stem(m.character);
   // Faces: --rig FILE for everyone, --rig NAME=FILE for one character; the default face otherwise.
   const mo::CrowdFaces crowd_faces(maps, a.rigs);
   mo::CrowdTimings timings;
-  const mo::Crowd crowd = mo::animate_crowd(maps, mm::read_events(a.events), graph, crowd_faces.rigs(), co, &timings);
+  const mo::Crowd crowd =
+      mo::animate_crowd(maps, mm::read_events(a.events), graph, crowd_faces.rigs(), co, &timings);
   const mo::CrowdRenderer renderer(crowd, crowd_faces.rigs(), a.render);
   cli::ProgressBar bar("mindmap", false);
   emoface::core::OutputBundle bundle;  // every file and the video, or nothing
   const mo::CrowdOutputReport rendering = mo::stage_crowd_outputs(
       bundle, a.out, crowd, renderer,
-      {a.chart, !a.no_charts, a.weights, a.video, [&](std::size_t k, std::size_t n) { bar.update("rendering", k, n); }});
+      {a.chart, !a.no_charts, a.weights, a.video,
+       [&](std::size_t k, std::size_t n) { bar.update("rendering", k, n); }});
   bundle.commit();
   std::cout << mo::crowd_report(crowd, renderer, timings, rendering);
   std::cout << "wrote " << bundle.size() << " file(s) to " << a.out << "\n";

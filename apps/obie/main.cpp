@@ -138,8 +138,9 @@ int main(int argc, char** argv) {
     bundle.commit();
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::vector<std::string> written;
-    for (const char* name : {"obie.mp4", "speech.wav", "face.glb", "timeline.ndjson", "tracks.csv", "arkit.csv",
-                             "facs.csv", "livelink_face.csv", "charts.png", "key_moments.png", "summary.json"})
+    for (const char* name :
+         {"obie.mp4", "speech.wav", "face.glb", "timeline.ndjson", "tracks.csv", "arkit.csv",
+          "facs.csv", "livelink_face.csv", "charts.png", "key_moments.png", "summary.json"})
       if (fs::exists(file(name))) written.push_back(file(name));
     std::cout << ob::console_summary(r, match, match_path, o, total, out_dir, written);
     return 0;

@@ -30,7 +30,8 @@ int plan_command(const PlanArgs& a, std::ostream& out) {
 int run_command(const RunArgs& a) {
   const Domain domain(read_domain_files(a.files));
   const std::vector<Event> events = read_events_file(a.events);
-  std::string timeline = core::ndjson_header("parlee.timeline", {1, 1});  // 1.1: skipped, active, shown
+  std::string timeline =
+      core::ndjson_header("parlee.timeline", {1, 1});  // 1.1: skipped, active, shown
   std::vector<std::string> names;
   std::vector<std::vector<StepRecord>> runs;
   double unit_seconds = 0.0;
@@ -39,10 +40,11 @@ int run_command(const RunArgs& a) {
     if (unit_seconds == 0.0) unit_seconds = config.time_unit_seconds;
     if (a.horizon >= 0) config.planning.horizon = a.horizon;
     if (a.depth >= -1) config.planning.model_depth = a.depth;
-    runs.push_back(run_agent(domain, config, events, a.events, [&](std::size_t line, const std::string& why) {
-      std::cerr << "parlee: warning: " << a.events << ":" << line << ": agent " << config.name << ": skipped: " << why
-                << "\n";
-    }));
+    runs.push_back(
+        run_agent(domain, config, events, a.events, [&](std::size_t line, const std::string& why) {
+          std::cerr << "parlee: warning: " << a.events << ":" << line << ": agent " << config.name
+                    << ": skipped: " << why << "\n";
+        }));
     timeline += agent_timeline(config.name, runs.back());
     names.push_back(config.name);
   }

@@ -63,10 +63,10 @@ TEST_F(Bundle, AFailureLeavesNothingHalfWritten) {
     // The third output cannot be written (its parent is a file): IoError, nothing committed.
     EXPECT_THROW(b.add(path("old.csv/x.png"), "x"), IoError);
     EXPECT_THROW(b.add(path("frames/f0.png"), "again"), InvalidInput);  // staged twice
-  }  // destroyed uncommitted
-  EXPECT_EQ(read_file(path("old.csv")), "old");  // untouched
-  EXPECT_FALSE(fs::exists(path("frames")));      // the directory it created is gone
-  EXPECT_EQ(entries(), 1u);                      // no temporary files
+  }                                                                     // destroyed uncommitted
+  EXPECT_EQ(read_file(path("old.csv")), "old");                         // untouched
+  EXPECT_FALSE(fs::exists(path("frames")));  // the directory it created is gone
+  EXPECT_EQ(entries(), 1u);                  // no temporary files
   // An exception between staging and commit (e.g. a later output failing to compute).
   try {
     OutputBundle b;

@@ -6,12 +6,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
 #include "emoface/core/csv.hpp"
@@ -103,9 +102,10 @@ TEST_F(Mgraph, GenerateShardsConcatenateToTheWholeRun) {
     std::vector<std::string> parts;
     for (int i = 0; i < n; ++i) {
       const std::string out = path("s" + std::to_string(i) + ".csv");
-      ASSERT_EQ(run(common + "--shard " + std::to_string(i) + "/" + std::to_string(n) + " --out " +
-                    out).code,
-                0);
+      ASSERT_EQ(
+          run(common + "--shard " + std::to_string(i) + "/" + std::to_string(n) + " --out " + out)
+              .code,
+          0);
       parts.push_back(slurp(out));
       EXPECT_GT(csv_lines(parts.back()).size(), 1u);
     }
@@ -113,13 +113,15 @@ TEST_F(Mgraph, GenerateShardsConcatenateToTheWholeRun) {
   }
   // --shard auto: the Slurm array variables.
   const std::string slurm = "SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=3 ";
-  ASSERT_EQ(run_tool(slurm + MGRAPH_EXE, common + "--shard auto --out " + path("auto.csv")).code, 0);
+  ASSERT_EQ(run_tool(slurm + MGRAPH_EXE, common + "--shard auto --out " + path("auto.csv")).code,
+            0);
   EXPECT_EQ(slurp(path("auto.csv")), slurp(path("s1.csv")));
   auto r = run(common + "--shard 2/2 --out " + path("bad.csv"));
   EXPECT_EQ(r.code, 1);
   r = run(common + "--shard 1of2 --out " + path("bad.csv"));
   EXPECT_EQ(r.code, 1);
-  r = run_tool("env -u SLURM_ARRAY_TASK_COUNT " MGRAPH_EXE, common + "--shard auto --out " + path("bad.csv"));
+  r = run_tool("env -u SLURM_ARRAY_TASK_COUNT " MGRAPH_EXE,
+               common + "--shard auto --out " + path("bad.csv"));
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("SLURM_ARRAY_TASK_COUNT"), std::string::npos) << r.err;
 }
@@ -127,9 +129,10 @@ TEST_F(Mgraph, GenerateShardsConcatenateToTheWholeRun) {
 TEST_F(Mgraph, SynthRequestShardsConcatenateToTheWholeRun) {
   // The requests file may carry the "# emoface" stamp (requests_to_csv writes it); bad requests
   // count as items of the batch.
-  const std::string req = write("req.csv", emoface::core::csv_stamp() +
-                                               "id,labels\na,fear;surprise\nb,boredom\nc,happiness\n"
-                                               "d,surprise\ne,anger;happiness\n");
+  const std::string req =
+      write("req.csv", emoface::core::csv_stamp() +
+                           "id,labels\na,fear;surprise\nb,boredom\nc,happiness\n"
+                           "d,surprise\ne,anger;happiness\n");
   const std::string common = "synth --graph " + shared("graph.json") + " --requests " + req +
                              " --vary --idle 0.3 --seed 5 --on-error skip ";
   auto r = run(common + "--out " + path("all.csv"));

@@ -76,7 +76,8 @@ TEST(MindMapDot, DotParsesIt) {
 // core::write_dot, the one writer of `mindmap dot` and `mgraph dot`: text by default, rendered by
 // the extension.
 TEST(MindMapDot, WriteDotWritesTextOrRendersByExtension) {
-  const auto dir = std::filesystem::temp_directory_path() / ("emoface_write_dot_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("emoface_write_dot_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string text = mind_map_dot(test::make_alice(), {});
   core::write_dot(text, (dir / "a.dot").string());

@@ -210,7 +210,8 @@ TEST(EventsIo, BadLinesNameTheLine) {
 }
 
 // The unknown-field rule (docs/formats.md) for the NDJSON streams: the stream header sets the
-// version; a 1.0 stream (or one without a header) rejects unknown fields, a 1.1 stream ignores them.
+// version; a 1.0 stream (or one without a header) rejects unknown fields, a 1.1 stream ignores
+// them.
 TEST(EventsIo, UnknownFieldRuleFollowsTheStreamHeader) {
   const std::string rec = "{\"time\": 1, \"to\": \"a\", \"stimulus\": \"s\", \"mood\": 1}\n";
   const std::string v10 = "{\"format\": \"emoface.mindmap_events\", \"version\": \"1.0\"}\n";
@@ -229,16 +230,17 @@ TEST(EventsIo, UnknownFieldRuleFollowsTheStreamHeader) {
   const auto events = mm::parse_events(v11 + rec, "e.ndjson");
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].line, 2u);
-  EXPECT_THROW(mm::parse_events("{\"format\": \"emoface.mindmap_events\", \"version\": \"2.0\"}\n" +
-                                    rec, "e.ndjson"),
-               emoface::FormatError);  // a newer major
+  EXPECT_THROW(
+      mm::parse_events("{\"format\": \"emoface.mindmap_events\", \"version\": \"2.0\"}\n" + rec,
+                       "e.ndjson"),
+      emoface::FormatError);  // a newer major
   // Actions: the same rule with their own header.
   const std::string act =
       "{\"time\":1,\"character\":\"a\",\"action\":\"x\",\"label\":\"fear\",\"emotion\":\"e\","
       "\"mood\":0.5,\"cause\":\"stimulus\",\"stimulus\":\"s\",\"depth\":0,\"note\":1}\n";
   EXPECT_THROW(mm::parse_actions(act, "a.ndjson"), emoface::FormatError);
-  EXPECT_EQ(mm::parse_actions("{\"format\":\"emoface.mindmap_actions\",\"version\":\"1.3\"}\n" + act,
-                              "a.ndjson")
+  EXPECT_EQ(mm::parse_actions(
+                "{\"format\":\"emoface.mindmap_actions\",\"version\":\"1.3\"}\n" + act, "a.ndjson")
                 .size(),
             1u);
 }

@@ -59,8 +59,8 @@ TEST(MindmapApp, SimulatesTheExampleCharacters) {
 TEST(MindmapApp, SimulateWritesNothingWhenAnOutputCannotBeWritten) {
   const fs::path out = scratch("sim_fail");
   fs::create_directories(out / "ben_mood.png");
-  EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + kData + "/events.ndjson --out " +
-                out.string()),
+  EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + kData +
+                "/events.ndjson --out " + out.string()),
             2);
   std::size_t entries = 0;
   for (const auto& e : fs::directory_iterator(out)) {

@@ -79,7 +79,8 @@ TEST(Requests, BadInput) {
 TEST(Requests, ShardsOfABatchConcatenateToTheWholeRun) {
   const MotionGraph g = build_graph(test::small_prepared(), {});
   const auto recs = parse_requests_csv(
-      "id,labels\na,surprise;happiness\nb,boredom\nc,happiness\nd,surprise\ne,happiness\n", "r.csv");
+      "id,labels\na,surprise;happiness\nb,boredom\nc,happiness\nd,surprise\ne,happiness\n",
+      "r.csv");
   ChainOptions o = chain_options_for(g);
   o.synthesis.vary_duration = true;  // random choices: seeded per request
   o.idle_after = 0.5;
@@ -96,8 +97,8 @@ TEST(Requests, ShardsOfABatchConcatenateToTheWholeRun) {
   for (std::size_t n : {2u, 3u, 5u}) {
     std::vector<Sequence> joined;
     for (std::size_t i = 0; i < n; ++i) {
-      const auto part = synthesize_requests(g, recs, core::Shard{i, n}.block(recs.size()), 9, o,
-                                            OnError::Skip);
+      const auto part =
+          synthesize_requests(g, recs, core::Shard{i, n}.block(recs.size()), 9, o, OnError::Skip);
       joined.insert(joined.end(), part.begin(), part.end());
     }
     ASSERT_EQ(joined.size(), whole.size()) << n;

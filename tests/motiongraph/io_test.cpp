@@ -105,7 +105,8 @@ TEST(DatabaseJson, BadInput) {
   expect_format_error(replaced("\"version\":\"1.0\"", "\"version\":\"2.0\""), "newer");
   expect_format_error(replaced("\"emoface.landmark_database\"", "\"emoface.rig\""), "/format");
   expect_format_error(replaced("\"surprise\"", "\"joy\""), "/sequences/0/label");
-  expect_format_error(replaced("\"label\":\"surprise\",", ""), "/sequences/0: missing field \"label\"");
+  expect_format_error(replaced("\"label\":\"surprise\",", ""),
+                      "/sequences/0: missing field \"label\"");
   expect_format_error(replaced("\"landmark_count\":2", "\"landmark_count\":3"), "/sequences/0/frames/0");
   expect_format_error(replaced("\"landmark_count\":2", "\"landmark_count\":-1"), "/landmark_count");
   expect_format_error(replaced("\"landmark_count\":2", "\"landmark_count\":1e12"), "/landmark_count");
@@ -399,7 +400,8 @@ TEST(DatabaseJson, SkipBadSequences) {
   ASSERT_EQ(db.sequences.size(), 1u);
   EXPECT_EQ(db.sequences[0].id, "S001_001");
   ASSERT_EQ(report.skipped.size(), 2u);
-  EXPECT_EQ(report.skipped[0], "d.json: at /sequences/0/frames/1/2: expected a number, got a string");
+  EXPECT_EQ(report.skipped[0],
+            "d.json: at /sequences/0/frames/1/2: expected a number, got a string");
   EXPECT_EQ(report.skipped[1], "d.json: at /sequences/2/id: duplicate sequence id \"S001_001\"");
   EXPECT_EQ(on_error_from_string(to_string(OnError::Skip)), OnError::Skip);  // core::OnError
   EXPECT_FALSE(on_error_from_string("ignore").has_value());

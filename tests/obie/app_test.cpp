@@ -71,8 +71,8 @@ TEST_F(ObieApp, WritesEveryOutputWithTheVersionStamp) {
 // a directory here, so the last output cannot be written: no other output appears either.
 TEST_F(ObieApp, AFailingOutputLeavesNoneWritten) {
   std::filesystem::create_directories(path("out/summary.json"));
-  const auto r = run_tool(kExe, "--match " + match() + " --agent " + agent() + " --out " + path("out") + kSmall +
-                                    " --no-video -q --weights arkit");
+  const auto r = run_tool(kExe, "--match " + match() + " --agent " + agent() + " --out " +
+                                    path("out") + kSmall + " --no-video -q --weights arkit");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("summary.json"), std::string::npos) << r.err;
   std::size_t entries = 0;

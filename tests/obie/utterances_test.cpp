@@ -122,7 +122,8 @@ std::string error_of(const std::string& body) {
 }
 
 TEST(Utterances, UnknownFieldRule) {
-  const std::string body = R"("rules": [{"emotion": "fear", "texts": ["x"], "pitch": 3}], "voice": 1)";
+  const std::string body =
+      R"("rules": [{"emotion": "fear", "texts": ["x"], "pitch": 3}], "voice": 1)";
   EXPECT_EQ(error_of(body), "u.json: at /voice: unknown field \"voice\"");
   EXPECT_EQ(error_of(body.substr(0, body.find(", \"voice\""))),
             "u.json: at /rules/0/pitch: unknown field \"pitch\"");

@@ -191,8 +191,10 @@ TEST(AgentFile, UnknownFieldRule) {
         std::string(R"({"format":"emoface.parlee_agent","version":")") + version + R"(",)";
     EXPECT_EQ(pointer_of(head + R"("mood":1})"), "/mood") << version;
     EXPECT_EQ(pointer_of(head + R"("planning":{"horizon":2,"beam":3}})"), "/planning/beam");
-    EXPECT_EQ(pointer_of(head + R"("emotions":{"effect":[{"from":"joy","to":"fear","value":0.1,"w":1}]}})"),
-              "/emotions/effect/0/w");
+    EXPECT_EQ(
+        pointer_of(head +
+                   R"("emotions":{"effect":[{"from":"joy","to":"fear","value":0.1,"w":1}]}})"),
+        "/emotions/effect/0/w");
     try {
       parse_agent(head + R"("mood":1})", "a.json");
     } catch (const FormatError& e) {

@@ -130,8 +130,8 @@ void ProgressBar::update(std::string_view stage, std::size_t done, std::size_t t
     std::fflush(stderr);
   } else if (pct / 10 != last_pct_ / 10 || !same_stage || done == total) {
     if (!(done == total && pct == last_pct_ && same_stage))
-      std::fprintf(stderr, "%s: %s %d%% (%zu/%zu)\n", tool_.c_str(), std::string(stage).c_str(), pct,
-                   done, total);
+      std::fprintf(stderr, "%s: %s %d%% (%zu/%zu)\n", tool_.c_str(), std::string(stage).c_str(),
+                   pct, done, total);
   }
   last_pct_ = pct;
   stage_ = std::string(stage);

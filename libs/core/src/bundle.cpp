@@ -114,8 +114,8 @@ void OutputBundle::commit() {
       continue;
     }
     if (std::rename(files_[i].temp.c_str(), files_[i].target.c_str()) != 0) {
-      const std::string message = files_[i].target + ": cannot rename into place: " +
-                                  std::strerror(errno);
+      const std::string message =
+          files_[i].target + ": cannot rename into place: " + std::strerror(errno);
       for (std::size_t j = i; j < files_.size(); ++j)
         if (!files_[j].temp.empty()) ::unlink(files_[j].temp.c_str());
       files_.clear();

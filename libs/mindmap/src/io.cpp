@@ -45,10 +45,10 @@ Json to_json_array(const std::vector<double>& v) {
 
 // Calls fn(record, line) for every non-blank NDJSON line that does not start with '#', each record
 // read through core::JsonReader. The stream header ({"format": "emoface.<kind>", "version"}, the
-// stream's version stamp) is skipped and sets the unknown-field rule: records of a stream of a newer
-// minor version than `supported` may add fields (ignored); otherwise unknown fields are errors.
-// Every error is a FormatError naming the line (and the JSON pointer, or the column of a syntax
-// error).
+// stream's version stamp) is skipped and sets the unknown-field rule: records of a stream of a
+// newer minor version than `supported` may add fields (ignored); otherwise unknown fields are
+// errors. Every error is a FormatError naming the line (and the JSON pointer, or the column of a
+// syntax error).
 template <class Fn>
 void for_each_ndjson(std::string_view text, const std::string& file, std::string_view kind,
                      core::FormatVersion supported, Fn fn) {
@@ -104,8 +104,10 @@ MindMap parse_mind_map(std::string_view json_text, const std::string& file,
     const std::string a_name = name(j);
     auto a = m.find_action(a_name);
     if (!a) j.fail("dangling edge: no action node \"" + a_name + "\"");
-    if (receive && !m.actions[*a].receivable) j.fail("action \"" + a_name + "\" cannot be received");
-    if (perform && !m.actions[*a].performable) j.fail("action \"" + a_name + "\" cannot be performed");
+    if (receive && !m.actions[*a].receivable)
+      j.fail("action \"" + a_name + "\" cannot be received");
+    if (perform && !m.actions[*a].performable)
+      j.fail("action \"" + a_name + "\" cannot be performed");
     return *a;
   };
 
@@ -119,7 +121,8 @@ MindMap parse_mind_map(std::string_view json_text, const std::string& file,
       node.receivable = a.boolean_or("receive", node.receivable);
       node.performable = a.boolean_or("perform", node.performable);
       if (!node.receivable && !node.performable)
-        a.fail("an action must be received and/or performed (\"receive\": true, \"perform\": true)");
+        a.fail(
+            "an action must be received and/or performed (\"receive\": true, \"perform\": true)");
       if (auto l = a.find("label")) {
         node.label = name(*l);
         if (!known_labels.empty() &&
@@ -317,8 +320,8 @@ std::vector<Event> parse_events(std::string_view text, const std::string& file) 
     }
     const bool change = !ev.context.empty() || !ev.affection.empty();
     if (change && j.has("stimulus"))
-      j.at("stimulus").fail(
-          "an event either delivers a stimulus or changes context/affection, not both");
+      j.at("stimulus")
+          .fail("an event either delivers a stimulus or changes context/affection, not both");
     if (!change) ev.stimulus = name(j.at("stimulus"));
     if (auto from = j.find("from")) ev.source = name(*from);
     if (auto w = j.find("weights"))

@@ -22,8 +22,12 @@ using emoface::InvalidInput;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-double cpu_since(std::clock_t c0) { return static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC; }
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+double cpu_since(std::clock_t c0) {
+  return static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+}
 
 std::string chart_png(const mindmap::SimulationResult& r, const mindmap::MindMap& map,
                       std::size_t c, const mindmap::ChartOptions& options) {
@@ -39,7 +43,8 @@ std::string character_file_stem(const std::string& name) {
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') ||
         name[0] == '.')
-      throw InvalidInput("character \"" + name + "\": only letters, digits, '_', '-' and '.' "
+      throw InvalidInput("character \"" + name +
+                         "\": only letters, digits, '_', '-' and '.' "
                          "may be used in a character name that names output files");
   return name;
 }
@@ -58,8 +63,9 @@ void stage_weight_files(core::OutputBundle& bundle, const std::string& stem,
   for (const auto& w : formats) {
     const auto format = faceweights::track_format_from_string(w + "-csv");
     if (!format) throw InvalidInput("unknown weight format \"" + w + "\" (arkit|facs|livelink)");
-    bundle.add(stem + "_" + w + ".csv", faceweights::format_weight_track(
-                                            *format, muscles::parameter_names(), times, values, fps));
+    bundle.add(
+        stem + "_" + w + ".csv",
+        faceweights::format_weight_track(*format, muscles::parameter_names(), times, values, fps));
   }
 }
 
@@ -109,7 +115,8 @@ CrowdOutputReport stage_crowd_outputs(core::OutputBundle& bundle, const std::str
     stage_weight_files(bundle, stem, ch.tracks, o.weights);
     bundle.add(stem + "_mood.csv", mindmap::mood_timeline_csv(crowd.simulation, crowd.maps[c], c));
     bundle.add(stem + "_segments.csv", segments_csv(ch.motion));
-    if (o.charts) bundle.add(stem + "_mood.png", chart_png(crowd.simulation, crowd.maps[c], c, o.chart));
+    if (o.charts)
+      bundle.add(stem + "_mood.png", chart_png(crowd.simulation, crowd.maps[c], c, o.chart));
   }
   bundle.add(dir + "/key_moments.csv", key_moments_csv(crowd));
   auto t0 = Clock::now();
@@ -146,8 +153,8 @@ std::string crowd_report(const Crowd& crowd, const CrowdRenderer& renderer,
     std::size_t actions = 0;
     for (const auto& x : crowd.simulation.actions) actions += x.character == ch.name ? 1 : 0;
     out << ch.name << ": " << actions << " action(s), " << ch.motion.segments.size()
-        << " segments, fit RMS mean " << ch.fit.mean_rms * 1e3 << " mm (max " << ch.fit.max_rms * 1e3
-        << " mm)\n";
+        << " segments, fit RMS mean " << ch.fit.mean_rms * 1e3 << " mm (max "
+        << ch.fit.max_rms * 1e3 << " mm)\n";
   }
   for (const auto& s : crowd.simulation.copied)
     out << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time
@@ -164,20 +171,21 @@ std::string crowd_report(const Crowd& crowd, const CrowdRenderer& renderer,
   out << "\n";
   const std::size_t n = crowd.characters.size();
   const double frames = static_cast<double>(crowd.frame_count());
-  std::snprintf(buf, sizeof buf, "%zu characters, %zu frames at %g fps (%g s), %zu key moments, frame %dx%d\n",
-                n, crowd.frame_count(), crowd.fps, crowd.simulation.duration,
-                crowd.key_moments.size(), renderer.width(), renderer.height());
+  std::snprintf(buf, sizeof buf,
+                "%zu characters, %zu frames at %g fps (%g s), %zu key moments, frame %dx%d\n", n,
+                crowd.frame_count(), crowd.fps, crowd.simulation.duration, crowd.key_moments.size(),
+                renderer.width(), renderer.height());
   out << buf;
   const double faces = frames * static_cast<double>(n);
-  std::snprintf(buf, sizeof buf,
-                "time (wall / CPU): simulation %.3f / %.3f s; synthesis %.3f / %.3f s (%.3f ms CPU per "
-                "frame and character); fitting %.3f / %.3f s (%.3f ms CPU per frame and character); "
-                "deformation+render %.3f / %.3f s for %zu faces (%.2f ms CPU per face)\n",
-                timings.simulation.wall, timings.simulation.cpu, timings.synthesis.wall,
-                timings.synthesis.cpu, 1e3 * timings.synthesis.cpu / faces, timings.fitting.wall,
-                timings.fitting.cpu, 1e3 * timings.fitting.cpu / faces, rep.render_seconds,
-                rep.render_cpu, rep.rendered,
-                rep.rendered ? 1e3 * rep.render_cpu / static_cast<double>(rep.rendered) : 0.0);
+  std::snprintf(
+      buf, sizeof buf,
+      "time (wall / CPU): simulation %.3f / %.3f s; synthesis %.3f / %.3f s (%.3f ms CPU per "
+      "frame and character); fitting %.3f / %.3f s (%.3f ms CPU per frame and character); "
+      "deformation+render %.3f / %.3f s for %zu faces (%.2f ms CPU per face)\n",
+      timings.simulation.wall, timings.simulation.cpu, timings.synthesis.wall,
+      timings.synthesis.cpu, 1e3 * timings.synthesis.cpu / faces, timings.fitting.wall,
+      timings.fitting.cpu, 1e3 * timings.fitting.cpu / faces, rep.render_seconds, rep.render_cpu,
+      rep.rendered, rep.rendered ? 1e3 * rep.render_cpu / static_cast<double>(rep.rendered) : 0.0);
   out << buf;
   return out.str();
 }

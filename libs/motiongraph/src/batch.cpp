@@ -95,7 +95,8 @@ std::string requests_to_csv(const std::vector<SynthesisRequest>& requests) {
   std::string out = core::csv_stamp() + "id,labels\n";
   for (const SynthesisRequest& r : requests) {
     if (r.id.empty()) throw InvalidInput("requests_to_csv: empty request id");
-    if (r.labels.empty()) throw InvalidInput("requests_to_csv: request \"" + r.id + "\" has no labels");
+    if (r.labels.empty())
+      throw InvalidInput("requests_to_csv: request \"" + r.id + "\" has no labels");
     std::string labels;
     for (const std::string& l : r.labels) {
       if (l.find(';') != std::string::npos)
@@ -176,9 +177,10 @@ std::vector<Sequence> synthesize_requests(const MotionGraph& graph,
 namespace {
 
 const char* const kEvalColumns[] = {
-    "threshold",   "compression_percent", "nodes",      "length_diff_mean", "length_diff_std",
-    "pose_diff_mean", "pose_diff_std",    "samples",    "distances",        "length_sum",
-    "length_sum2", "pose_sum",            "pose_sum2"};
+    "threshold",       "compression_percent", "nodes",         "length_diff_mean",
+    "length_diff_std", "pose_diff_mean",      "pose_diff_std", "samples",
+    "distances",       "length_sum",          "length_sum2",   "pose_sum",
+    "pose_sum2"};
 const char* const kRawColumns[] = {"raw_pose_diff_mean", "raw_pose_diff_std", "raw_pose_sum",
                                    "raw_pose_sum2"};
 
@@ -195,11 +197,10 @@ std::string evaluation_csv(const std::vector<EvaluationRow>& rows) {
   for (const EvaluationRow& r : rows) {
     if (r.has_raw != raw)
       throw InvalidInput("evaluation_csv: rows with and without raw comparisons");
-    std::snprintf(line, sizeof line,
-                  "%.6g,%.4f,%zu,%.6g,%.6g,%.6g,%.6g,%zu,%zu,%.17g,%.17g,%.17g,%.17g", r.threshold,
-                  100 * r.compression, r.nodes, r.length_mean, r.length_std, r.pose_mean,
-                  r.pose_std, r.samples, r.distances, r.length_sum, r.length_sum2, r.pose_sum,
-                  r.pose_sum2);
+    std::snprintf(
+        line, sizeof line, "%.6g,%.4f,%zu,%.6g,%.6g,%.6g,%.6g,%zu,%zu,%.17g,%.17g,%.17g,%.17g",
+        r.threshold, 100 * r.compression, r.nodes, r.length_mean, r.length_std, r.pose_mean,
+        r.pose_std, r.samples, r.distances, r.length_sum, r.length_sum2, r.pose_sum, r.pose_sum2);
     out += line;
     if (raw) {
       std::snprintf(line, sizeof line, ",%.6g,%.6g,%.17g,%.17g", r.raw_pose_mean, r.raw_pose_std,
@@ -227,16 +228,18 @@ std::vector<EvaluationRow> parse_evaluation_csv(std::string_view text, const std
     auto number = [&](std::size_t k, double lo) {
       const double v = table.number(i, col[k]);
       if (v < lo)
-        table.fail(i, col[k], "column \"" + table.header()[col[k]] + "\": " +
-                                  core::format_number(v) + " is below " + core::format_number(lo));
+        table.fail(i, col[k],
+                   "column \"" + table.header()[col[k]] + "\": " + core::format_number(v) +
+                       " is below " + core::format_number(lo));
       return v;
     };
     auto count = [&](std::size_t k) {
       const auto v = core::parse_integer(table.field(i, col[k]));
       if (!v || *v < 0)
-        table.fail(i, col[k], "column \"" + table.header()[col[k]] +
-                                  "\": expected a non-negative integer, got \"" +
-                                  table.field(i, col[k]) + "\"");
+        table.fail(i, col[k],
+                   "column \"" + table.header()[col[k]] +
+                       "\": expected a non-negative integer, got \"" + table.field(i, col[k]) +
+                       "\"");
       return static_cast<std::size_t>(*v);
     };
     EvaluationRow r;
@@ -271,7 +274,8 @@ std::vector<EvaluationRow> read_evaluation_csv(const std::string& path) {
   return parse_evaluation_csv(core::read_file(path), path);
 }
 
-// --- pictures -------------------------------------------------------------------------------------
+// --- pictures
+// -------------------------------------------------------------------------------------
 
 void stage_animation_pictures(core::OutputBundle& bundle, const MotionGraph& g,
                               const std::vector<Pose>& all, const AnimationPictures& a) {

@@ -9,8 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"

@@ -4,12 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <utility>
-#include <optional>
-
-#include <nlohmann/json.hpp>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
@@ -296,7 +295,8 @@ Database parse_database_csv(std::string_view text, const std::string& file, doub
         const std::optional<double> v = core::parse_number(s);
         if (!v) fail_line(file, line_no, c + 1, "expected a finite number, got \"" + s + "\"");
         const std::size_t k = c - 4;
-        p(static_cast<Eigen::Index>(k / db.dimensions), static_cast<Eigen::Index>(k % db.dimensions)) = *v;
+        p(static_cast<Eigen::Index>(k / db.dimensions),
+          static_cast<Eigen::Index>(k % db.dimensions)) = *v;
       }
       seq.frames.push_back(std::move(p));
     } catch (const FormatError& e) {
@@ -429,7 +429,8 @@ MotionGraph parse_graph_json(std::string_view text, const std::string& file) {
       n.peak_labels = labels(jn.at("peak_labels"));
       n.frame_count = jn.at("frame_count").index(kMaxCount);
       n.mean_run = jn.at("mean_run").number();
-      if (n.mean_run < 1.0 || n.mean_run > 1e3) jn.at("mean_run").fail("mean_run must be in [1, 1000]");
+      if (n.mean_run < 1.0 || n.mean_run > 1e3)
+        jn.at("mean_run").fail("mean_run must be in [1, 1000]");
       n.frames_from_neutral = jn.at("frames_from_neutral").number();
       n.peak_length_mean = jn.at("peak_length_mean").number();
       n.peak_length_std = jn.at("peak_length_std").number();

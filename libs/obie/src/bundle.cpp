@@ -71,8 +71,8 @@ void stage_outputs(core::OutputBundle& bundle, const std::string& out_dir, ObieR
       const muscles::FaceSolver solver(face.mesh, face.rig);
       muscles::RigGltfOptions gopt;
       gopt.animation_name = "match";
-      muscles::write_rig_gltf(bundle.stage_path(file("face.glb")), face, solver, r.gltf_times,
-                              keys, gopt);
+      muscles::write_rig_gltf(bundle.stage_path(file("face.glb")), face, solver, r.gltf_times, keys,
+                              gopt);
     });
   timed("charts + key moments", [&] {
     bundle.add(file("charts.png"), parlee::encode_png(emotion_chart(r)));
@@ -87,8 +87,8 @@ std::string console_summary(const ObieResult& r, const MatchScript& match,
                             double total_seconds, const std::string& out_dir,
                             const std::vector<std::string>& written) {
   std::ostringstream out;
-  out << "Obie (" << r.agent_name << ") watched " << (match.title.empty() ? match_path : match.title)
-      << "\n";
+  out << "Obie (" << r.agent_name << ") watched "
+      << (match.title.empty() ? match_path : match.title) << "\n";
   int f = 0, a = 0;
   for (const auto& g : r.goals) {
     out << "  goal " << fixed(g.minute, g.minute == static_cast<int>(g.minute) ? 0 : 1) << "'  "
@@ -100,7 +100,8 @@ std::string console_summary(const ObieResult& r, const MatchScript& match,
       << match.against_team.name << "\n";
   out << "peak emotions:";
   for (const auto& p : r.peaks)
-    if (p.value > 0.005) out << "  " << p.emotion << " " << fixed(p.value, 2) << " @" << p.minute << "'";
+    if (p.value > 0.005)
+      out << "  " << p.emotion << " " << fixed(p.value, 2) << " @" << p.minute << "'";
   out << "\nutterances:";
   for (const auto& u : r.utterances) out << "  " << u.minute << "' \"" << u.text << "\"";
   out << "\nframes: " << r.frames << " at " << o.fps << " fps = " << fixed(r.seconds(), 1)
@@ -120,7 +121,8 @@ KeyMoment parse_key_moment(const std::string& text) {
   KeyMoment k;
   const std::string minute = text.substr(0, colon);
   const std::optional<double> m = core::parse_number(minute);
-  if (!m || minute.empty()) throw InvalidInput("key moment \"" + text + "\": expected MINUTE[:LABEL]");
+  if (!m || minute.empty())
+    throw InvalidInput("key moment \"" + text + "\": expected MINUTE[:LABEL]");
   k.minute = *m;
   if (colon != std::string::npos) k.label = text.substr(colon + 1);
   return k;

@@ -2,9 +2,8 @@
 // Private helpers of the obie readers on top of core::JsonReader (issue 18: one located reader,
 // the unknown-field rule of docs/formats.md): the size limits obie puts on its documents.
 #include <cstddef>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "emoface/core/json_reader.hpp"
 
@@ -17,7 +16,8 @@ using core::JsonValue;
 inline const JsonValue& array(const JsonValue& v, std::size_t max_size) {
   v.expect_array();
   if (v.size() > max_size)
-    v.fail("too many entries (" + std::to_string(v.size()) + " > " + std::to_string(max_size) + ")");
+    v.fail("too many entries (" + std::to_string(v.size()) + " > " + std::to_string(max_size) +
+           ")");
   return v;
 }
 

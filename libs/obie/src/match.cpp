@@ -71,7 +71,8 @@ MatchScript parse_match(std::string_view text, const std::string& file) {
     auto team = [&](const char* key, Team& out) {
       const JsonValue o = detail::required(*t, key);
       o.only_keys({"side", "name"});
-      out.side = detail::string(detail::required(o, "side", "(the domain object of this team)"), false);
+      out.side =
+          detail::string(detail::required(o, "side", "(the domain object of this team)"), false);
       out.name = o.has("name") ? detail::string(o.at("name")) : out.side;
     };
     team("for", m.for_team);
@@ -86,7 +87,8 @@ MatchScript parse_match(std::string_view text, const std::string& file) {
       m.goal_outcomes.push_back(detail::string(o, false));
   }
   double prev = 0.0;
-  for (const JsonValue& e : detail::array(detail::required(doc, "events"), kMaxMatchEvents).items()) {
+  for (const JsonValue& e :
+       detail::array(detail::required(doc, "events"), kMaxMatchEvents).items()) {
     e.only_keys({"minute", "action", "outcome", "feedback", "note"});
     MatchEvent me;
     const JsonValue minute = detail::required(e, "minute");

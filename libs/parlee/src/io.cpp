@@ -14,8 +14,8 @@ constexpr core::FormatVersion kAgentVersion{1, 1};  // 1.1: appraisal, display
 
 using core::JsonValue;
 
-// The unknown-field rule of docs/formats.md (core::JsonReader): a field this reader does not know is
-// an error in a document of version 1.1 or older, and ignored in a newer minor.
+// The unknown-field rule of docs/formats.md (core::JsonReader): a field this reader does not know
+// is an error in a document of version 1.1 or older, and ignored in a newer minor.
 void unknown_field(const JsonValue& v, const std::string& key) {
   if (v.reader().strict()) v.fail("unknown field \"" + key + "\"");
 }
@@ -56,8 +56,10 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
   AgentConfig c;
   for (const auto& [key, v] : reader.root().expect_object().members()) {
     if (key == "format" || key == "version" || key == "generator") continue;
-    if (key == "name") c.name = v.string();
-    else if (key == "self") c.self = v.string();
+    if (key == "name")
+      c.name = v.string();
+    else if (key == "self")
+      c.self = v.string();
     else if (key == "seed") {
       if (!v.json().is_number_unsigned()) v.fail("expected a non-negative integer");
       c.seed = v.json().get<std::uint64_t>();
@@ -73,12 +75,18 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
       }
     } else if (key == "emotions") {
       for (const auto& [k, x] : v.members()) {
-        if (k == "alpha") emotion_map(x, c.emotions.alpha, 0.0, 1e6);
-        else if (k == "omega") emotion_map(x, c.emotions.omega, 1e-9, 1e6);
-        else if (k == "decay") emotion_map(x, c.emotions.decay, 0.0, 1.0);
-        else if (k == "decay_model") c.emotions.decay_model = named(x, decay_model_from_string);
-        else if (k == "step_seconds") c.emotions.step_seconds = x.number(1e-9, 1e9);
-        else if (k == "low_intensity_rate") c.emotions.low_intensity_rate = x.number(0.0, 1.0);
+        if (k == "alpha")
+          emotion_map(x, c.emotions.alpha, 0.0, 1e6);
+        else if (k == "omega")
+          emotion_map(x, c.emotions.omega, 1e-9, 1e6);
+        else if (k == "decay")
+          emotion_map(x, c.emotions.decay, 0.0, 1.0);
+        else if (k == "decay_model")
+          c.emotions.decay_model = named(x, decay_model_from_string);
+        else if (k == "step_seconds")
+          c.emotions.step_seconds = x.number(1e-9, 1e9);
+        else if (k == "low_intensity_rate")
+          c.emotions.low_intensity_rate = x.number(0.0, 1.0);
         else if (k == "effect") {
           c.emotions.effect = {};
           for (const JsonValue& e : x.items()) {
@@ -94,7 +102,8 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
             c.emotions.effect[index(from)][index(to)] = e.at("value").number(0.0, 1.0);
             e.only_keys({"from", "to", "value"});
           }
-        } else unknown_field(x, k);
+        } else
+          unknown_field(x, k);
       }
       try {
         c.emotions.validate();
@@ -103,27 +112,40 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
       }
     } else if (key == "motivation") {
       for (const auto& [k, x] : v.members()) {
-        if (k == "hunger") c.motivation.hunger = x.number(0.0, 1.0);
-        else if (k == "fatigue") c.motivation.fatigue = x.number(0.0, 1.0);
-        else if (k == "thirst") c.motivation.thirst = x.number(0.0, 1.0);
-        else if (k == "pain") c.motivation.pain = x.number(0.0, 1.0);
-        else unknown_field(x, k);
+        if (k == "hunger")
+          c.motivation.hunger = x.number(0.0, 1.0);
+        else if (k == "fatigue")
+          c.motivation.fatigue = x.number(0.0, 1.0);
+        else if (k == "thirst")
+          c.motivation.thirst = x.number(0.0, 1.0);
+        else if (k == "pain")
+          c.motivation.pain = x.number(0.0, 1.0);
+        else
+          unknown_field(x, k);
       }
     } else if (key == "planning") {
       for (const auto& [k, x] : v.members()) {
-        if (k == "horizon") c.planning.horizon = static_cast<int>(x.integer(0, 64));
-        else if (k == "model_depth") c.planning.model_depth = static_cast<int>(x.integer(-1, 64));
-        else if (k == "semantics") c.planning.semantics = named(x, goal_semantics_from_string);
-        else unknown_field(x, k);
+        if (k == "horizon")
+          c.planning.horizon = static_cast<int>(x.integer(0, 64));
+        else if (k == "model_depth")
+          c.planning.model_depth = static_cast<int>(x.integer(-1, 64));
+        else if (k == "semantics")
+          c.planning.semantics = named(x, goal_semantics_from_string);
+        else
+          unknown_field(x, k);
       }
     } else if (key == "replenishment") {
       for (const JsonValue& e : v.items()) {
         ReplenishmentGoal g;
         for (const auto& [k, x] : e.members()) {
-          if (k == "goal") g.goal = x.string();
-          else if (k == "threshold") g.threshold = x.number(1e-9, 1.0);
-          else if (k == "need") g.need = named(x, need_from_string);
-          else unknown_field(x, k);
+          if (k == "goal")
+            g.goal = x.string();
+          else if (k == "threshold")
+            g.threshold = x.number(1e-9, 1.0);
+          else if (k == "need")
+            g.need = named(x, need_from_string);
+          else
+            unknown_field(x, k);
         }
         if (g.goal.empty()) e.fail("needs a goal name");
         c.replenishment.push_back(g);
@@ -136,17 +158,25 @@ AgentConfig parse_agent(const std::string& text, const std::string& file) {
       c.on_disallowed = named(v, disallowed_event_from_string);
     } else if (key == "appraisal") {
       for (const auto& [k, x] : v.members()) {
-        if (k == "prospect") c.appraisal.prospect = named(x, prospect_mode_from_string);
-        else if (k == "compound") c.appraisal.compound = named(x, compound_rule_from_string);
-        else if (k == "surprise_threshold") c.appraisal.surprise_threshold = x.number(1e-9, 1.0);
-        else unknown_field(x, k);
+        if (k == "prospect")
+          c.appraisal.prospect = named(x, prospect_mode_from_string);
+        else if (k == "compound")
+          c.appraisal.compound = named(x, compound_rule_from_string);
+        else if (k == "surprise_threshold")
+          c.appraisal.surprise_threshold = x.number(1e-9, 1.0);
+        else
+          unknown_field(x, k);
       }
     } else if (key == "learning") {
       for (const auto& [k, x] : v.members()) {
-        if (k == "outcomes") c.learn_outcomes = x.boolean();
-        else if (k == "prior_count") c.learning_prior = x.number(0.0, 1e9);
-        else if (k == "liking_rate") c.liking_rate = x.number(0.0, 1.0);
-        else unknown_field(x, k);
+        if (k == "outcomes")
+          c.learn_outcomes = x.boolean();
+        else if (k == "prior_count")
+          c.learning_prior = x.number(0.0, 1e9);
+        else if (k == "liking_rate")
+          c.liking_rate = x.number(0.0, 1.0);
+        else
+          unknown_field(x, k);
       }
     } else if (key == "liking") {
       for (const auto& [k, x] : v.members()) c.liking[k] = x.number(-1.0, 1.0);

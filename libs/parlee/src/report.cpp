@@ -4,9 +4,8 @@
 #include <array>
 #include <cmath>
 #include <iomanip>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "emoface/parlee/chart.hpp"
 #include "emoface/parlee/io.hpp"
@@ -61,9 +60,10 @@ std::string format_plan(const Domain& domain, std::size_t goal, const PlanOption
   return out.str();
 }
 
-std::vector<StepRecord> run_agent(const Domain& domain, const AgentConfig& config,
-                                  const std::vector<Event>& events, const std::string& events_file,
-                                  const std::function<void(std::size_t, const std::string&)>& warn) {
+std::vector<StepRecord> run_agent(
+    const Domain& domain, const AgentConfig& config, const std::vector<Event>& events,
+    const std::string& events_file,
+    const std::function<void(std::size_t, const std::string&)>& warn) {
   Agent agent(domain, config);
   std::vector<StepRecord> run{agent.initial_record()};
   for (std::size_t i = 0; i < events.size(); ++i) {

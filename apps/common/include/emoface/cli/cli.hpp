@@ -55,8 +55,8 @@ using core::Shard;
 Shard parse_shard(std::string_view text);
 
 /// The one progress display of the apps (issue 18): on a terminal (stderr is a TTY) a bar redrawn
-/// in place, "stage      [#####.....]  50% 5/10"; otherwise — a log file, a pipe — one plain line per
-/// 10 % and per stage, "<tool>: stage 50% (5/10)"; nothing when quiet.
+/// in place, "stage      [#####.....]  50% 5/10"; otherwise — a log file, a pipe — one plain line
+/// per 10 % and per stage, "<tool>: stage 50% (5/10)"; nothing when quiet.
 class ProgressBar {
  public:
   ProgressBar(std::string tool, bool quiet);

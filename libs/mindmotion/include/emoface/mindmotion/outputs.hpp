@@ -56,7 +56,7 @@ struct CrowdOutputs {
 };
 
 struct CrowdOutputReport {
-  std::size_t rendered = 0;                        ///< faces rendered (key moments + video)
+  std::size_t rendered = 0;                       ///< faces rendered (key moments + video)
   double render_seconds = 0.0, render_cpu = 0.0;  ///< wall / this process's CPU
 };
 

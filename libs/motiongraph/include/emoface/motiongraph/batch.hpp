@@ -102,7 +102,9 @@ struct AnimationPictures {
   int columns = 8, every = 1, cell_width = 200;
   int video_width = 640, video_height = 490;
   double fps = 0.0;  ///< 0: the graph's frame rate
-  bool any() const { return !(sheet.empty() && plot.empty() && frames_dir.empty() && video.empty()); }
+  bool any() const {
+    return !(sheet.empty() && plot.empty() && frames_dir.empty() && video.empty());
+  }
 };
 
 /// Stages the PNGs and the video of `frames` (poses of the graph's reduced landmarks, coloured by

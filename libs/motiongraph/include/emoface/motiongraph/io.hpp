@@ -4,8 +4,9 @@
 //   emoface.landmark_database 1.0 — Database (see docs/motiongraph.md for the fields)
 //   emoface.landmark_layout   1.0 — LandmarkLayout (data/motiongraph/layout_ibug68.json)
 //   emoface.motion_graph      1.0 — MotionGraph
-// CSV landmark databases: header "sequence,subject,label,frame,x0,y0[,z0],x1,..." one row per frame.
-// CK+ directory layout reader: Landmarks/<S>/<seq>/*_landmarks.txt + Emotion/<S>/<seq>/*_emotion.txt.
+// CSV landmark databases: header "sequence,subject,label,frame,x0,y0[,z0],x1,..." one row per
+// frame. CK+ directory layout reader: Landmarks/<S>/<seq>/*_landmarks.txt +
+// Emotion/<S>/<seq>/*_emotion.txt.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,8 +21,8 @@ namespace emoface::motiongraph {
 /// What a database reader does with a bad sequence (a record): throw (Stop, the default) or leave
 /// the sequence out and report it (Skip). Errors outside sequences (envelope, header, dimensions)
 /// always throw. The one OnError of emoface (core/text.hpp: to_string, on_error_from_string).
-using core::OnError;
 using core::on_error_from_string;  // "stop" | "skip" → OnError; nothing otherwise
+using core::OnError;
 using core::to_string;
 
 /// Sequences a reader skipped, one message each naming the file and line or JSON pointer.

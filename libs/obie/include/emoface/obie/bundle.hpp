@@ -15,7 +15,7 @@ namespace emoface::obie {
 struct OutputSelection {
   std::vector<std::string> weights;  ///< any of "arkit", "facs", "livelink" (→ arkit.csv, facs.csv,
                                      ///< livelink_face.csv)
-  bool speech_wav = true;            ///< speech.wav (false when a VideoSink writes it)
+  bool speech_wav = true;  ///< speech.wav (false when a VideoSink writes it)
 };
 
 /// Stages into `bundle`, in `out_dir`: timeline.ndjson, tracks.csv, the selected weight CSVs,

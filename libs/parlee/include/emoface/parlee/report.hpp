@@ -24,10 +24,10 @@ std::string format_plan(const Domain& domain, std::size_t goal, const PlanOption
 /// One agent over `events`: the initial record, then one per event. An event the agent cannot take
 /// (InvalidInput) is a FormatError at `events_file` line i+1; an event its model does not allow is
 /// skipped and reported through `warn` (the record's `skipped`).
-std::vector<StepRecord> run_agent(const Domain& domain, const AgentConfig& config,
-                                  const std::vector<Event>& events, const std::string& events_file,
-                                  const std::function<void(std::size_t line, const std::string& why)>&
-                                      warn = nullptr);
+std::vector<StepRecord> run_agent(
+    const Domain& domain, const AgentConfig& config, const std::vector<Event>& events,
+    const std::string& events_file,
+    const std::function<void(std::size_t line, const std::string& why)>& warn = nullptr);
 
 /// The NDJSON timeline lines of one run, each record prefixed with {"agent": name, …}.
 std::string agent_timeline(const std::string& agent_name, const std::vector<StepRecord>& run);
