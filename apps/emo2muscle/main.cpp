@@ -1,8 +1,6 @@
 // emo2muscle: batch conversion of emotion intensities (ESV) to muscle contraction levels (FMCV) with
 // the fuzzy rule-based system of thesis chapter 6. Thin: parse arguments, call fuzzyexpr, write.
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "emoface/cli/cli.hpp"
 #include "emoface/core/io.hpp"
@@ -14,7 +12,6 @@
 
 namespace fx = emoface::fuzzyexpr;
 namespace cli = emoface::cli;
-
 using cli::parse_enum;
 
 int main(int argc, char** argv) {
@@ -116,23 +113,13 @@ int main(int argc, char** argv) {
     if (shard.count > 1 && out_opts.format == fx::StreamFormat::Json)
       throw cli::UsageError("--shard needs a stream output (--to csv or ndjson), not json");
 
-    std::ifstream file;
-    std::istringstream buffered;  // stdin, read once when a shard must count the records first
-    if (input != "-") {
-      file.open(input, std::ios::binary);
-      if (!file) throw emoface::IoError(input + ": cannot open for reading");
-    } else if (shard.count > 1) {
-      std::ostringstream all;
-      all << std::cin.rdbuf();
-      buffered.str(all.str());
-    }
-    std::istream& in = input != "-" ? file : shard.count > 1 ? buffered : std::cin;
-    const std::string name = input == "-" ? "<stdin>" : input;
+    cli::Input input_stream(input, shard.count > 1);
+    std::istream& in = input_stream.stream();
+    const std::string& name = input_stream.name();
     if (shard.count > 1) {  // contiguous blocks need the number of records
       fx::EsvReader counter(in, name, in_opts);
       batch.total_records = fx::count_records(counter);
-      in.clear();
-      in.seekg(0);
+      input_stream.rewind();
     }
     fx::EsvReader reader(in, name, in_opts);
     fx::FmcvWriter writer(out_opts, reader.extra_columns());

@@ -10,13 +10,12 @@
 #include "emoface/bridge/face_landmark_model.hpp"
 #include "emoface/bridge/weight_space.hpp"
 #include "emoface/cli/cli.hpp"
-#include "emoface/core/csv.hpp"
+#include "emoface/core/bundle.hpp"
 #include "emoface/core/errors.hpp"
-#include "emoface/core/io.hpp"
-#include "emoface/core/rng.hpp"
-#include "emoface/core/video.hpp"
-#include "emoface/motiongraph/capture.hpp"
 #include "emoface/core/graphviz.hpp"
+#include "emoface/core/io.hpp"
+#include "emoface/motiongraph/batch.hpp"
+#include "emoface/motiongraph/capture.hpp"
 #include "emoface/motiongraph/dot.hpp"
 #include "emoface/motiongraph/evaluate.hpp"
 #include "emoface/motiongraph/io.hpp"
@@ -34,9 +33,14 @@ using namespace motiongraph;
 namespace {
 
 OnError on_error(const Args& a) {
-  if (a.on_error == "stop") return OnError::Stop;
-  if (a.on_error == "skip") return OnError::Skip;
-  throw cli::UsageError("--on-error: unknown value \"" + a.on_error + "\" (expected stop|skip)");
+  return cli::parse_enum<OnError>(a.on_error, core::on_error_from_string, "--on-error",
+                                  "stop|skip");
+}
+
+// A database to --out: CSV for a .csv name, else JSON ("-": JSON on stdout).
+void stage_database(core::OutputBundle& bundle, const std::string& out, const Database& db) {
+  const bool csv = out.size() > 4 && out.substr(out.size() - 4) == ".csv";
+  bundle.add(out, csv ? database_to_csv(db) : database_to_json(db));
 }
 
 void print_skipped(const ReadReport& report) {
@@ -85,73 +89,36 @@ GraphOptions graph_options(const Args& a, int dimensions) {
   return g;
 }
 
-// Sequences (one per animation) as a database of the graph's reduced landmarks, plus pictures.
+// Sequences (one per animation) as a database of the graph's reduced landmarks, plus pictures and
+// the weight outputs: every output computed and staged, then all committed (core::OutputBundle).
 int write_animation(const Args& a, const MotionGraph& g, const std::vector<Sequence>& seqs) {
   const bool weights = is_weight_space(g.dimensions);
-  if (weights && !(a.video.empty() && a.sheet.empty() && a.plot.empty() && a.frames_dir.empty()))
+  AnimationPictures pics{a.sheet, a.plot,       a.frames_dir,  a.video,        a.columns,
+                         a.every, a.cell_width, a.video_width, a.video_height, a.fps};
+  if (weights && pics.any())
     throw cli::UsageError("--video, --sheet, --plot and --frames-dir draw landmarks: not for a weight graph "
                           "(use --params and faceanim)");
   if (!weights && !(a.livelink_out.empty() && a.params_out.empty()))
     throw cli::UsageError("--livelink and --params need a weight graph (mgraph generate --space arkit)");
-  Database db;
-  db.dimensions = g.dimensions;
-  db.frame_rate = g.frame_rate;
-  db.landmark_ids = g.landmark_ids();
-  db.landmark_count = db.landmark_ids.size();
-  db.sequences = seqs;
+  const Database db = animation_database(g, seqs);
   std::vector<Pose> all;
   for (const Sequence& s : seqs) all.insert(all.end(), s.frames.begin(), s.frames.end());
-  const std::vector<int> groups = g.landmark_regions();
-  if (!a.video.empty()) {  // GIF / MP4 / MOV / MKV through ffmpeg (core/video.hpp), written atomically
-    core::VideoOptions vo;
-    vo.width = a.video_width;
-    vo.height = a.video_height;
-    vo.fps = a.fps > 0.0 ? a.fps : g.frame_rate;
-    core::VideoWriter video(a.video, vo);
-    const View view = fit_view(all, vo.width, vo.height);
-    for (const Pose& pose : all) {
-      Image img(vo.width, vo.height);
-      draw_contours(img, pose, contours_for(g.landmark_ids()), view);
-      draw_pose(img, pose, groups, view, std::max(1.5, vo.width / 256.0));
-      video.add_frame(img.rgb);
-    }
-    video.finish();
-  }
-  if (!a.sheet.empty()) {
-    std::vector<Pose> shown;
-    for (std::size_t f = 0; f < all.size(); f += static_cast<std::size_t>(a.every)) shown.push_back(all[f]);
-    if ((all.size() - 1) % static_cast<std::size_t>(a.every) != 0) shown.push_back(all.back());
-    core::write_file_atomic(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
-                                                              a.cell_width * 7 / 8, contours_for(g.landmark_ids()))));
-  }
-  if (!a.plot.empty()) core::write_file_atomic(a.plot, encode_png(plot_trajectories(all, groups)));
-  if (!a.frames_dir.empty()) {
-    std::filesystem::create_directories(a.frames_dir);
-    const View view = fit_view(all, 640, 490);
-    for (std::size_t f = 0; f < all.size(); ++f) {
-      Image img(640, 490);
-      draw_pose(img, all[f], groups, view);
-      char name[32];
-      std::snprintf(name, sizeof name, "/frame_%05zu.png", f);
-      core::write_file_atomic(a.frames_dir + name, encode_png(img));
-    }
-  }
+  core::OutputBundle bundle;
   // Weight graphs: the weights as Live Link Face CSV, the face parameters through the ARKit mapping
-  // (exact, no landmark fit; bridge/weight_space.hpp). Everything computed before writing.
-  std::string livelink, params;
-  if (!a.livelink_out.empty()) livelink = bridge::live_link_csv(bridge::weight_take(g, all, "synth"), g.frame_rate);
+  // (exact, no landmark fit; bridge/weight_space.hpp).
+  if (!a.livelink_out.empty())
+    bundle.add(a.livelink_out,
+               bridge::live_link_csv(bridge::weight_take(g, all, "synth"), g.frame_rate));
   if (!a.params_out.empty()) {
     bridge::WeightDriveReport rep;
-    params = muscles::format_parameter_frames_csv(bridge::weight_parameters(g, all, &rep));
+    bundle.add(a.params_out,
+               muscles::format_parameter_frames_csv(bridge::weight_parameters(g, all, &rep)));
     std::cerr << "mgraph: " << rep.frames << " frames of face parameters, largest weight error "
               << rep.max_weight_error << "\n";
   }
-  cli::Output out(a.out);
-  const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
-  out.write(csv ? database_to_csv(db) : database_to_json(db));
-  if (!a.livelink_out.empty()) core::write_file_atomic(a.livelink_out, livelink);
-  if (!a.params_out.empty()) core::write_file_atomic(a.params_out, params);
-  out.commit();
+  stage_database(bundle, a.out, db);
+  stage_animation_pictures(bundle, g, all, pics);
+  bundle.commit();
   return cli::kExitOk;
 }
 
@@ -194,27 +161,28 @@ int generate(const Args& a) {
       throw cli::UsageError(e.what());
     }
     Database db = bridge::generate_weight_database(bridge::FaceLandmarkModel(), wo);
-    std::vector<Sequence> mine;  // sequence i depends only on (seed, i)
-    for (std::size_t i = 0; i < db.sequences.size(); ++i)
-      if (shard.owns(i)) mine.push_back(std::move(db.sequences[i]));
-    if (mine.empty()) throw InvalidInput("--shard " + a.shard + " owns none of the sequences");
-    db.sequences = std::move(mine);
-    cli::Output out(a.out);
-    const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
-    out.write(csv ? database_to_csv(db) : database_to_json(db));
-    out.commit();
+    // Sequence i depends only on (seed, i); the shard keeps its contiguous block.
+    const auto [first, last] = shard.block(db.sequences.size());
+    if (first == last) throw InvalidInput("--shard " + a.shard + " owns none of the sequences");
+    db.sequences = std::vector<Sequence>(db.sequences.begin() + static_cast<std::ptrdiff_t>(first),
+                                         db.sequences.begin() + static_cast<std::ptrdiff_t>(last));
+    core::OutputBundle bundle;
+    stage_database(bundle, a.out, db);
+    bundle.commit();
     return cli::kExitOk;
   }
   const std::unique_ptr<LandmarkModel> model = landmark_model(a);
-  // Sequence i depends only on (seed, i): shards of a batch are parts of the same database.
+  // Sequence i depends only on (seed, i): a shard computes its contiguous block of the database.
   Database db;
   db.dimensions = 2;
   db.landmark_count = 68;
   db.frame_rate = o.frame_rate;
   const std::size_t count = synthetic_sequence_count(o);
-  for (std::size_t i = 0; i < count; ++i)
-    if (shard.owns(i)) db.sequences.push_back(synthetic_sequence(*model, o, i));
+  const auto [first, last] = shard.block(count);
+  for (std::size_t i = first; i < last; ++i)
+    db.sequences.push_back(synthetic_sequence(*model, o, i));
   if (db.sequences.empty()) throw InvalidInput("--shard " + a.shard + " owns none of the " + std::to_string(count) + " sequences");
+  core::OutputBundle bundle;
   if (!a.sheet.empty()) {
     // First frame of the first sequence, then the peak frame of the first sequence of each label;
     // colours = regions of the built-in layout (grey: landmarks outside the reduced set).
@@ -231,13 +199,11 @@ int generate(const Args& a) {
       }
     std::vector<int> all_ids(68);
     for (int i = 0; i < 68; ++i) all_ids[static_cast<std::size_t>(i)] = i;
-    core::write_file_atomic(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
-                                                              a.cell_width * 7 / 8, contours_for(all_ids))));
+    bundle.add(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
+                                                 a.cell_width * 7 / 8, contours_for(all_ids))));
   }
-  cli::Output out(a.out);
-  const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
-  out.write(csv ? database_to_csv(db) : database_to_json(db));
-  out.commit();
+  stage_database(bundle, a.out, db);
+  bundle.commit();
   return cli::kExitOk;
 }
 
@@ -254,105 +220,28 @@ int build(const Args& a) {
   return cli::kExitOk;
 }
 
-namespace {
-// One chained animation from neutral: a transition per label (each sink the next source), idle after
-// each when asked. Sequence ids start with `prefix`.
-void synthesize_chain(const Args& a, const MotionGraph& g, const std::vector<std::string>& labels,
-                      std::uint64_t seed, const std::string& prefix, std::vector<Sequence>& seqs) {
-  const bool weights = is_weight_space(g.dimensions);
-  SynthesisOptions o = weights ? weight_synthesis_options() : SynthesisOptions{};
-  o.seed = seed;
-  o.vary_duration = a.vary;
-  o.replace_probability = a.replace;
-  o.path_fraction = a.hint;
-  o.smoothing.sigmoid = !a.no_sigmoid;
-  std::vector<Label> parsed;
-  for (const std::string& name : labels) parsed.push_back(label_from_string(name));  // all checked first
-  if (parsed.empty()) throw InvalidInput("no labels");
-  SynthesisState state = initial_state(g);
-  std::vector<Sequence> out;
-  for (std::size_t k = 0; k < parsed.size(); ++k) {
-    const std::string& name = labels[k];
-    out.push_back({prefix + "synth_" + std::to_string(out.size()) + "_" + name, "", parsed[k],
-                   synthesize(g, state, parsed[k], o)});
-    if (a.idle_after > 0.0) {
-      IdleOptions io = weights ? weight_idle_options() : IdleOptions{};
-      io.duration = a.idle_after;
-      io.seed = seed;
-      out.push_back({prefix + "idle_" + std::to_string(out.size()) + "_" + name, "", parsed[k],
-                     idle(g, state, parsed[k], io)});
-    }
-  }
-  seqs.insert(seqs.end(), out.begin(), out.end());
-}
-
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> parts;
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t e = s.find(sep, pos);
-    parts.push_back(s.substr(pos, e == std::string::npos ? std::string::npos : e - pos));
-    if (e == std::string::npos) return parts;
-    pos = e + 1;
-  }
-}
-}  // namespace
-
 int synth(const Args& a) {
   const MotionGraph g = read_graph(a.graph);
-  std::vector<Sequence> seqs;
   if (!a.requests.empty() && !a.labels.empty()) throw cli::UsageError("give --labels or --requests, not both");
-  if (a.requests.empty()) {
-    if (a.labels.empty()) throw cli::UsageError("give --labels or --requests");
-    synthesize_chain(a, g, a.labels, a.seed, "", seqs);
-    return write_animation(a, g, seqs);
-  }
-  // Batch: CSV with header "id,labels", labels separated by ';'. Request r uses the seed stream r,
-  // so --shard runs produce the same animations as one run.
+  if (a.requests.empty() && a.labels.empty()) throw cli::UsageError("give --labels or --requests");
+  ChainOptions o = chain_options_for(g);
+  o.synthesis.vary_duration = a.vary;
+  o.synthesis.replace_probability = a.replace;
+  o.synthesis.path_fraction = a.hint;
+  o.synthesis.smoothing.sigmoid = !a.no_sigmoid;
+  o.idle_after = a.idle_after;
+  if (a.requests.empty())
+    return write_animation(a, g, synthesize_chain(g, a.labels, a.seed, "", o));
+  // Batch (motiongraph/batch.hpp): request r uses the seed stream r, and a shard takes its
+  // contiguous block of the requests (bad ones count), so shard outputs concatenate to one run.
   const cli::Shard shard = cli::parse_shard(a.shard);
-  const OnError policy = on_error(a);
-  const std::string text = core::read_file(a.requests);
-  std::vector<std::string> fields;
-  std::size_t line_no = 0, pos = 0, record = 0, skipped = 0;
-  bool header = true;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    std::string err;
-    const std::size_t col = core::split_csv_line(line, fields, &err);
-    if (header) {
-      if (col != 0 || fields.size() != 2 || fields[0] != "id" || fields[1] != "labels")
-        throw FormatError({a.requests, "", line_no, 1}, "header must be \"id,labels\"");
-      header = false;
-      continue;
-    }
-    const std::size_t index = record++;
-    if (!shard.owns(index)) continue;
-    try {
-      if (col != 0) throw FormatError({a.requests, "", line_no, col}, err);
-      if (fields.size() != 2)
-        throw FormatError({a.requests, "", line_no, 1}, "expected 2 fields (id,labels), got " + std::to_string(fields.size()));
-      if (fields[0].empty()) throw FormatError({a.requests, "", line_no, 1}, "empty request id");
-      std::vector<Sequence> mine;
-      try {
-        synthesize_chain(a, g, split(fields[1], ';'), core::derive_seed(a.seed, index), fields[0] + "/", mine);
-      } catch (const InvalidInput& e) {
-        throw FormatError({a.requests, "", line_no, 2}, e.what());
-      }
-      seqs.insert(seqs.end(), mine.begin(), mine.end());
-    } catch (const FormatError& e) {
-      if (policy == OnError::Stop) throw;
-      std::cerr << "mgraph: skipped: " << e.what() << "\n";
-      ++skipped;
-    }
-  }
-  if (header) throw FormatError({a.requests, "", 1, 1}, "empty requests file (no header)");
-  if (skipped) std::cerr << "mgraph: " << skipped << " request(s) skipped\n";
+  const std::vector<RequestRecord> records = read_requests_csv(a.requests);
+  ReadReport report;
+  const std::vector<Sequence> seqs =
+      synthesize_requests(g, records, shard.block(records.size()), a.seed, o, on_error(a), &report);
+  for (const std::string& m : report.skipped) std::cerr << "mgraph: skipped: " << m << "\n";
+  if (!report.skipped.empty())
+    std::cerr << "mgraph: " << report.skipped.size() << " request(s) skipped\n";
   if (seqs.empty()) throw InvalidInput("no request produced an animation (shard " + a.shard + ")");
   return write_animation(a, g, seqs);
 }
@@ -392,39 +281,27 @@ int eval(const Args& a) {
   const cli::Shard shard = cli::parse_shard(a.shard);
   eo.shard_index = shard.index;
   eo.shard_count = shard.count;
-  if (shard.count > 1)
-    std::printf("shard %zu/%zu: samples with index %% %zu == %zu (graphs from the whole database)\n", shard.index,
-                shard.count, shard.count, shard.index);
-  // The sums let rows of shards be merged exactly (motiongraph::merge_rows; docs/motiongraph.md).
-  std::string csv = core::csv_stamp() + "threshold,compression_percent,nodes,length_diff_mean,length_diff_std,pose_diff_mean,"
-                    "pose_diff_std,samples,distances,length_sum,length_sum2,pose_sum,pose_sum2" +
-                    std::string(raw ? ",raw_pose_diff_mean,raw_pose_diff_std,raw_pose_sum,raw_pose_sum2" : "") +
-                    "\n";
+  if (shard.count > 1) {
+    const auto [first, last] = shard.block(data.samples.size());
+    std::printf("shard %zu/%zu: samples [%zu, %zu) of %zu (graphs from the whole database)\n",
+                shard.index, shard.count, first, last, data.samples.size());
+  }
   const char* unit = weights ? "(weight)" : "(px)";
   std::printf("%10s %14s %7s %22s %22s%s\n", "threshold", "compression %", "nodes", "length diff (frames)",
               (std::string("pose diff ") + unit).c_str(),
               raw ? (std::string("   vs raw samples ") + unit).c_str() : "");
+  std::vector<EvaluationRow> rows;
   for (double t : thresholds) {
-    const EvaluationRow r = evaluate(data, t, eo, raw ? &*raw : nullptr);
+    const EvaluationRow& r = rows.emplace_back(evaluate(data, t, eo, raw ? &*raw : nullptr));
     std::printf("%10.4f %14.2f %7zu %10.3f +- %-8.3f %10.4f +- %-8.4f", t, 100 * r.compression, r.nodes,
                 r.length_mean, r.length_std, r.pose_mean, r.pose_std);
     if (raw) std::printf(" %10.4f +- %-8.4f", r.raw_pose_mean, r.raw_pose_std);
     std::printf("\n");
-    char line[640];
-    std::snprintf(line, sizeof line, "%.6g,%.4f,%zu,%.6g,%.6g,%.6g,%.6g,%zu,%zu,%.17g,%.17g,%.17g,%.17g", t,
-                  100 * r.compression, r.nodes, r.length_mean, r.length_std, r.pose_mean, r.pose_std, r.samples,
-                  r.distances, r.length_sum, r.length_sum2, r.pose_sum, r.pose_sum2);
-    csv += line;
-    if (raw) {
-      std::snprintf(line, sizeof line, ",%.6g,%.6g,%.17g,%.17g", r.raw_pose_mean, r.raw_pose_std, r.raw_pose_sum,
-                    r.raw_pose_sum2);
-      csv += line;
-    }
-    csv += "\n";
   }
   std::printf("paper (CK+, 70 sequences): 90%% -> 0.98 +- 1.84 frames, 2.86 +- 2.3 px; 78%% -> 0.071 +- 0.39, "
               "2.12 +- 1.81; 57.53%% -> 0 +- 0, 1.52 +- 1.51\n");
-  if (a.out != "-") core::write_file_atomic(a.out, csv);
+  // The sums let rows of shards be merged exactly (read_evaluation_csv + merge_rows).
+  if (a.out != "-") core::write_file_atomic(a.out, evaluation_csv(rows));
   return cli::kExitOk;
 }
 
@@ -464,10 +341,9 @@ int capture(const Args& a) {
   ReadReport report;
   const Database db = capture_database(takes, co, labels ? &*labels : nullptr, &report);
   print_skipped(report);
-  cli::Output out(a.out);
-  const bool csv = a.out.size() > 4 && a.out.substr(a.out.size() - 4) == ".csv";
-  out.write(csv ? database_to_csv(db) : database_to_json(db));
-  out.commit();
+  core::OutputBundle bundle;
+  stage_database(bundle, a.out, db);
+  bundle.commit();
   std::size_t frames = 0;
   for (const auto& s : db.sequences) frames += s.frames.size();
   std::cerr << "mgraph: " << takes.size() << " take(s) → " << db.sequences.size() << " labelled neutral-to-peak "
@@ -500,8 +376,9 @@ int capture_example(const Args& a) {
     for (const TrackedFrames& t : takes)
       files.emplace_back(a.out + "/" + t.id + ".csv", bridge::live_link_csv(t, wo.database.database.frame_rate));
     files.emplace_back(a.out + "/labels.csv", label_table_csv(bridge::weight_take_labels(takes)));
-    std::filesystem::create_directories(a.out);
-    for (const auto& [path, content] : files) core::write_file_atomic(path, content);
+    core::OutputBundle bundle;  // all takes and labels.csv, or nothing
+    for (const auto& [path, content] : files) bundle.add(path, content);
+    bundle.commit();
     std::cerr << "mgraph: wrote " << takes.size() << " livelink take(s) and labels.csv to " << a.out << "\n";
     return cli::kExitOk;
   }
@@ -547,8 +424,9 @@ int capture_example(const Args& a) {
     }
   }
   files.emplace_back(a.out + "/labels.csv", label_table_csv(side));
-  std::filesystem::create_directories(a.out);
-  for (const auto& [path, content] : files) core::write_file_atomic(path, content);
+  core::OutputBundle bundle;  // all takes and labels.csv, or nothing
+  for (const auto& [path, content] : files) bundle.add(path, content);
+  bundle.commit();
   std::cerr << "mgraph: wrote " << takes.size() << " " << a.format << " take(s) and labels.csv to " << a.out << "\n";
   return cli::kExitOk;
 }
@@ -566,15 +444,7 @@ int dot(const Args& a) {
   GraphDotOptions o;
   o.depth = a.depth;
   o.edge_weights = a.edge_weights;
-  const std::string text = region_graph_dot(*region, o);
-  const auto ext = std::filesystem::path(a.out).extension().string();
-  if (ext == ".svg" || ext == ".png" || ext == ".pdf") {
-    core::render_dot(text, a.out);
-  } else {
-    cli::Output out(a.out);
-    out.write(text);
-    out.commit();
-  }
+  core::write_dot(region_graph_dot(*region, o), a.out);
   return cli::kExitOk;
 }
 

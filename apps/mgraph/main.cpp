@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   gen->add_option("--projection", a.projection, "face model: perspective|orthographic")->capture_default_str();
   gen->add_option("--camera-distance", a.camera_distance, "face model: camera distance (m)")->capture_default_str();
-  gen->add_option("--shard", a.shard, "i/N: only sequences with index % N == i (same values as one run)")
+  gen->add_option("--shard", a.shard,
+                  "i/N: the i-th of N contiguous blocks of sequences, or auto (Slurm)")
       ->capture_default_str();
   gen->add_option("--sheet", a.sheet, "contact sheet PNG: a neutral frame, then one peak per label");
   gen->add_option("--columns", a.columns, "contact sheet columns")->capture_default_str();
@@ -80,7 +81,10 @@ int main(int argc, char** argv) {
   synth->add_option("--graph", a.graph, "motion graph JSON")->required();
   synth->add_option("--labels", a.labels, "comma-separated labels, chained")->delimiter(',');
   synth->add_option("--requests", a.requests, "batch: CSV \"id,labels\" (labels separated by ';'), one chain each");
-  synth->add_option("--shard", a.shard, "i/N: only requests with index % N == i")->capture_default_str();
+  synth
+      ->add_option("--shard", a.shard,
+                   "i/N: the i-th of N contiguous blocks of requests, or auto (Slurm)")
+      ->capture_default_str();
   synth->add_option("--on-error", a.on_error, "stop|skip bad requests (skip: reported on stderr)")->capture_default_str();
   synth->add_option("--seed", a.seed, "random seed")->capture_default_str();
   synth->add_flag("--vary", a.vary, "sample durations from the peak nodes' distributions (§5.1)");
@@ -112,7 +116,9 @@ int main(int argc, char** argv) {
   eval->add_option("--thresholds", a.thresholds, "explicit thresholds instead")->delimiter(',');
   eval->add_option("--curve", a.curve, "also sweep this many thresholds (whole curve)")->capture_default_str();
   eval->add_option("--csv", a.out, "also write the rows as CSV (with the sums that merge shards)");
-  eval->add_option("--shard", a.shard, "i/N: evaluate only samples with index % N == i")->capture_default_str();
+  eval->add_option("--shard", a.shard,
+                   "i/N: evaluate the i-th of N contiguous blocks of samples, or auto")
+      ->capture_default_str();
   eval->add_flag("--raw", a.raw, "also compare with the raw (uncleaned) samples");
 
   auto* cap = app.add_subcommand("capture",

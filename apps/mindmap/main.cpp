@@ -2,33 +2,29 @@
 // through the characters' mind maps and writes mood timelines, triggered actions, mood charts and,
 // with a motion graph, the synthesized landmark motion. `crowd` animates and renders the characters
 // side by side (issue #9 §2). Thin: parse, call mindmap/mindmotion, write.
-#include <cmath>
 #include <chrono>
-#include <ctime>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
 
 #include "emoface/cli/cli.hpp"
+#include "emoface/core/bundle.hpp"
+#include "emoface/core/graphviz.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/version.hpp"
-#include "emoface/core/video.hpp"
-#include "emoface/core/graphviz.hpp"
+#include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmap/chart.hpp"
 #include "emoface/mindmap/dot.hpp"
 #include "emoface/mindmap/io.hpp"
-#include "emoface/facemesh/default_face.hpp"
 #include "emoface/mindmotion/behaviour.hpp"
 #include "emoface/mindmotion/crowd.hpp"
-#include "emoface/mindmotion/muscle_tracks.hpp"
-#include "emoface/faceweights/tracks.hpp"
+#include "emoface/mindmotion/outputs.hpp"
 #include "emoface/motiongraph/io.hpp"
-#include "emoface/motiongraph/render.hpp"
 
 namespace mm = emoface::mindmap;
 namespace mg = emoface::motiongraph;
 namespace cli = emoface::cli;
+namespace mo = emoface::mindmotion;
 
 namespace {
 
@@ -50,37 +46,6 @@ struct Args {
   double time = -1.0;
 };
 
-// The muscle tracks as ARKit / FACS / Live Link Face CSV (faceweights' shared writer).
-void add_weight_files(std::vector<std::pair<std::string, std::string>>& files, const std::string& stem,
-                      const std::vector<emoface::muscles::ParameterFrame>& frames,
-                      const std::vector<std::string>& formats) {
-  if (frames.empty()) return;
-  std::vector<double> times;
-  std::vector<std::vector<double>> values;
-  for (const auto& f : frames) {
-    times.push_back(f.time);
-    values.push_back(f.values);
-  }
-  const double fps = frames.size() > 1 ? std::round(1.0 / (times[1] - times[0])) : 25.0;
-  for (const auto& w : formats) {
-    files.emplace_back(stem + "_" + w + ".csv",
-                       emoface::faceweights::format_weight_track(
-                           *emoface::faceweights::track_format_from_string(w + "-csv"),
-                           emoface::muscles::parameter_names(), times, values, fps));
-  }
-}
-
-
-// Writes DOT text, or renders it with Graphviz by the extension (.svg, .png, .pdf).
-void write_dot(const std::string& dot, const std::string& out) {
-  const auto ext = std::filesystem::path(out).extension().string();
-  if (ext == ".svg" || ext == ".png" || ext == ".pdf") {
-    emoface::core::render_dot(dot, out);
-  } else {
-    emoface::core::write_file_atomic(out, dot);
-  }
-}
-
 // §5.1 variation is on by default (issue 19); --no-vary switches it off.
 void add_motion_options(CLI::App* cmd, Args& a) {
   cmd->add_flag("--no-vary", a.no_vary, "no motion variation (paper §5.1): the same label gives the same motion");
@@ -98,14 +63,6 @@ void apply_motion_options(Args& a) {
   if (a.no_vary) a.motion.synthesis = emoface::motiongraph::SynthesisOptions{};  // no §5.1 variation
 }
 
-std::string file_stem(const std::string& name) {  // character names become file names: keep them portable
-  for (char c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') || name[0] == '.')
-      throw emoface::InvalidInput("character \"" + name + "\": only letters, digits, '_', '-' and '.' "
-                                  "may be used in a character name that names output files");
-  return name;
-}
-
 int simulate(Args& a) {
   a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
   a.motion.seed = a.sim.seed;
@@ -114,12 +71,12 @@ int simulate(Args& a) {
   std::vector<std::string> labels;
   if (!a.graph.empty()) {
     graph = mg::read_graph(a.graph);
-    labels = emoface::mindmotion::graph_labels(*graph);
+    labels = mo::graph_labels(*graph);
   } else {
     for (mg::Label l : mg::all_labels()) labels.push_back(mg::to_string(l));
   }
   const std::vector<mm::MindMap> maps = mm::read_mind_map_dir(a.maps, labels);
-  for (const auto& m : maps) file_stem(m.character);
+  for (const auto& m : maps) mo::character_file_stem(m.character);
   const mm::SimulationResult r = mm::simulate(maps, mm::read_events(a.events), a.sim);
   std::unique_ptr<emoface::muscles::FaceSolver> face;
   std::unique_ptr<emoface::bridge::LandmarkFitter> fitter;
@@ -131,59 +88,24 @@ int simulate(Args& a) {
     face = std::make_unique<emoface::muscles::FaceSolver>(std::move(f.mesh), std::move(f.rig));
     fitter = std::make_unique<emoface::bridge::LandmarkFitter>(*face);
   }
-
-  // Everything is computed before anything is written.
-  std::vector<std::pair<std::string, std::string>> files;
-  const std::string dir = a.out + "/";
-  files.emplace_back(dir + "actions.ndjson", mm::actions_to_ndjson(r.actions));
-  files.emplace_back(dir + "actions.csv", mm::actions_to_csv(r.actions));
-  for (std::size_t c = 0; c < maps.size(); ++c) {
-    const std::string stem = dir + maps[c].character;
-    files.emplace_back(stem + "_mood.csv", mm::mood_timeline_csv(r, maps[c], c));
-    if (!a.no_charts) {
-      const mm::Raster chart = mm::mood_chart(r, maps[c], c, a.chart);
-      mg::Image img(chart.width, chart.height);
-      img.rgb = chart.rgb;
-      files.emplace_back(stem + "_mood.png", mg::encode_png(img));
-    }
-    if (graph) {
-      const auto motion = emoface::mindmotion::synthesize_behaviour(*graph, r.actions, maps[c].character, c,
-                                                                    r.duration, a.motion);
-      files.emplace_back(stem + "_motion.json", mg::database_to_json(emoface::mindmotion::to_database(*graph, motion)));
-      files.emplace_back(stem + "_segments.csv", emoface::mindmotion::segments_csv(motion));
-      if (fitter) {
-        emoface::mindmotion::TrackFitSummary fs;
-        const auto frames = emoface::mindmotion::fit_muscle_tracks(*fitter, *graph, motion, &fs);
-        files.emplace_back(stem + "_muscles.csv", emoface::muscles::format_parameter_frames_csv(frames));
-        add_weight_files(files, stem, frames, a.weights);
-        std::cout << maps[c].character << ": muscle fit RMS residual mean " << fs.mean_rms * 1e3 << " mm, max "
-                  << fs.max_rms * 1e3 << " mm, " << fs.not_converged << " frame(s) at the iteration limit\n";
-      }
-      std::cout << maps[c].character << ": " << motion.frames.size() << " frames, " << motion.segments.size()
-                << " segments, " << motion.dropped_hints << " decay hints dropped (face busy)\n";
-    }
-  }
-  std::filesystem::create_directories(a.out);
-  for (const auto& [path, content] : files) emoface::core::write_file_atomic(path, content);
+  // Every file staged, then all written (or none: core::OutputBundle).
+  emoface::core::OutputBundle bundle;
+  const std::string report = mo::stage_simulation_outputs(
+      bundle, a.out, maps, r,
+      {graph ? &*graph : nullptr, fitter.get(), a.motion, a.chart, !a.no_charts, a.weights});
+  bundle.commit();
+  std::cout << report;
   for (const auto& s : r.copied)
     std::cout << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time << " s\n";
-  std::cout << r.actions.size() << " action(s) by " << maps.size() << " character(s) over " << r.duration
-            << " s; wrote " << files.size() << " file(s) to " << a.out << "\n";
+  std::cout << r.actions.size() << " action(s) by " << maps.size() << " character(s) over "
+            << r.duration << " s; wrote " << bundle.size() << " file(s) to " << a.out << "\n";
   return cli::kExitOk;
 }
 
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-double cpu_since(std::clock_t c0) { return static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC; }
-
-std::string png(const emoface::facemesh::Image& image) { return emoface::facemesh::encode_png(image); }
-
 int crowd(Args& a) {
-  namespace mo = emoface::mindmotion;
-  namespace fm = emoface::facemesh;
   a.sim.mood_form = cli::parse_enum<mm::MoodForm>(a.mood_form, mm::mood_form_from_string, "--mood-form", "sum|printed");
-  a.render.view = fm::view_from_string(a.view);  // checked by CLI11 (IsMember) when parsing
+  a.render.view =
+      emoface::facemesh::view_from_string(a.view);  // checked by CLI11 (IsMember) when parsing
   apply_motion_options(a);
   mo::CrowdOptions co;
   co.simulation = a.sim;
@@ -196,101 +118,29 @@ int crowd(Args& a) {
   } catch (const emoface::InvalidInput& e) {
     throw cli::UsageError(e.what());
   }
-  auto t0 = Clock::now();
+  const auto t0 = std::chrono::steady_clock::now();
   const mg::MotionGraph graph = a.graph.empty() ? mo::default_motion_graph() : mg::read_graph(a.graph);
-  if (a.graph.empty()) std::cout << "built the default synthetic motion graph in " << since(t0) << " s\n";
+  if (a.graph.empty())
+    std::cout << "built the default synthetic motion graph in "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
+              << " s\n";
   const std::vector<mm::MindMap> maps = mm::read_mind_map_dir(a.maps, mo::graph_labels(graph));
-  for (const auto& m : maps) file_stem(m.character);
-  const std::vector<mm::Event> events = mm::read_events(a.events);
-
+  for (const auto& m : maps) mo::character_file_stem(m.character);
   // Faces: --rig FILE for everyone, --rig NAME=FILE for one character; the default face otherwise.
   const mo::CrowdFaces crowd_faces(maps, a.rigs);
-  const std::vector<mo::CrowdRig>& rigs = crowd_faces.rigs();
-
   mo::CrowdTimings timings;
-  const mo::Crowd crowd = mo::animate_crowd(maps, events, graph, rigs, co, &timings);
-  const mo::CrowdRenderer renderer(crowd, rigs, a.render);
-
-  // Everything but the video is computed before anything is written; the video is written first
-  // (atomically, by VideoWriter), so a failing run leaves no output file.
-  std::vector<std::pair<std::string, std::string>> files;
-  const std::string dir = a.out + "/";
-  files.emplace_back(dir + "actions.ndjson", mm::actions_to_ndjson(crowd.simulation.actions));
-  files.emplace_back(dir + "actions.csv", mm::actions_to_csv(crowd.simulation.actions));
-  for (std::size_t c = 0; c < maps.size(); ++c) {
-    const auto& ch = crowd.characters[c];
-    const std::string stem = dir + ch.name;
-    files.emplace_back(stem + "_muscles.csv", emoface::muscles::format_parameter_frames_csv(ch.tracks));
-    add_weight_files(files, stem, ch.tracks, a.weights);
-    files.emplace_back(stem + "_mood.csv", mm::mood_timeline_csv(crowd.simulation, crowd.maps[c], c));
-    files.emplace_back(stem + "_segments.csv", mo::segments_csv(ch.motion));
-    if (!a.no_charts) {
-      const mm::Raster chart = mm::mood_chart(crowd.simulation, crowd.maps[c], c, a.chart);
-      mg::Image img(chart.width, chart.height);
-      img.rgb = chart.rgb;
-      files.emplace_back(stem + "_mood.png", mg::encode_png(img));
-    }
-  }
-  files.emplace_back(dir + "key_moments.csv", mo::key_moments_csv(crowd));
-  t0 = Clock::now();
-  std::clock_t c0 = std::clock();
-  const fm::Image sheet = renderer.key_moment_sheet();
-  std::size_t rendered = 0;
-  for (const auto& km : crowd.key_moments) rendered += km.frames.size();
-  files.emplace_back(dir + "key_moments.png", png(sheet));
-  double render_seconds = since(t0), render_cpu = cpu_since(c0);
-
-  std::filesystem::create_directories(a.out);
-  if (a.video) {
-    emoface::core::VideoOptions vo;
-    vo.width = renderer.width();
-    vo.height = renderer.height();
-    vo.fps = crowd.fps;
-    t0 = Clock::now();
-    c0 = std::clock();
-    emoface::core::VideoWriter writer(dir + "crowd.mp4", vo);
-    for (std::size_t k = 0; k < crowd.frame_count(); ++k) {
-      writer.add_frame(renderer.frame(k).rgb);
-      if (k % 30 == 0 || k + 1 == crowd.frame_count()) {
-        std::fprintf(stderr, "\rrendering %zu/%zu frames", k + 1, crowd.frame_count());
-        std::fflush(stderr);
-      }
-    }
-    writer.finish();
-    std::fprintf(stderr, "\n");
-    render_seconds += since(t0);
-    render_cpu += cpu_since(c0);  // this process only (ffmpeg's encoding is not counted)
-    rendered += crowd.frame_count() * maps.size();
-  }
-  for (const auto& [path, content] : files) emoface::core::write_file_atomic(path, content);
-
-  for (const auto& ch : crowd.characters) {
-    std::size_t actions = 0;
-    for (const auto& x : crowd.simulation.actions) actions += x.character == ch.name ? 1 : 0;
-    std::cout << ch.name << ": " << actions << " action(s), " << ch.motion.segments.size() << " segments, fit RMS mean "
-              << ch.fit.mean_rms * 1e3 << " mm (max " << ch.fit.max_rms * 1e3 << " mm)\n";
-  }
-  for (const auto& s : crowd.simulation.copied)
-    std::cout << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time << " s\n";
-  const auto distance = mo::face_distances(crowd);  // issue 19: how different the faces are
-  std::cout << "face distance (mean per-frame parameter distance):";
-  for (std::size_t i = 0; i < distance.size(); ++i)
-    for (std::size_t j = i + 1; j < distance.size(); ++j)
-      std::printf(" %s-%s %.3f", crowd.characters[i].name.c_str(), crowd.characters[j].name.c_str(), distance[i][j]);
-  std::cout << "\n";
-  const double frames = static_cast<double>(crowd.frame_count());
-  std::printf("%zu characters, %zu frames at %g fps (%g s), %zu key moments, frame %dx%d\n", maps.size(),
-              crowd.frame_count(), crowd.fps, crowd.simulation.duration, crowd.key_moments.size(), renderer.width(),
-              renderer.height());
-  const double faces = frames * static_cast<double>(maps.size());
-  std::printf("time (wall / CPU): simulation %.3f / %.3f s; synthesis %.3f / %.3f s (%.3f ms CPU per frame and "
-              "character); fitting %.3f / %.3f s (%.3f ms CPU per frame and character); deformation+render %.3f / "
-              "%.3f s for %zu faces (%.2f ms CPU per face)\n",
-              timings.simulation.wall, timings.simulation.cpu, timings.synthesis.wall, timings.synthesis.cpu,
-              1e3 * timings.synthesis.cpu / faces, timings.fitting.wall, timings.fitting.cpu,
-              1e3 * timings.fitting.cpu / faces, render_seconds, render_cpu, rendered,
-              rendered ? 1e3 * render_cpu / static_cast<double>(rendered) : 0.0);
-  std::cout << "wrote " << files.size() + (a.video ? 1 : 0) << " file(s) to " << a.out << "\n";
+  const mo::Crowd crowd =
+      mo::animate_crowd(maps, mm::read_events(a.events), graph, crowd_faces.rigs(), co, &timings);
+  const mo::CrowdRenderer renderer(crowd, crowd_faces.rigs(), a.render);
+  cli::ProgressBar bar("mindmap", false);
+  emoface::core::OutputBundle bundle;  // every file and the video, or nothing
+  const mo::CrowdOutputReport rendering = mo::stage_crowd_outputs(
+      bundle, a.out, crowd, renderer,
+      {a.chart, !a.no_charts, a.weights, a.video,
+       [&](std::size_t k, std::size_t n) { bar.update("rendering", k, n); }});
+  bundle.commit();
+  std::cout << mo::crowd_report(crowd, renderer, timings, rendering);
+  std::cout << "wrote " << bundle.size() << " file(s) to " << a.out << "\n";
   return cli::kExitOk;
 }
 
@@ -312,7 +162,7 @@ int dot(Args& a) {
   } else if (a.time >= 0.0) {
     o.mood = maps[c].traits.starting_mood;  // no stimuli: the starting mood
   }
-  write_dot(mm::mind_map_dot(shown, o), a.out);
+  emoface::core::write_dot(mm::mind_map_dot(shown, o), a.out);
   std::cout << "wrote " << a.out << "\n";
   return cli::kExitOk;
 }
@@ -399,7 +249,7 @@ int main(int argc, char** argv) {
     if (*cr) return crowd(a);
     if (*dt) return dot(a);
     std::vector<std::string> labels;
-    if (!a.graph.empty()) labels = emoface::mindmotion::graph_labels(mg::read_graph(a.graph));
+    if (!a.graph.empty()) labels = mo::graph_labels(mg::read_graph(a.graph));
     const auto maps = mm::read_mind_map_dir(a.maps, labels);
     for (const auto& m : maps)
       std::cout << m.character << ": " << m.emotion_count() << " emotion nodes, " << m.actions.size()

@@ -6,15 +6,15 @@
 
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "cli_harness.hpp"
 #include "emoface/core/csv.hpp"
+#include "emoface/core/shard.hpp"
 #include "emoface/core/version.hpp"
 #include "emoface/core/video.hpp"
 
@@ -94,23 +94,79 @@ TEST_F(Mgraph, GeneratesFaceDrivenAndParametricDatabases) {
 }
 
 TEST_F(Mgraph, GenerateShardsConcatenateToTheWholeRun) {
+  // Contiguous blocks (issue 18, item 6): the shard outputs, merged in shard order (stamp and
+  // repeated header dropped: core::merge_shard_outputs), are the single run byte for byte.
   const std::string common = "generate --model parametric --per-label 2 --subjects 5 ";
   ASSERT_EQ(run(common + "--out " + path("all.csv")).code, 0);
-  ASSERT_EQ(run(common + "--shard 0/2 --out " + path("s0.csv")).code, 0);
-  ASSERT_EQ(run(common + "--shard 1/2 --out " + path("s1.csv")).code, 0);
-  const auto all = csv_lines(slurp(path("all.csv")));
-  const auto s0 = csv_lines(slurp(path("s0.csv"))), s1 = csv_lines(slurp(path("s1.csv")));
-  ASSERT_GT(s0.size(), 1u);
-  ASSERT_GT(s1.size(), 1u);
-  EXPECT_EQ(s0[0], all[0]);  // same header
-  EXPECT_EQ(s0.size() + s1.size() - 2, all.size() - 1);
-  std::multiset<std::string> whole(all.begin() + 1, all.end()), parts(s0.begin() + 1, s0.end());
-  parts.insert(s1.begin() + 1, s1.end());
-  EXPECT_EQ(parts, whole);
+  for (int n : {2, 3}) {
+    std::vector<std::string> parts;
+    for (int i = 0; i < n; ++i) {
+      const std::string out = path("s" + std::to_string(i) + ".csv");
+      ASSERT_EQ(
+          run(common + "--shard " + std::to_string(i) + "/" + std::to_string(n) + " --out " + out)
+              .code,
+          0);
+      parts.push_back(slurp(out));
+      EXPECT_GT(csv_lines(parts.back()).size(), 1u);
+    }
+    EXPECT_EQ(emoface::core::merge_shard_outputs(parts), slurp(path("all.csv"))) << n;
+  }
+  // --shard auto: the Slurm array variables.
+  const std::string slurm = "SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=3 ";
+  ASSERT_EQ(run_tool(slurm + MGRAPH_EXE, common + "--shard auto --out " + path("auto.csv")).code,
+            0);
+  EXPECT_EQ(slurp(path("auto.csv")), slurp(path("s1.csv")));
   auto r = run(common + "--shard 2/2 --out " + path("bad.csv"));
   EXPECT_EQ(r.code, 1);
   r = run(common + "--shard 1of2 --out " + path("bad.csv"));
   EXPECT_EQ(r.code, 1);
+  r = run_tool("env -u SLURM_ARRAY_TASK_COUNT " MGRAPH_EXE,
+               common + "--shard auto --out " + path("bad.csv"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("SLURM_ARRAY_TASK_COUNT"), std::string::npos) << r.err;
+}
+
+TEST_F(Mgraph, SynthRequestShardsConcatenateToTheWholeRun) {
+  // The requests file may carry the "# emoface" stamp (requests_to_csv writes it); bad requests
+  // count as items of the batch.
+  const std::string req =
+      write("req.csv", emoface::core::csv_stamp() +
+                           "id,labels\na,fear;surprise\nb,boredom\nc,happiness\n"
+                           "d,surprise\ne,anger;happiness\n");
+  const std::string common = "synth --graph " + shared("graph.json") + " --requests " + req +
+                             " --vary --idle 0.3 --seed 5 --on-error skip ";
+  auto r = run(common + "--out " + path("all.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::vector<std::string> parts;
+  for (int i = 0; i < 2; ++i) {
+    const std::string out = path("p" + std::to_string(i) + ".csv");
+    r = run(common + "--shard " + std::to_string(i) + "/2 --out " + out);
+    ASSERT_EQ(r.code, 0) << r.err;
+    parts.push_back(slurp(out));
+  }
+  EXPECT_NE(parts[0], parts[1]);
+  EXPECT_EQ(emoface::core::merge_shard_outputs(parts), slurp(path("all.csv")));
+}
+
+TEST_F(Mgraph, AnimationOutputsAreAllOrNothing) {
+  // The sheet cannot be written (its directory is a file): neither the database nor the plot
+  // appears, and no temporary file is left.
+  write("file", "x");
+  auto r = run("synth --graph " + shared("graph.json") + " --labels surprise --out " +
+               path("anim.json") + " --plot " + path("plot.png") + " --sheet " +
+               path("file/sheet.png") + " --frames-dir " + path("frames"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_FALSE(fs::exists(path("anim.json")));
+  EXPECT_FALSE(fs::exists(path("plot.png")));
+  EXPECT_FALSE(fs::exists(path("frames")));
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_EQ(e.path().filename().string().find(".bundle"), std::string::npos) << e.path();
+  r = run("synth --graph " + shared("graph.json") + " --labels surprise --out " +
+          path("anim.json") + " --plot " + path("plot.png") + " --frames-dir " + path("frames"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("anim.json")));
+  EXPECT_TRUE(fs::exists(path("plot.png")));
+  EXPECT_TRUE(fs::exists(path("frames/frame_00000.png")));
 }
 
 TEST_F(Mgraph, OnErrorSkipReportsBadSequences) {
@@ -120,7 +176,7 @@ TEST_F(Mgraph, OnErrorSkipReportsBadSequences) {
   const std::string bad = write("bad.json", doc.dump());
   auto r = run("build --db " + bad + " --out " + path("g.json"));
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("bad.json: at /sequences/2/frames/1/5: expected a number"),
+  EXPECT_NE(r.err.find("bad.json: at /sequences/2/frames/1/5: expected a number, got null"),
             std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(path("g.json")));

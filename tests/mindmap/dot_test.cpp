@@ -2,6 +2,7 @@
 #include "emoface/mindmap/dot.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -70,6 +71,26 @@ TEST(MindMapDot, DotParsesIt) {
   EXPECT_NE(svg.find("<svg"), std::string::npos);
   EXPECT_NE(svg.find("laugh"), std::string::npos);
   std::filesystem::remove(path);
+}
+
+// core::write_dot, the one writer of `mindmap dot` and `mgraph dot`: text by default, rendered by
+// the extension.
+TEST(MindMapDot, WriteDotWritesTextOrRendersByExtension) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("emoface_write_dot_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string text = mind_map_dot(test::make_alice(), {});
+  core::write_dot(text, (dir / "a.dot").string());
+  std::ifstream in(dir / "a.dot");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), text);
+  testing::internal::CaptureStdout();
+  core::write_dot(text, "-");
+  EXPECT_EQ(testing::internal::GetCapturedStdout(), text);
+  if (core::graphviz_available()) {
+    core::write_dot(text, (dir / "a.svg").string());
+    EXPECT_TRUE(std::filesystem::exists(dir / "a.svg"));
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

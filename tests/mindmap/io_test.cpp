@@ -209,6 +209,42 @@ TEST(EventsIo, BadLinesNameTheLine) {
   expect_line("[1]", 1, "");
 }
 
+// The unknown-field rule (docs/formats.md) for the NDJSON streams: the stream header sets the
+// version; a 1.0 stream (or one without a header) rejects unknown fields, a 1.1 stream ignores
+// them.
+TEST(EventsIo, UnknownFieldRuleFollowsTheStreamHeader) {
+  const std::string rec = "{\"time\": 1, \"to\": \"a\", \"stimulus\": \"s\", \"mood\": 1}\n";
+  const std::string v10 = "{\"format\": \"emoface.mindmap_events\", \"version\": \"1.0\"}\n";
+  const std::string v11 = "{\"format\": \"emoface.mindmap_events\", \"version\": \"1.1\"}\n";
+  for (const std::string& text : {rec, v10 + rec}) {
+    try {
+      mm::parse_events(text, "e.ndjson");
+      ADD_FAILURE() << text;
+    } catch (const emoface::FormatError& e) {
+      EXPECT_EQ(std::string(e.what()).find("e.ndjson:"), 0u) << e.what();
+      EXPECT_NE(std::string(e.what()).find("at /mood: unknown field \"mood\""), std::string::npos)
+          << e.what();
+      EXPECT_EQ(e.where().line, text == rec ? 1u : 2u);
+    }
+  }
+  const auto events = mm::parse_events(v11 + rec, "e.ndjson");
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].line, 2u);
+  EXPECT_THROW(
+      mm::parse_events("{\"format\": \"emoface.mindmap_events\", \"version\": \"2.0\"}\n" + rec,
+                       "e.ndjson"),
+      emoface::FormatError);  // a newer major
+  // Actions: the same rule with their own header.
+  const std::string act =
+      "{\"time\":1,\"character\":\"a\",\"action\":\"x\",\"label\":\"fear\",\"emotion\":\"e\","
+      "\"mood\":0.5,\"cause\":\"stimulus\",\"stimulus\":\"s\",\"depth\":0,\"note\":1}\n";
+  EXPECT_THROW(mm::parse_actions(act, "a.ndjson"), emoface::FormatError);
+  EXPECT_EQ(mm::parse_actions(
+                "{\"format\":\"emoface.mindmap_actions\",\"version\":\"1.3\"}\n" + act, "a.ndjson")
+                .size(),
+            1u);
+}
+
 TEST(ActionsIo, NdjsonRoundTripAndCsv) {
   std::vector<mm::TriggeredAction> actions = {
       {0.5, "alice", "smile", "happiness", "happiness", 0.325, mm::Cause::Stimulus, "gift", 0},

@@ -54,6 +54,23 @@ TEST(MindmapApp, SimulatesTheExampleCharacters) {
   fs::remove_all(again);
 }
 
+// Issue 18: a run writes all its files or none (core::OutputBundle). ben_mood.png is a directory
+// here, so it cannot be written: no other output appears.
+TEST(MindmapApp, SimulateWritesNothingWhenAnOutputCannotBeWritten) {
+  const fs::path out = scratch("sim_fail");
+  fs::create_directories(out / "ben_mood.png");
+  EXPECT_EQ(run("simulate --maps " + kData + "/characters --events " + kData +
+                "/events.ndjson --out " + out.string()),
+            2);
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(out)) {
+    ++entries;
+    EXPECT_EQ(e.path().filename(), "ben_mood.png") << e.path();
+  }
+  EXPECT_EQ(entries, 1u);
+  fs::remove_all(out);
+}
+
 TEST(MindmapApp, SynthesizesMotionWithAGraph) {
   const fs::path dir = scratch("graph");
   fs::create_directories(dir);

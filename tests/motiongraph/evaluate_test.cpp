@@ -32,7 +32,10 @@ TEST(Evaluate, ShardsMergeToTheWholeEvaluation) {
     o.shard_index = i;
     parts.push_back(evaluate(test::small_prepared(), t, o));
   }
-  EXPECT_EQ(parts[0].samples + parts[1].samples + parts[2].samples, test::small_prepared().samples.size());
+  const std::size_t n = test::small_prepared().samples.size();
+  EXPECT_EQ(parts[0].samples + parts[1].samples + parts[2].samples, n);
+  for (std::size_t i = 0; i < 3; ++i)  // contiguous blocks: ⌊(i+1)·n/3⌋ − ⌊i·n/3⌋ samples
+    EXPECT_EQ(parts[i].samples, (i + 1) * n / 3 - i * n / 3) << i;
   const EvaluationRow merged = merge_rows(parts);
   EXPECT_EQ(merged.samples, whole.samples);
   EXPECT_EQ(merged.distances, whole.distances);

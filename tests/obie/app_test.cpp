@@ -67,6 +67,22 @@ TEST_F(ObieApp, WritesEveryOutputWithTheVersionStamp) {
   EXPECT_NE(r.err.find("obie: frames 100% (186/186)"), std::string::npos) << r.err;
 }
 
+// Issue 18: the outputs of a run are written all or nothing (core::OutputBundle). summary.json is
+// a directory here, so the last output cannot be written: no other output appears either.
+TEST_F(ObieApp, AFailingOutputLeavesNoneWritten) {
+  std::filesystem::create_directories(path("out/summary.json"));
+  const auto r = run_tool(kExe, "--match " + match() + " --agent " + agent() + " --out " +
+                                    path("out") + kSmall + " --no-video -q --weights arkit");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("summary.json"), std::string::npos) << r.err;
+  std::size_t entries = 0;
+  for (const auto& e : std::filesystem::directory_iterator(path("out"))) {
+    ++entries;
+    EXPECT_EQ(e.path().filename(), "summary.json") << e.path();  // no output, no temporary file
+  }
+  EXPECT_EQ(entries, 1u);
+}
+
 TEST_F(ObieApp, SameSeedSameBytesAcrossProcesses) {
   const std::string args = "--match " + match() + " --agent " + agent() + kSmall + " --no-video -q --out ";
   ASSERT_EQ(run_tool(kExe, args + path("a")).code, 0);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/obie/bundle.hpp"
 #include "test_match.hpp"
 
 namespace emoface::obie {
@@ -21,6 +22,21 @@ std::string error_of(const std::string& text) {
 
 std::string minimal(const std::string& body) {
   return R"({"format": "emoface.obie.match", "version": "1.0", "domain": "d.domain", )" + body + "}";
+}
+
+// The unknown-field rule (docs/formats.md, core::JsonReader): a 1.0 match rejects a field it does
+// not know, naming it; a 1.1 match may add fields (ignored); known fields are still checked.
+TEST(Match, UnknownFieldRule) {
+  const std::string body = R"("events": [{"minute": 3, "action": "", "colour": 2}], "venue": "x")";
+  EXPECT_EQ(error_of(minimal(body)), "m.json: at /venue: unknown field \"venue\"");
+  EXPECT_EQ(error_of(minimal(body.substr(0, body.find(", \"venue\"")))),
+            "m.json: at /events/0/colour: unknown field \"colour\"");
+  std::string newer = minimal(body);
+  newer.replace(newer.find("\"1.0\""), 5, "\"1.1\"");
+  EXPECT_EQ(error_of(newer), "no error");
+  EXPECT_EQ(parse_match(newer, "m.json").events.size(), 1u);
+  newer.replace(newer.find("\"minute\": 3"), 11, "\"minute\": -3");
+  EXPECT_NE(error_of(newer).find("/events/0/minute"), std::string::npos);
 }
 
 TEST(Match, ParsesTheShortMatch) {
@@ -165,6 +181,24 @@ TEST(Match, ValidateCatchesWhatTheReaderCatches) {
   bad = m;
   bad.key_moments[0].minute = std::nan("");
   EXPECT_THROW(write_match(bad), InvalidInput);
+}
+
+}  // namespace
+}  // namespace emoface::obie
+
+namespace emoface::obie {
+namespace {
+
+TEST(KeyMoment, ParsesMinuteAndOptionalLabel) {
+  const KeyMoment a = parse_key_moment("12:the against team scores");
+  EXPECT_EQ(a.minute, 12.0);
+  EXPECT_EQ(a.label, "the against team scores");
+  const KeyMoment b = parse_key_moment("40.5");
+  EXPECT_EQ(b.minute, 40.5);
+  EXPECT_EQ(b.label, "");
+  EXPECT_EQ(parse_key_moment("3:a:b").label, "a:b");
+  for (const char* bad : {"", ":x", "x:y", "12x:y", "nan:x", "1e999"})
+    EXPECT_THROW(parse_key_moment(bad), InvalidInput) << bad;
 }
 
 }  // namespace

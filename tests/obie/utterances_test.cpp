@@ -121,6 +121,17 @@ std::string error_of(const std::string& body) {
   return "no error";
 }
 
+TEST(Utterances, UnknownFieldRule) {
+  const std::string body =
+      R"("rules": [{"emotion": "fear", "texts": ["x"], "pitch": 3}], "voice": 1)";
+  EXPECT_EQ(error_of(body), "u.json: at /voice: unknown field \"voice\"");
+  EXPECT_EQ(error_of(body.substr(0, body.find(", \"voice\""))),
+            "u.json: at /rules/0/pitch: unknown field \"pitch\"");
+  const std::string newer =
+      R"({"format": "emoface.obie.utterances", "version": "1.2", )" + body + "}";
+  EXPECT_EQ(parse_utterances(newer, "u.json").rules.size(), 1u);
+}
+
 TEST(Utterances, BadFilesNameTheirPlace) {
   EXPECT_NE(error_of(R"("refractory": 3)").find("rules"), std::string::npos);
   EXPECT_NE(error_of(R"("rules": [{"emotion": "glee", "texts": ["x"]}])").find("/rules/0/emotion"), std::string::npos);

@@ -55,6 +55,18 @@ TEST_F(ParleeApp, PlanErrors) {
   EXPECT_EQ(run("plan --domain " + kData + "rocket.domain --horizon 3 --goal nope").code, 2);
 }
 
+// Issue 18: the timeline and the charts are written together or not at all (core::OutputBundle).
+TEST_F(ParleeApp, RunWritesNothingWhenAChartCannotBeWritten) {
+  std::filesystem::create_directories(path("charts/fear.png"));  // a directory where a chart goes
+  const auto r = run("run --domain " + kData + "football.domain --agent " + kData +
+                     "agents/neutral.json --events " + kData + "match.ndjson --out " +
+                     path("t.ndjson") + " --plot " + path("charts"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("fear.png"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("t.ndjson")));
+  EXPECT_FALSE(std::filesystem::exists(path("charts/neutral.png")));
+}
+
 TEST_F(ParleeApp, RunWritesTimelineAndCharts) {
   const auto r = run("run --domain " + kData + "football.domain --agent " + kData + "agents/neutral.json --events " +
                      kData + "match.ndjson --out " + path("t.ndjson") + " --plot " + path("charts"));

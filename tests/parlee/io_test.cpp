@@ -182,3 +182,40 @@ TEST(Timeline, LineNamesEveryEmotionAndTheEsv) {
   EXPECT_EQ(j["goals"]["win"]["status"], "unconfirmed");
   EXPECT_EQ(j["events"][0]["outcome"], "goal");
 }
+
+// The unknown-field rule of docs/formats.md (core::JsonReader): the agent reader is 1.1; a 1.0 or
+// 1.1 file rejects a field it does not know (at the root or nested), a 1.2 file may add fields.
+TEST(AgentFile, UnknownFieldRule) {
+  for (const char* version : {"1.0", "1.1"}) {
+    const std::string head =
+        std::string(R"({"format":"emoface.parlee_agent","version":")") + version + R"(",)";
+    EXPECT_EQ(pointer_of(head + R"("mood":1})"), "/mood") << version;
+    EXPECT_EQ(pointer_of(head + R"("planning":{"horizon":2,"beam":3}})"), "/planning/beam");
+    EXPECT_EQ(
+        pointer_of(head +
+                   R"("emotions":{"effect":[{"from":"joy","to":"fear","value":0.1,"w":1}]}})"),
+        "/emotions/effect/0/w");
+    try {
+      parse_agent(head + R"("mood":1})", "a.json");
+    } catch (const FormatError& e) {
+      EXPECT_STREQ(e.what(), "a.json: at /mood: unknown field \"mood\"");
+    }
+  }
+  const std::string newer = R"({"format":"emoface.parlee_agent","version":"1.2",)";
+  EXPECT_EQ(pointer_of(newer + R"("mood":1,"planning":{"horizon":2,"beam":3},"name":"n"})"), "");
+  EXPECT_EQ(parse_agent(newer + R"("mood":1,"planning":{"horizon":2,"beam":3}})", "a.json")
+                .planning.horizon,
+            2);
+  // Known fields are still checked in a newer minor.
+  EXPECT_EQ(pointer_of(newer + R"("planning":{"horizon":2.5}})"), "/planning/horizon");
+}
+
+TEST(Events, UnknownFieldsAreErrors) {
+  // Events carry no version: every field must be known.
+  try {
+    parse_events("{\"time\":1,\"action\":\"a\"}\n{\"time\":2,\"action\":\"b\",\"x\":1}\n", "e");
+    ADD_FAILURE();
+  } catch (const FormatError& e) {
+    EXPECT_STREQ(e.what(), "e:2: unknown field \"x\"");
+  }
+}

@@ -92,4 +92,15 @@ void render_dot(std::string_view dot, const std::string& path, const std::string
   }
 }
 
+void write_dot(std::string_view dot, const std::string& path, const std::string& binary) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".svg" || ext == ".png" || ext == ".pdf") return render_dot(dot, path, binary);
+  if (path == "-") {
+    std::fwrite(dot.data(), 1, dot.size(), stdout);
+    std::fflush(stdout);
+    return;
+  }
+  write_file_atomic(path, dot);
+}
+
 }  // namespace emoface::core

@@ -9,6 +9,8 @@
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
+#include "emoface/core/text.hpp"
 
 namespace emoface::mindmap {
 namespace {
@@ -16,73 +18,22 @@ namespace {
 using Json = nlohmann::ordered_json;
 constexpr core::FormatVersion kVersion{1, 0};
 
-class Parser {
- public:
-  Parser(std::string file, std::size_t line, bool strict)
-      : file_(std::move(file)), line_(line), strict_(strict) {}
+using core::JsonValue;
 
-  [[noreturn]] void fail(const std::string& ptr, const std::string& message) const {
-    throw FormatError(SourceLocation{file_, ptr, line_, 0}, message);
-  }
-  const Json& member(const Json& obj, const std::string& ptr, const char* key) const {
-    auto it = obj.find(key);
-    if (it == obj.end()) fail(ptr, std::string("missing mandatory field \"") + key + "\"");
-    return *it;
-  }
-  const Json* optional(const Json& obj, const char* key) const {
-    auto it = obj.find(key);
-    return it == obj.end() ? nullptr : &*it;
-  }
-  void object(const Json& j, const std::string& ptr) const {
-    if (!j.is_object()) fail(ptr, "expected an object");
-  }
-  void array(const Json& j, const std::string& ptr) const {
-    if (!j.is_array()) fail(ptr, "expected an array");
-  }
-  std::string string(const Json& j, const std::string& ptr) const {
-    if (!j.is_string()) fail(ptr, "expected a string");
-    std::string s = j.get<std::string>();
-    if (s.empty()) fail(ptr, "expected a non-empty string");
-    return s;
-  }
-  bool boolean(const Json& j, const std::string& ptr) const {
-    if (!j.is_boolean()) fail(ptr, "expected true or false");
-    return j.get<bool>();
-  }
-  double number(const Json& j, const std::string& ptr, double lo, double hi) const {
-    if (!j.is_number()) fail(ptr, "expected a number");
-    const double v = j.get<double>();
-    if (!std::isfinite(v) || v < lo || v > hi)
-      fail(ptr, "value " + std::to_string(v) + " out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
-    return v;
-  }
-  void only_keys(const Json& obj, const std::string& ptr, std::initializer_list<const char*> keys) const {
-    if (!strict_) return;  // a newer minor version may add fields
-    for (auto it = obj.begin(); it != obj.end(); ++it) {
-      bool known = false;
-      for (const char* k : keys) known = known || it.key() == k;
-      if (!known) fail(ptr + "/" + core::json_pointer_token(it.key()), "unknown field \"" + it.key() + "\"");
-    }
-  }
-  static std::string fmt(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-  }
+// A non-empty string (names of characters, nodes, stimuli).
+std::string name(const JsonValue& v) {
+  std::string s = v.string();
+  if (s.empty()) v.fail("expected a non-empty string");
+  return s;
+}
 
- private:
-  std::string file_;
-  std::size_t line_;
-  bool strict_;
-};
-
-std::vector<double> unit_array(const Parser& p, const Json& j, const std::string& ptr, std::size_t n) {
-  p.array(j, ptr);
+std::vector<double> unit_array(const JsonValue& j, std::size_t n) {
+  j.expect_array();
   if (j.size() != n)
-    p.fail(ptr, "has " + std::to_string(j.size()) + " entries; expected one per emotion node (" +
-                    std::to_string(n) + ")");
+    j.fail("has " + std::to_string(j.size()) + " entries; expected one per emotion node (" +
+           std::to_string(n) + ")");
   std::vector<double> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i] = p.number(j[i], ptr + "/" + std::to_string(i), 0.0, 1.0);
+  for (std::size_t i = 0; i < n; ++i) out[i] = j[i].number(0.0, 1.0);
   return out;
 }
 
@@ -92,31 +43,35 @@ Json to_json_array(const std::vector<double>& v) {
   return a;
 }
 
-
-// Calls fn(object, line) for every non-blank NDJSON line that does not start with '#'. A syntax
-// error becomes a FormatError naming the line (and the column within it).
+// Calls fn(record, line) for every non-blank NDJSON line that does not start with '#', each record
+// read through core::JsonReader. The stream header ({"format": "emoface.<kind>", "version"}, the
+// stream's version stamp) is skipped and sets the unknown-field rule: records of a stream of a
+// newer minor version than `supported` may add fields (ignored); otherwise unknown fields are
+// errors. Every error is a FormatError naming the line (and the JSON pointer, or the column of a
+// syntax error).
 template <class Fn>
-void for_each_ndjson(std::string_view text, const std::string& file, Fn fn) {
-  std::size_t line_no = 0, pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    const auto first = line.find_first_not_of(" \t");
-    if (first == std::string_view::npos || line[first] == '#') continue;
-    Json j;
+void for_each_ndjson(std::string_view text, const std::string& file, std::string_view kind,
+                     core::FormatVersion supported, Fn fn) {
+  bool strict = true;
+  for (const core::Line& line : core::Lines(text)) {
+    const std::string_view body = core::trim(line.text);
+    if (body.empty() || body[0] == '#') continue;
     try {
-      j = core::parse_json(line, file);
+      Json j = core::parse_json(body, file);
+      if (core::is_stream_header(j)) {
+        if (j["format"] == "emoface." + std::string(kind)) {
+          const core::JsonReader header(core::ParsedJson{std::move(j)}, file, kind, supported);
+          strict = header.strict();
+        }
+        continue;
+      }
+      const core::JsonReader reader(core::ParsedJson{std::move(j)}, file, strict);
+      fn(reader.root().expect_object(), line.number);
     } catch (const FormatError& e) {
-      throw FormatError(SourceLocation{file, "", line_no, e.where().column}, e.message());
+      SourceLocation where = e.where();
+      where.line = line.number;
+      throw FormatError(where, e.message());
     }
-    if (core::is_stream_header(j)) continue;  // {"format": "emoface.…", …}: the stream's version stamp
-    const Parser p(file, line_no, true);
-    p.object(j, "");
-    fn(j, p, line_no);
   }
 }
 
@@ -124,156 +79,135 @@ void for_each_ndjson(std::string_view text, const std::string& file, Fn fn) {
 
 MindMap parse_mind_map(std::string_view json_text, const std::string& file,
                        const std::vector<std::string>& known_labels) {
-  const Json doc = core::parse_json(json_text, file);
-  const core::FormatVersion version = core::check_envelope(doc, kMindMapKind, kVersion, file);
-  const Parser p(file, 0, version.minor <= kVersion.minor);
-  p.only_keys(doc, "", {"format", "version", "generator", "character", "emotions", "actions",
-                        "stimulus_edges", "response_edges", "chain_edges", "representatives", "traits"});
+  const core::JsonReader reader(json_text, file, kMindMapKind, kVersion);
+  const JsonValue doc = reader.root();
+  doc.only_keys({"character", "emotions", "actions", "stimulus_edges", "response_edges",
+                 "chain_edges", "representatives", "traits"});
   MindMap m;
-  m.character = p.string(p.member(doc, "", "character"), "/character");
+  m.character = name(doc.at("character"));
   std::set<std::string> names;
-  const Json& emotions = p.member(doc, "", "emotions");
-  p.array(emotions, "/emotions");
-  if (emotions.empty()) p.fail("/emotions", "at least one emotion node is required");
-  for (std::size_t i = 0; i < emotions.size(); ++i) {
-    const std::string ptr = "/emotions/" + std::to_string(i);
-    m.emotions.push_back(p.string(emotions[i], ptr));
-    if (!names.insert(m.emotions.back()).second) p.fail(ptr, "duplicate node name \"" + m.emotions.back() + "\"");
+  const JsonValue emotions = doc.at("emotions").expect_array();
+  if (emotions.size() == 0) emotions.fail("at least one emotion node is required");
+  for (const JsonValue& e : emotions.items()) {
+    m.emotions.push_back(name(e));
+    if (!names.insert(m.emotions.back()).second)
+      e.fail("duplicate node name \"" + m.emotions.back() + "\"");
   }
   const std::size_t n = m.emotions.size();
-  auto emotion_ref = [&](const Json& j, const std::string& ptr) {
-    const std::string name = p.string(j, ptr);
-    auto e = m.find_emotion(name);
-    if (!e) p.fail(ptr, "dangling edge: no emotion node \"" + name + "\"");
+  auto emotion_ref = [&](const JsonValue& j) {
+    const std::string e_name = name(j);
+    auto e = m.find_emotion(e_name);
+    if (!e) j.fail("dangling edge: no emotion node \"" + e_name + "\"");
     return *e;
   };
-  auto action_ref = [&](const Json& j, const std::string& ptr, bool receive, bool perform) {
-    const std::string name = p.string(j, ptr);
-    auto a = m.find_action(name);
-    if (!a) p.fail(ptr, "dangling edge: no action node \"" + name + "\"");
-    if (receive && !m.actions[*a].receivable) p.fail(ptr, "action \"" + name + "\" cannot be received");
-    if (perform && !m.actions[*a].performable) p.fail(ptr, "action \"" + name + "\" cannot be performed");
+  auto action_ref = [&](const JsonValue& j, bool receive, bool perform) {
+    const std::string a_name = name(j);
+    auto a = m.find_action(a_name);
+    if (!a) j.fail("dangling edge: no action node \"" + a_name + "\"");
+    if (receive && !m.actions[*a].receivable)
+      j.fail("action \"" + a_name + "\" cannot be received");
+    if (perform && !m.actions[*a].performable)
+      j.fail("action \"" + a_name + "\" cannot be performed");
     return *a;
   };
 
-  if (const Json* actions = p.optional(doc, "actions")) {
-    p.array(*actions, "/actions");
-    for (std::size_t i = 0; i < actions->size(); ++i) {
-      const std::string ptr = "/actions/" + std::to_string(i);
-      const Json& a = (*actions)[i];
-      p.object(a, ptr);
-      p.only_keys(a, ptr, {"name", "receive", "perform", "label"});
+  if (auto actions = doc.find("actions")) {
+    for (const JsonValue& a : actions->items()) {
+      a.only_keys({"name", "receive", "perform", "label"});
       ActionNode node;
-      node.name = p.string(p.member(a, ptr, "name"), ptr + "/name");
-      if (!names.insert(node.name).second) p.fail(ptr + "/name", "duplicate node name \"" + node.name + "\"");
-      if (const Json* r = p.optional(a, "receive")) node.receivable = p.boolean(*r, ptr + "/receive");
-      if (const Json* f = p.optional(a, "perform")) node.performable = p.boolean(*f, ptr + "/perform");
+      node.name = name(a.at("name"));
+      if (!names.insert(node.name).second)
+        a.at("name").fail("duplicate node name \"" + node.name + "\"");
+      node.receivable = a.boolean_or("receive", node.receivable);
+      node.performable = a.boolean_or("perform", node.performable);
       if (!node.receivable && !node.performable)
-        p.fail(ptr, "an action must be received and/or performed (\"receive\": true, \"perform\": true)");
-      if (const Json* l = p.optional(a, "label")) {
-        node.label = p.string(*l, ptr + "/label");
+        a.fail(
+            "an action must be received and/or performed (\"receive\": true, \"perform\": true)");
+      if (auto l = a.find("label")) {
+        node.label = name(*l);
         if (!known_labels.empty() &&
             std::find(known_labels.begin(), known_labels.end(), node.label) == known_labels.end()) {
           std::string list;
           for (const auto& k : known_labels) list += (list.empty() ? "" : ", ") + k;
-          p.fail(ptr + "/label", "unknown expression label \"" + node.label + "\" (known: " + list + ")");
+          l->fail("unknown expression label \"" + node.label + "\" (known: " + list + ")");
         }
       }
       if (node.performable && node.label.empty())
-        p.fail(ptr, "a performing action needs an expression \"label\"");
+        a.fail("a performing action needs an expression \"label\"");
       m.actions.push_back(std::move(node));
     }
   }
-  if (const Json* edges = p.optional(doc, "stimulus_edges")) {
-    p.array(*edges, "/stimulus_edges");
+  if (auto edges = doc.find("stimulus_edges")) {
     std::set<std::pair<std::size_t, std::size_t>> seen;
-    for (std::size_t i = 0; i < edges->size(); ++i) {
-      const std::string ptr = "/stimulus_edges/" + std::to_string(i);
-      const Json& e = (*edges)[i];
-      p.object(e, ptr);
-      p.only_keys(e, ptr, {"stimulus", "emotion", "weight"});
+    for (const JsonValue& e : edges->items()) {
+      e.only_keys({"stimulus", "emotion", "weight"});
       StimulusEdge se;
-      se.action = action_ref(p.member(e, ptr, "stimulus"), ptr + "/stimulus", true, false);
-      se.emotion = emotion_ref(p.member(e, ptr, "emotion"), ptr + "/emotion");
-      se.weight = p.number(p.member(e, ptr, "weight"), ptr + "/weight", 0.0, 1.0);
-      if (!seen.insert({se.action, se.emotion}).second) p.fail(ptr, "duplicate edge");
+      se.action = action_ref(e.at("stimulus"), true, false);
+      se.emotion = emotion_ref(e.at("emotion"));
+      se.weight = e.at("weight").number(0.0, 1.0);
+      if (!seen.insert({se.action, se.emotion}).second) e.fail("duplicate edge");
       m.stimulus_edges.push_back(se);
     }
   }
-  if (const Json* edges = p.optional(doc, "response_edges")) {
-    p.array(*edges, "/response_edges");
+  if (auto edges = doc.find("response_edges")) {
     std::set<std::pair<std::size_t, std::size_t>> seen;
-    for (std::size_t i = 0; i < edges->size(); ++i) {
-      const std::string ptr = "/response_edges/" + std::to_string(i);
-      const Json& e = (*edges)[i];
-      p.object(e, ptr);
-      p.only_keys(e, ptr, {"emotion", "action", "weight"});
+    for (const JsonValue& e : edges->items()) {
+      e.only_keys({"emotion", "action", "weight"});
       ResponseEdge re;
-      re.emotion = emotion_ref(p.member(e, ptr, "emotion"), ptr + "/emotion");
-      re.action = action_ref(p.member(e, ptr, "action"), ptr + "/action", false, true);
-      re.weight = p.number(p.member(e, ptr, "weight"), ptr + "/weight", 0.0, 1.0);
-      if (!seen.insert({re.emotion, re.action}).second) p.fail(ptr, "duplicate edge");
+      re.emotion = emotion_ref(e.at("emotion"));
+      re.action = action_ref(e.at("action"), false, true);
+      re.weight = e.at("weight").number(0.0, 1.0);
+      if (!seen.insert({re.emotion, re.action}).second) e.fail("duplicate edge");
       m.response_edges.push_back(re);
     }
   }
-  if (const Json* edges = p.optional(doc, "chain_edges")) {
-    p.array(*edges, "/chain_edges");
+  if (auto edges = doc.find("chain_edges")) {
     std::set<std::pair<std::size_t, std::size_t>> seen;
-    for (std::size_t i = 0; i < edges->size(); ++i) {
-      const std::string ptr = "/chain_edges/" + std::to_string(i);
-      const Json& e = (*edges)[i];
-      p.object(e, ptr);
-      p.only_keys(e, ptr, {"from", "to"});
+    for (const JsonValue& e : edges->items()) {
+      e.only_keys({"from", "to"});
       ChainEdge ce;
-      ce.from = action_ref(p.member(e, ptr, "from"), ptr + "/from", false, true);
-      ce.to = action_ref(p.member(e, ptr, "to"), ptr + "/to", false, true);
-      if (ce.from == ce.to) p.fail(ptr, "a chain edge cannot join an action to itself");
-      if (!seen.insert({ce.from, ce.to}).second) p.fail(ptr, "duplicate edge");
+      ce.from = action_ref(e.at("from"), false, true);
+      ce.to = action_ref(e.at("to"), false, true);
+      if (ce.from == ce.to) e.fail("a chain edge cannot join an action to itself");
+      if (!seen.insert({ce.from, ce.to}).second) e.fail("duplicate edge");
       m.chain_edges.push_back(ce);
     }
   }
-  if (const Json* reps = p.optional(doc, "representatives")) {
-    p.object(*reps, "/representatives");
+  if (auto reps = doc.find("representatives")) {
     m.representative.assign(n, kNone);
-    for (auto it = reps->begin(); it != reps->end(); ++it) {
-      const std::string ptr = "/representatives/" + core::json_pointer_token(it.key());
-      auto e = m.find_emotion(it.key());
-      if (!e) p.fail(ptr, "no emotion node \"" + it.key() + "\"");
-      m.representative[*e] = action_ref(it.value(), ptr, false, true);
+    for (const auto& [key, v] : reps->members()) {
+      auto e = m.find_emotion(key);
+      if (!e) v.fail("no emotion node \"" + key + "\"");
+      m.representative[*e] = action_ref(v, false, true);
     }
   }
-  const Json& traits = p.member(doc, "", "traits");
-  p.object(traits, "/traits");
-  p.only_keys(traits, "/traits", {"starting_mood", "personality", "background_context", "affection",
-                                  "lambda", "alpha", "beta", "decay"});
+  const JsonValue traits = doc.at("traits");
+  traits.only_keys({"starting_mood", "personality", "background_context", "affection", "lambda",
+                    "alpha", "beta", "decay"});
   Traits& t = m.traits;
-  t.starting_mood = unit_array(p, p.member(traits, "/traits", "starting_mood"), "/traits/starting_mood", n);
-  t.personality = unit_array(p, p.member(traits, "/traits", "personality"), "/traits/personality", n);
-  if (const Json* bg = p.optional(traits, "background_context"))
-    t.background_context = unit_array(p, *bg, "/traits/background_context", n);
-  if (const Json* aff = p.optional(traits, "affection")) {
-    p.object(*aff, "/traits/affection");
-    for (auto it = aff->begin(); it != aff->end(); ++it) {
-      const std::string ptr = "/traits/affection/" + core::json_pointer_token(it.key());
-      if (it.key().empty()) p.fail(ptr, "empty character name");
-      t.affection.emplace_back(it.key(), unit_array(p, it.value(), ptr, n));
+  t.starting_mood = unit_array(traits.at("starting_mood"), n);
+  t.personality = unit_array(traits.at("personality"), n);
+  if (auto bg = traits.find("background_context")) t.background_context = unit_array(*bg, n);
+  if (auto aff = traits.find("affection")) {
+    for (const auto& [who, row] : aff->members()) {
+      if (who.empty()) row.fail("empty character name");
+      t.affection.emplace_back(who, unit_array(row, n));
     }
   }
-  t.lambda = p.number(p.member(traits, "/traits", "lambda"), "/traits/lambda", 0.0, 1.0);
-  t.alpha = p.number(p.member(traits, "/traits", "alpha"), "/traits/alpha", 0.0, 1.0);
-  t.beta = p.number(p.member(traits, "/traits", "beta"), "/traits/beta", 0.0, 1.0);
-  const Json& decay = p.member(traits, "/traits", "decay");
-  p.object(decay, "/traits/decay");
-  p.only_keys(decay, "/traits/decay", {"duration", "curve"});
-  t.decay_duration = p.number(p.member(decay, "/traits/decay", "duration"), "/traits/decay/duration", 1e-6, 1e6);
-  const std::string curve = p.string(p.member(decay, "/traits/decay", "curve"), "/traits/decay/curve");
+  t.lambda = traits.at("lambda").number(0.0, 1.0);
+  t.alpha = traits.at("alpha").number(0.0, 1.0);
+  t.beta = traits.at("beta").number(0.0, 1.0);
+  const JsonValue decay = traits.at("decay");
+  decay.only_keys({"duration", "curve"});
+  t.decay_duration = decay.at("duration").number(1e-6, 1e6);
+  const std::string curve = name(decay.at("curve"));
   auto c = decay_curve_from_string(curve);
-  if (!c) p.fail("/traits/decay/curve", "unknown curve \"" + curve + "\" (linear|quadratic|sigmoid)");
+  if (!c) decay.at("curve").fail("unknown curve \"" + curve + "\" (linear|quadratic|sigmoid)");
   t.decay_curve = *c;
   try {
     validate(m);
   } catch (const InvalidInput& e) {
-    p.fail("", e.what());
+    doc.fail(e.what());
   }
   return m;
 }
@@ -357,43 +291,41 @@ std::vector<MindMap> read_mind_map_dir(const std::string& dir,
 
 std::vector<Event> parse_events(std::string_view text, const std::string& file) {
   std::vector<Event> events;
-  for_each_ndjson(text, file, [&](const Json& j, const Parser& p, std::size_t line) {
-    p.only_keys(j, "", {"time", "to", "stimulus", "from", "weights", "context", "affection"});
+  for_each_ndjson(text, file, "mindmap_events", {1, 0}, [&](const JsonValue& j, std::size_t line) {
+    j.only_keys({"time", "to", "stimulus", "from", "weights", "context", "affection"});
     Event ev;
     ev.line = line;
-    ev.time = p.number(p.member(j, "", "time"), "/time", 0.0, 1e9);
-    ev.target = p.string(p.member(j, "", "to"), "/to");
+    ev.time = j.at("time").number(0.0, 1e9);
+    ev.target = name(j.at("to"));
     // Runtime trait changes (issue 19): {"time", "to", "context": [...], "affection": {"ben": [...]}}
     // instead of a stimulus. Sizes are checked against the target's map when applied.
-    auto unit_list = [&](const Json& a, const std::string& ptr) {
-      if (!a.is_array()) p.fail(ptr, "expected an array of numbers in [0, 1]");
-      if (a.size() > 4096) p.fail(ptr, "too many values");
+    auto unit_list = [&](const JsonValue& a) {
+      if (!a.is_array()) a.fail("expected an array of numbers in [0, 1]");
+      if (a.size() > 4096) a.fail("too many values");
       std::vector<double> v;
-      for (std::size_t i = 0; i < a.size(); ++i) v.push_back(p.number(a[i], ptr + "/" + std::to_string(i), 0.0, 1.0));
+      for (const JsonValue& x : a.items()) v.push_back(x.number(0.0, 1.0));
       return v;
     };
-    if (const Json* c = p.optional(j, "context")) {
-      ev.context = unit_list(*c, "/context");
-      if (ev.context.empty()) p.fail("/context", "empty background context");
+    if (auto c = j.find("context")) {
+      ev.context = unit_list(*c);
+      if (ev.context.empty()) c->fail("empty background context");
     }
-    if (const Json* a = p.optional(j, "affection")) {
-      p.object(*a, "/affection");
-      if (a->empty()) p.fail("/affection", "no affection row");
-      for (auto it = a->begin(); it != a->end(); ++it) {
-        if (it.key().empty()) p.fail("/affection", "empty character name");
-        ev.affection.emplace_back(it.key(), unit_list(it.value(), "/affection/" + core::json_pointer_token(it.key())));
+    if (auto a = j.find("affection")) {
+      a->expect_object();
+      if (a->size() == 0) a->fail("no affection row");
+      for (const auto& [who, row] : a->members()) {
+        if (who.empty()) a->fail("empty character name");
+        ev.affection.emplace_back(who, unit_list(row));
       }
     }
     const bool change = !ev.context.empty() || !ev.affection.empty();
-    if (change && p.optional(j, "stimulus"))
-      p.fail("/stimulus", "an event either delivers a stimulus or changes context/affection, not both");
-    if (!change) ev.stimulus = p.string(p.member(j, "", "stimulus"), "/stimulus");
-    if (const Json* from = p.optional(j, "from")) ev.source = p.string(*from, "/from");
-    if (const Json* w = p.optional(j, "weights")) {
-      p.object(*w, "/weights");
-      for (auto it = w->begin(); it != w->end(); ++it)
-        ev.weights.emplace_back(it.key(), p.number(it.value(), "/weights/" + core::json_pointer_token(it.key()), 0.0, 1.0));
-    }
+    if (change && j.has("stimulus"))
+      j.at("stimulus")
+          .fail("an event either delivers a stimulus or changes context/affection, not both");
+    if (!change) ev.stimulus = name(j.at("stimulus"));
+    if (auto from = j.find("from")) ev.source = name(*from);
+    if (auto w = j.find("weights"))
+      for (const auto& [k, v] : w->members()) ev.weights.emplace_back(k, v.number(0.0, 1.0));
     events.push_back(std::move(ev));
   });
   return events;
@@ -469,24 +401,23 @@ std::string actions_to_ndjson(const std::vector<TriggeredAction>& actions) {
 
 std::vector<TriggeredAction> parse_actions(std::string_view text, const std::string& file) {
   std::vector<TriggeredAction> out;
-  for_each_ndjson(text, file, [&](const Json& j, const Parser& p, std::size_t) {
-    p.only_keys(j, "", {"time", "character", "action", "label", "emotion", "mood", "cause", "stimulus", "depth", "at"});
+  for_each_ndjson(text, file, "mindmap_actions", {1, 0}, [&](const JsonValue& j, std::size_t) {
+    j.only_keys({"time", "character", "action", "label", "emotion", "mood", "cause", "stimulus",
+                 "depth", "at"});
     TriggeredAction a;
-    a.time = p.number(p.member(j, "", "time"), "/time", 0.0, 1e9);
-    a.character = p.string(p.member(j, "", "character"), "/character");
-    a.action = p.string(p.member(j, "", "action"), "/action");
-    a.label = p.string(p.member(j, "", "label"), "/label");
-    a.emotion = p.string(p.member(j, "", "emotion"), "/emotion");
-    a.mood = p.number(p.member(j, "", "mood"), "/mood", 0.0, 1.0);
-    const std::string cause = p.string(p.member(j, "", "cause"), "/cause");
+    a.time = j.at("time").number(0.0, 1e9);
+    a.character = name(j.at("character"));
+    a.action = name(j.at("action"));
+    a.label = name(j.at("label"));
+    a.emotion = name(j.at("emotion"));
+    a.mood = j.at("mood").number(0.0, 1.0);
+    const std::string cause = name(j.at("cause"));
     auto c = cause_from_string(cause);
-    if (!c) p.fail("/cause", "unknown cause \"" + cause + "\" (stimulus|chain|decay)");
+    if (!c) j.at("cause").fail("unknown cause \"" + cause + "\" (stimulus|chain|decay)");
     a.cause = *c;
-    const Json& s = p.member(j, "", "stimulus");
-    if (!s.is_string()) p.fail("/stimulus", "expected a string");
-    a.stimulus = s.get<std::string>();
-    a.chain_depth = static_cast<std::size_t>(p.number(p.member(j, "", "depth"), "/depth", 0.0, 1e6));
-    if (const Json* at = p.optional(j, "at")) a.addressee = p.string(*at, "/at");
+    a.stimulus = j.at("stimulus").string();
+    a.chain_depth = j.at("depth").index(1000000);
+    if (auto at = j.find("at")) a.addressee = name(*at);
     out.push_back(std::move(a));
   });
   return out;

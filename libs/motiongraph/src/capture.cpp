@@ -10,10 +10,12 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/text.hpp"
 
 namespace emoface::motiongraph {
 
@@ -40,12 +42,11 @@ std::string trim(std::string_view s) {
   return std::string(s.substr(a, b - a));
 }
 
+// The locale-free parser of every emoface reader (core/text.hpp).
 bool parse_number(const std::string& s, double& v) {
-  if (s.empty()) return false;
-  char* stop = nullptr;
-  errno = 0;
-  v = std::strtod(s.c_str(), &stop);
-  return stop == s.c_str() + s.size() && errno != ERANGE && std::isfinite(v);
+  const std::optional<double> x = core::parse_number(s);
+  if (x) v = *x;
+  return x.has_value();
 }
 
 std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
@@ -62,13 +63,7 @@ bool is_au_column(const std::string& name) {
 std::vector<std::pair<std::size_t, std::string_view>> lines_of(std::string_view text) {
   std::vector<std::pair<std::size_t, std::string_view>> out;
   if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-  std::size_t start = 0, no = 1;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    out.emplace_back(no++, text.substr(start, end - start));
-    start = end + 1;
-  }
+  for (const core::Line& line : core::Lines(text)) out.emplace_back(line.number, line.text);
   return out;
 }
 

@@ -238,51 +238,31 @@ std::vector<TakeSegment> find_segments(const TrackedFrames& take, const TrimOpti
 }
 
 LabelTable parse_label_table(std::string_view text, const std::string& file) {
+  // core::CsvTable: stamp and comment lines, blank lines and repeated headers skipped; rows of the
+  // header's width.
+  const core::CsvTable table = core::CsvTable::parse(text, file);
+  if (table.header() != std::vector<std::string>{"take", "segment", "label"})
+    throw FormatError({file, "", table.header_line(), 1},
+                      "expected the header \"take,segment,label\"");
   LabelTable t;
-  std::vector<std::string> fields;
-  std::string error;
-  bool header = false;
-  std::size_t no = 0, start = 0;
-  while (start <= text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(start, end - start);
-    ++no;
-    start = end + 1;
-    if (line.empty() || line == "\r" || core::is_csv_comment(line)) {
-      if (end == text.size()) break;
-      continue;
+  for (std::size_t r = 0; r < table.size(); ++r) {
+    const std::vector<std::string>& fields = table.rows()[r].fields;
+    if (fields[0].empty()) table.fail(r, 0, "empty take id");
+    const std::string& seg = fields[1];
+    if (seg != "*" &&
+        (seg.empty() || seg.size() > 9 ||
+         !std::all_of(seg.begin(), seg.end(), [](char c) { return c >= '0' && c <= '9'; })))
+      table.fail(r, 1, "segment must be a 0-based index or *");
+    Label label;
+    try {
+      label = label_from_string(fields[2]);
+    } catch (const InvalidInput& e) {
+      table.fail(r, 2, e.what());
     }
-    if (const std::size_t col = core::split_csv_line(line, fields, &error))
-      throw FormatError({file, "", no, col}, "malformed row: " + error);
-    if (!header) {
-      if (fields != std::vector<std::string>{"take", "segment", "label"})
-        throw FormatError({file, "", no, 1}, "expected the header \"take,segment,label\"");
-      header = true;
-    } else {
-      if (fields.size() != 3)
-        throw FormatError({file, "", no, 0},
-                          "expected 3 fields, got " + std::to_string(fields.size()));
-      if (fields[0].empty()) throw FormatError({file, "", no, 1}, "empty take id");
-      const std::string& seg = fields[1];
-      if (seg != "*" &&
-          (seg.empty() || seg.size() > 9 ||
-           !std::all_of(seg.begin(), seg.end(), [](char c) { return c >= '0' && c <= '9'; })))
-        throw FormatError({file, "", no, 2}, "segment must be a 0-based index or *");
-      Label label;
-      try {
-        label = label_from_string(fields[2]);
-      } catch (const InvalidInput& e) {
-        throw FormatError({file, "", no, 3}, e.what());
-      }
-      const std::string key = seg == "*" ? "*" : std::to_string(std::stoul(seg));
-      if (!t.entries.emplace(std::make_pair(fields[0], key), label).second)
-        throw FormatError({file, "", no, 1},
-                          "take \"" + fields[0] + "\" segment " + seg + " is labelled twice");
-    }
-    if (end == text.size()) break;
+    const std::string key = seg == "*" ? "*" : std::to_string(std::stoul(seg));
+    if (!t.entries.emplace(std::make_pair(fields[0], key), label).second)
+      table.fail(r, 0, "take \"" + fields[0] + "\" segment " + seg + " is labelled twice");
   }
-  if (!header) throw FormatError({file, "", no, 0}, "empty label table (no header)");
   return t;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/shard.hpp"
 #include "emoface/motiongraph/curves.hpp"
 #include "flat.hpp"
 
@@ -60,8 +61,10 @@ EvaluationRow evaluate(const PreparedDatabase& data, double threshold, const Eva
   row.nodes = graph.node_count();
   Stats length, pose, raw_pose;
   const int d = data.dimensions;
-  for (std::size_t s = 0; s < data.samples.size(); ++s) {
-    if (s % options.shard_count != options.shard_index) continue;
+  // Contiguous blocks of samples, like every --shard of emoface (core::Shard, docs/scale-out.md).
+  const auto [first, last] =
+      core::Shard{options.shard_index, options.shard_count}.block(data.samples.size());
+  for (std::size_t s = first; s < last; ++s) {
     const PreparedSample& ps = data.samples[s];
     std::vector<Eigen::MatrixXd> region_frames;
     for (std::size_t r = 0; r < graph.regions.size(); ++r) {

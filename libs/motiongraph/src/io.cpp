@@ -1,19 +1,20 @@
 #include "emoface/motiongraph/io.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <set>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <tuple>
+#include <utility>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
+#include "emoface/core/text.hpp"
 
 namespace emoface::motiongraph {
 
@@ -24,89 +25,64 @@ constexpr core::FormatVersion kVersion{1, 0};
 constexpr std::size_t kMaxLandmarks = 100000;
 
 [[noreturn]] void fail(const std::string& file, const std::string& pointer, const std::string& msg) {
-  SourceLocation where;
-  where.file = file;
-  where.json_pointer = pointer;
-  throw FormatError(where, msg);
+  throw FormatError({file, pointer, 0, 0}, msg);
 }
 [[noreturn]] void fail_line(const std::string& file, std::size_t line, std::size_t column,
                             const std::string& msg) {
-  SourceLocation where;
-  where.file = file;
-  where.line = line;
-  where.column = column;
-  throw FormatError(where, msg);
+  throw FormatError({file, "", line, column}, msg);
 }
 
-// Located accessors: every bad field names its JSON pointer.
-struct Reader {
-  std::string file;
-  const Json& field(const Json& obj, const std::string& ptr, const char* key) const {
-    if (!obj.is_object()) fail(file, ptr, "expected an object");
-    auto it = obj.find(key);
-    if (it == obj.end()) fail(file, ptr + "/" + key, std::string("missing field \"") + key + "\"");
-    return *it;
-  }
-  double number(const Json& v, const std::string& ptr) const {
-    if (!v.is_number()) fail(file, ptr, "expected a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(file, ptr, "number is not finite");
-    return x;
-  }
-  double number(const Json& obj, const std::string& ptr, const char* key) const {
-    return number(field(obj, ptr, key), ptr + "/" + key);
-  }
-  std::size_t count(const Json& obj, const std::string& ptr, const char* key, std::size_t max) const {
-    const Json& v = field(obj, ptr, key);
-    if (!v.is_number_integer() || v.get<long long>() < 0 || static_cast<unsigned long long>(v.get<long long>()) > max)
-      fail(file, ptr + "/" + key, "expected an integer in [0, " + std::to_string(max) + "]");
-    return static_cast<std::size_t>(v.get<long long>());
-  }
-  std::string string(const Json& obj, const std::string& ptr, const char* key) const {
-    const Json& v = field(obj, ptr, key);
-    if (!v.is_string()) fail(file, ptr + "/" + key, "expected a string");
-    return v.get<std::string>();
-  }
-  const Json& array(const Json& obj, const std::string& ptr, const char* key) const {
-    const Json& v = field(obj, ptr, key);
-    if (!v.is_array()) fail(file, ptr + "/" + key, "expected an array");
-    return v;
-  }
-  Label label(const Json& v, const std::string& ptr) const {
-    if (!v.is_string()) fail(file, ptr, "expected a label string");
-    try {
-      return label_from_string(v.get<std::string>());
-    } catch (const InvalidInput& e) {
-      fail(file, ptr, e.what());
-    }
-  }
-  std::vector<int> indices(const Json& arr, const std::string& ptr, std::size_t limit) const {
-    if (!arr.is_array()) fail(file, ptr, "expected an array of indices");
-    std::vector<int> out;
-    for (std::size_t i = 0; i < arr.size(); ++i) {
-      const Json& v = arr[i];
-      if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= static_cast<long long>(limit))
-        fail(file, ptr + "/" + std::to_string(i), "expected an index in [0, " + std::to_string(limit) + ")");
-      out.push_back(static_cast<int>(v.get<long long>()));
-    }
-    return out;
-  }
-  Eigen::RowVectorXd vector(const Json& arr, const std::string& ptr, Eigen::Index size) const {
-    if (!arr.is_array() || static_cast<Eigen::Index>(arr.size()) != size)
-      fail(file, ptr, "expected an array of " + std::to_string(size) + " numbers");
-    Eigen::RowVectorXd out(size);
-    for (Eigen::Index i = 0; i < size; ++i) out[i] = number(arr[static_cast<std::size_t>(i)], ptr + "/" + std::to_string(i));
-    return out;
-  }
-};
+// The header fields both JSON documents share: dimensions (1 = weights, 2, 3) and frame rate.
+std::pair<int, double> dimensions_and_rate(const core::JsonValue& doc) {
+  const core::JsonValue jdims = doc.at("dimensions");
+  const std::size_t dims = jdims.index(3);
+  if (dims < 1) jdims.fail("dimensions must be 1 (weights), 2 or 3");
+  const double rate = doc.at("frame_rate").number();
+  if (!(rate > 0.0)) doc.at("frame_rate").fail("frame_rate must be > 0");
+  return {static_cast<int>(dims), rate};
+}
 
-// core::parse_json, plus number overflow ("1e999") reported as FormatError too.
-Json parse(std::string_view text, const std::string& file) {
-  try {
-    return core::parse_json(text, file);
-  } catch (const nlohmann::json::exception& e) {
-    fail(file, "", std::string("invalid JSON: ") + e.what());
+using core::JsonValue;
+
+// Typed getters on core::JsonReader values (located errors, the unknown-field rule of
+// docs/formats.md: each object's only_keys is checked after its fields, so a bad known field is
+// reported before an unknown one).
+std::vector<int> indices(const JsonValue& v, std::size_t limit) {
+  std::vector<int> out;
+  for (const JsonValue& item : v.expect_array().items()) {
+    if (limit == 0) item.fail("no index is valid here (the range is empty)");
+    out.push_back(static_cast<int>(item.index(limit - 1)));
   }
+  return out;
+}
+
+// A flat array of `size` finite numbers. The values are read straight from the document; only a bad
+// one builds its JSON pointer (large databases and graphs hold millions of numbers).
+Eigen::RowVectorXd vector(const JsonValue& v, Eigen::Index size) {
+  v.expect_array(static_cast<std::size_t>(size));
+  Eigen::RowVectorXd out(size);
+  const Json& arr = v.json();
+  for (Eigen::Index i = 0; i < size; ++i) {
+    const Json& x = arr[static_cast<std::size_t>(i)];
+    if (!x.is_number() || !std::isfinite(x.get<double>())) v[static_cast<std::size_t>(i)].number();
+    out[i] = x.get<double>();
+  }
+  return out;
+}
+
+Label label(const JsonValue& v) {
+  const std::string name = v.string();
+  try {
+    return label_from_string(name);
+  } catch (const InvalidInput& e) {
+    v.fail(e.what());
+  }
+}
+
+std::vector<Label> labels(const JsonValue& v) {
+  std::vector<Label> out;
+  for (const JsonValue& item : v.expect_array().items()) out.push_back(label(item));
+  return out;
 }
 
 // Converts an InvalidInput from validate() into a FormatError naming the file.
@@ -165,52 +141,39 @@ std::string database_to_json(const Database& db) {
   return doc.dump() + "\n";
 }
 
-std::string to_string(OnError on_error) { return on_error == OnError::Stop ? "stop" : "skip"; }
-
-OnError on_error_from_string(std::string_view name) {
-  if (name == "stop") return OnError::Stop;
-  if (name == "skip") return OnError::Skip;
-  throw InvalidInput("unknown on-error policy \"" + std::string(name) + "\" (known: stop, skip)");
-}
-
 Database parse_database_json(std::string_view text, const std::string& file, OnError on_error,
                              ReadReport* report) {
-  const Json doc = parse(text, file);
-  core::check_envelope(doc, "landmark_database", kVersion, file);
-  Reader rd{file};
+  const core::JsonReader reader(text, file, "landmark_database", kVersion);
+  const JsonValue doc = reader.root();
   Database db;
-  const std::size_t dims = rd.count(doc, "", "dimensions", 3);
-  if (dims < 1 || dims > 3) fail(file, "/dimensions", "dimensions must be 1 (weights), 2 or 3");
-  db.dimensions = static_cast<int>(dims);
-  db.landmark_count = rd.count(doc, "", "landmark_count", kMaxLandmarks);
-  if (db.landmark_count == 0) fail(file, "/landmark_count", "landmark_count must be > 0");
-  db.frame_rate = rd.number(doc, "", "frame_rate");
-  if (!(db.frame_rate > 0.0)) fail(file, "/frame_rate", "frame_rate must be > 0");
-  if (doc.contains("landmark_ids"))
-    db.landmark_ids = rd.indices(doc["landmark_ids"], "/landmark_ids", std::size_t{1} << 30);
-  const Json& seqs = rd.array(doc, "", "sequences");
-  const Eigen::Index width = static_cast<Eigen::Index>(db.landmark_count * dims);
+  std::tie(db.dimensions, db.frame_rate) = dimensions_and_rate(doc);
+  const auto dims = static_cast<std::size_t>(db.dimensions);
+  db.landmark_count = doc.at("landmark_count").index(kMaxLandmarks);
+  if (db.landmark_count == 0) doc.at("landmark_count").fail("landmark_count must be > 0");
+  if (auto ids = doc.find("landmark_ids")) db.landmark_ids = indices(*ids, std::size_t{1} << 30);
+  const JsonValue seqs = doc.at("sequences").expect_array();
+  const auto width = static_cast<Eigen::Index>(db.landmark_count * dims);
   std::map<std::string, std::size_t> ids;
   for (std::size_t s = 0; s < seqs.size(); ++s) {
-    const std::string ptr = "/sequences/" + std::to_string(s);
     try {
-      const Json& js = seqs[s];
+      const JsonValue js = seqs[s];
       Sequence seq;
-      seq.id = rd.string(js, ptr, "id");
-      if (seq.id.empty()) fail(file, ptr + "/id", "empty sequence id");
-      if (ids.count(seq.id)) fail(file, ptr + "/id", "duplicate sequence id \"" + seq.id + "\"");
-      seq.subject = rd.string(js, ptr, "subject");
-      seq.label = rd.label(rd.field(js, ptr, "label"), ptr + "/label");
-      const Json& frames = rd.array(js, ptr, "frames");
-      if (frames.empty()) fail(file, ptr + "/frames", "a sequence needs at least one frame");
+      const JsonValue id = js.at("id");
+      seq.id = id.string();
+      if (seq.id.empty()) id.fail("empty sequence id");
+      if (ids.count(seq.id)) id.fail("duplicate sequence id \"" + seq.id + "\"");
+      seq.subject = js.at("subject").string();
+      seq.label = label(js.at("label"));
+      const JsonValue frames = js.at("frames").expect_array();
+      if (frames.size() == 0) frames.fail("a sequence needs at least one frame");
       for (std::size_t f = 0; f < frames.size(); ++f) {
-        const std::string fp = ptr + "/frames/" + std::to_string(f);
-        const Eigen::RowVectorXd v = rd.vector(frames[f], fp, width);
+        const Eigen::RowVectorXd v = vector(frames[f], width);
         Pose p(static_cast<Eigen::Index>(db.landmark_count), db.dimensions);
         for (Eigen::Index i = 0; i < p.rows(); ++i)
           for (int j = 0; j < db.dimensions; ++j) p(i, j) = v[i * db.dimensions + j];
         seq.frames.push_back(std::move(p));
       }
+      js.only_keys({"id", "subject", "label", "frames"});
       ids.emplace(seq.id, s);
       db.sequences.push_back(std::move(seq));
     } catch (const FormatError& e) {
@@ -218,7 +181,11 @@ Database parse_database_json(std::string_view text, const std::string& file, OnE
       if (report) report->skipped.push_back(e.what());
     }
   }
-  validated(file, [&] { validate(db, 1); return 0; });
+  doc.only_keys({"dimensions", "landmark_count", "frame_rate", "landmark_ids", "sequences"});
+  validated(file, [&] {
+    validate(db, 1);
+    return 0;
+  });
   return db;
 }
 
@@ -257,16 +224,15 @@ Database parse_database_csv(std::string_view text, const std::string& file, doub
   Database db;
   db.frame_rate = frame_rate;
   std::vector<std::string> fields;
-  std::size_t line_no = 0, pos = 0, width = 0;
+  std::size_t width = 0;
   std::map<std::string, std::size_t> index;
   std::set<std::string> bad;  // ids of skipped sequences (OnError::Skip)
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    if (line.empty() || line == "\r") continue;
+  // Line by line rather than core::CsvTable: with Skip, a row of the wrong width drops its sequence
+  // instead of ending the read.
+  for (const core::Line& numbered : core::Lines(text)) {
+    const std::size_t line_no = numbered.number;
+    const std::string_view line = numbered.text;
+    if (line.empty()) continue;
     if (width == 0 && core::is_csv_comment(line)) continue;  // "# emoface x.y.z" stamp
     std::string err;
     if (std::size_t col = core::split_csv_line(line, fields, &err)) {
@@ -326,15 +292,13 @@ Database parse_database_csv(std::string_view text, const std::string& file, doub
       Pose p(static_cast<Eigen::Index>(db.landmark_count), db.dimensions);
       for (std::size_t c = 4; c < width; ++c) {
         const std::string& s = fields[c];
-        char* stop = nullptr;
-        errno = 0;
-        const double v = std::strtod(s.c_str(), &stop);
-        if (s.empty() || stop != s.c_str() + s.size() || errno == ERANGE || !std::isfinite(v))
-          fail_line(file, line_no, c + 1, "expected a finite number, got \"" + s + "\"");
+        const std::optional<double> v = core::parse_number(s);
+        if (!v) fail_line(file, line_no, c + 1, "expected a finite number, got \"" + s + "\"");
         const std::size_t k = c - 4;
-        p(static_cast<Eigen::Index>(k / db.dimensions), static_cast<Eigen::Index>(k % db.dimensions)) = v;
+        p(static_cast<Eigen::Index>(k / db.dimensions),
+          static_cast<Eigen::Index>(k % db.dimensions)) = *v;
       }
-  seq.frames.push_back(std::move(p));
+      seq.frames.push_back(std::move(p));
     } catch (const FormatError& e) {
       if (on_error == OnError::Stop) throw;
       if (report) report->skipped.push_back(e.what());
@@ -375,22 +339,23 @@ std::string layout_to_json(const LandmarkLayout& layout) {
 }
 
 LandmarkLayout parse_layout_json(std::string_view text, const std::string& file) {
-  const Json doc = parse(text, file);
-  core::check_envelope(doc, "landmark_layout", kVersion, file);
-  Reader rd{file};
+  const core::JsonReader reader(text, file, "landmark_layout", kVersion);
+  const JsonValue doc = reader.root();
   LandmarkLayout l;
-  l.source_landmark_count = rd.count(doc, "", "source_landmark_count", kMaxLandmarks);
-  const Json& regions = rd.array(doc, "", "regions");
-  for (std::size_t i = 0; i < regions.size(); ++i) {
-    const std::string ptr = "/regions/" + std::to_string(i);
+  l.source_landmark_count = doc.at("source_landmark_count").index(kMaxLandmarks);
+  for (const JsonValue& jr : doc.at("regions").items()) {
     Region r;
-    r.name = rd.string(regions[i], ptr, "name");
-    r.landmarks = rd.indices(rd.field(regions[i], ptr, "landmarks"), ptr + "/landmarks", l.source_landmark_count);
-    if (regions[i].contains("alignment"))
-      r.alignment = rd.indices(regions[i]["alignment"], ptr + "/alignment", l.source_landmark_count);
+    r.name = jr.at("name").string();
+    r.landmarks = indices(jr.at("landmarks"), l.source_landmark_count);
+    if (auto a = jr.find("alignment")) r.alignment = indices(*a, l.source_landmark_count);
+    jr.only_keys({"name", "landmarks", "alignment"});
     l.regions.push_back(std::move(r));
   }
-  validated(file, [&] { l.validate(); return 0; });
+  doc.only_keys({"source_landmark_count", "regions", "comment"});  // comment: for people
+  validated(file, [&] {
+    l.validate();
+    return 0;
+  });
   return l;
 }
 
@@ -435,73 +400,61 @@ std::string graph_to_json(const MotionGraph& g) {
 }
 
 MotionGraph parse_graph_json(std::string_view text, const std::string& file) {
-  const Json doc = parse(text, file);
-  core::check_envelope(doc, "motion_graph", kVersion, file);
-  Reader rd{file};
+  const core::JsonReader reader(text, file, "motion_graph", kVersion);
+  const JsonValue doc = reader.root();
   MotionGraph g;
-  const std::size_t dims = rd.count(doc, "", "dimensions", 3);
-  if (dims < 1 || dims > 3) fail(file, "/dimensions", "dimensions must be 1 (weights), 2 or 3");
-  g.dimensions = static_cast<int>(dims);
-  g.frame_rate = rd.number(doc, "", "frame_rate");
-  if (!(g.frame_rate > 0.0)) fail(file, "/frame_rate", "frame_rate must be > 0");
-  g.lambda = rd.number(doc, "", "lambda");
-  if (g.lambda < 0.0) fail(file, "/lambda", "lambda must be >= 0");
-  g.source_frames = rd.count(doc, "", "source_frames", std::size_t{1} << 40);
-  const Json& regions = rd.array(doc, "", "regions");
-  if (regions.empty()) fail(file, "/regions", "a motion graph needs at least one region");
-  for (std::size_t ri = 0; ri < regions.size(); ++ri) {
-    const std::string ptr = "/regions/" + std::to_string(ri);
-    const Json& jr = regions[ri];
+  std::tie(g.dimensions, g.frame_rate) = dimensions_and_rate(doc);
+  const auto dims = static_cast<std::size_t>(g.dimensions);
+  g.lambda = doc.at("lambda").number();
+  if (g.lambda < 0.0) doc.at("lambda").fail("lambda must be >= 0");
+  constexpr std::size_t kMaxCount = std::size_t{1} << 40;
+  g.source_frames = doc.at("source_frames").index(kMaxCount);
+  const JsonValue regions = doc.at("regions").expect_array();
+  if (regions.size() == 0) regions.fail("a motion graph needs at least one region");
+  for (const JsonValue& jr : regions.items()) {
     RegionGraph r;
-    r.name = rd.string(jr, ptr, "name");
-    r.landmarks = rd.indices(rd.field(jr, ptr, "landmarks"), ptr + "/landmarks", kMaxLandmarks);
-    if (r.landmarks.empty()) fail(file, ptr + "/landmarks", "a region needs landmarks");
-    const Eigen::Index width = static_cast<Eigen::Index>(r.landmarks.size() * dims);
-    r.neutral = rd.vector(rd.field(jr, ptr, "neutral"), ptr + "/neutral", width);
-    const Json& nodes = rd.array(jr, ptr, "nodes");
-    if (nodes.empty()) fail(file, ptr + "/nodes", "a region graph needs at least one node");
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      const std::string np = ptr + "/nodes/" + std::to_string(i);
-      const Json& jn = nodes[i];
+    r.name = jr.at("name").string();
+    const JsonValue landmarks = jr.at("landmarks");
+    r.landmarks = indices(landmarks, kMaxLandmarks);
+    if (r.landmarks.empty()) landmarks.fail("a region needs landmarks");
+    const auto width = static_cast<Eigen::Index>(r.landmarks.size() * dims);
+    r.neutral = vector(jr.at("neutral"), width);
+    const JsonValue nodes = jr.at("nodes").expect_array();
+    if (nodes.size() == 0) nodes.fail("a region graph needs at least one node");
+    for (const JsonValue& jn : nodes.items()) {
       Node n;
-      n.displacement = rd.vector(rd.field(jn, np, "displacement"), np + "/displacement", width);
-      n.velocity = rd.vector(rd.field(jn, np, "velocity"), np + "/velocity", width);
-      const Json& ls = rd.array(jn, np, "labels");
-      for (std::size_t k = 0; k < ls.size(); ++k) n.labels.push_back(rd.label(ls[k], np + "/labels/" + std::to_string(k)));
-      const Json& ps = rd.array(jn, np, "peak_labels");
-      for (std::size_t k = 0; k < ps.size(); ++k)
-        n.peak_labels.push_back(rd.label(ps[k], np + "/peak_labels/" + std::to_string(k)));
-      n.frame_count = rd.count(jn, np, "frame_count", std::size_t{1} << 40);
-      n.mean_run = rd.number(jn, np, "mean_run");
-      if (n.mean_run < 1.0 || n.mean_run > 1e3) fail(file, np + "/mean_run", "mean_run must be in [1, 1000]");
-      n.frames_from_neutral = rd.number(jn, np, "frames_from_neutral");
-      n.peak_length_mean = rd.number(jn, np, "peak_length_mean");
-      n.peak_length_std = rd.number(jn, np, "peak_length_std");
+      n.displacement = vector(jn.at("displacement"), width);
+      n.velocity = vector(jn.at("velocity"), width);
+      n.labels = labels(jn.at("labels"));
+      n.peak_labels = labels(jn.at("peak_labels"));
+      n.frame_count = jn.at("frame_count").index(kMaxCount);
+      n.mean_run = jn.at("mean_run").number();
+      if (n.mean_run < 1.0 || n.mean_run > 1e3)
+        jn.at("mean_run").fail("mean_run must be in [1, 1000]");
+      n.frames_from_neutral = jn.at("frames_from_neutral").number();
+      n.peak_length_mean = jn.at("peak_length_mean").number();
+      n.peak_length_std = jn.at("peak_length_std").number();
       if (n.frames_from_neutral < 0.0 || n.frames_from_neutral > 1e5 || n.peak_length_mean < 0.0 ||
           n.peak_length_mean > 1e5 || n.peak_length_std < 0.0 || n.peak_length_std > 1e5)
-        fail(file, np, "frame statistics must be in [0, 1e5]");
+        jn.fail("frame statistics must be in [0, 1e5]");
+      jn.only_keys({"displacement", "velocity", "labels", "frame_count", "mean_run",
+                    "frames_from_neutral", "peak_labels", "peak_length_mean", "peak_length_std"});
       r.nodes.push_back(std::move(n));
     }
-    r.neutral_node = rd.count(jr, ptr, "neutral_node", r.nodes.size() - 1);
-    const Json& edges = rd.array(jr, ptr, "edges");
-    for (std::size_t i = 0; i < edges.size(); ++i) {
-      const std::string ep = ptr + "/edges/" + std::to_string(i);
-      const Json& je = edges[i];
-      if (!je.is_array() || je.size() != 3) fail(file, ep, "expected [from, to, weight]");
+    r.neutral_node = jr.at("neutral_node").index(r.nodes.size() - 1);
+    for (const JsonValue& je : jr.at("edges").items()) {
+      je.expect_array(3);
       Edge e;
-      for (int k = 0; k < 2; ++k) {
-        if (!je[k].is_number_integer() || je[k].get<long long>() < 0 ||
-            je[k].get<long long>() >= static_cast<long long>(r.nodes.size()))
-          fail(file, ep + "/" + std::to_string(k), "node index out of range");
-      }
-      e.from = je[0].get<std::size_t>();
-      e.to = je[1].get<std::size_t>();
-      e.weight = rd.number(je[2], ep + "/2");
-      if (e.weight < 0.0) fail(file, ep + "/2", "edge weights must be >= 0");
+      e.from = je[0].index(r.nodes.size() - 1);
+      e.to = je[1].index(r.nodes.size() - 1);
+      e.weight = je[2].number();
+      if (e.weight < 0.0) je[2].fail("edge weights must be >= 0");
       r.edges.push_back(e);
     }
+    jr.only_keys({"name", "landmarks", "neutral", "neutral_node", "nodes", "edges"});
     g.regions.push_back(std::move(r));
   }
+  doc.only_keys({"dimensions", "frame_rate", "lambda", "source_frames", "regions"});
   return g;
 }
 
@@ -530,25 +483,24 @@ std::vector<fs::path> sorted_entries(const fs::path& dir, bool directories) {
 std::vector<std::vector<double>> parse_ck_numbers(std::string_view text, const std::string& file,
                                                   std::size_t per_line) {
   std::vector<std::vector<double>> rows;
-  std::size_t line_no = 0, pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string line(text.substr(pos, end - pos));
-    pos = end + 1;
-    ++line_no;
-    std::istringstream ls(line);
+  constexpr std::string_view kSpace = " \t\r\v\f";
+  for (const core::Line& l : core::Lines(text)) {
+    const std::size_t line_no = l.number;
+    std::string_view rest = l.text;
     std::vector<double> row;
-    std::string tok;
-    while (ls >> tok) {
-      char* stop = nullptr;
-      errno = 0;
-      const double v = std::strtod(tok.c_str(), &stop);
-      if (stop != tok.c_str() + tok.size() || errno == ERANGE || !std::isfinite(v))
-        fail_line(file, line_no, row.size() + 1, "expected a finite number, got \"" + tok.substr(0, 40) + "\"");
+    while (true) {
+      const std::size_t begin = rest.find_first_not_of(kSpace);
+      if (begin == std::string_view::npos) break;
+      rest.remove_prefix(begin);
+      const std::string_view tok = rest.substr(0, rest.find_first_of(kSpace));
+      rest.remove_prefix(tok.size());
+      const std::optional<double> v = core::parse_number(tok);
+      if (!v)
+        fail_line(file, line_no, row.size() + 1,
+                  "expected a finite number, got \"" + std::string(tok.substr(0, 40)) + "\"");
       if (row.size() == per_line)
         fail_line(file, line_no, 1, "expected " + std::to_string(per_line) + " number(s), got more");
-      row.push_back(v);
+      row.push_back(*v);
     }
     if (row.empty()) continue;
     if (row.size() != per_line)

@@ -1,69 +1,40 @@
 #pragma once
-// Private helpers of the obie readers: typed field access that reports FormatError with the file and
-// the JSON pointer of the offending value.
-#include <cmath>
-#include <set>
+// Private helpers of the obie readers on top of core::JsonReader (issue 18: one located reader,
+// the unknown-field rule of docs/formats.md): the size limits obie puts on its documents.
+#include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
-#include "emoface/core/errors.hpp"
-#include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
 
 namespace emoface::obie::detail {
 
 using Json = nlohmann::ordered_json;
+using core::JsonValue;
 
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-  [[noreturn]] void fail(const std::string& pointer, const std::string& message) const {
-    SourceLocation where;
-    where.file = file_;
-    where.json_pointer = pointer;
-    throw FormatError(where, message);
-  }
-  static std::string at(const std::string& pointer, const std::string& key) {
-    return pointer + "/" + core::json_pointer_token(key);
-  }
-  static std::string at(const std::string& pointer, std::size_t index) { return pointer + "/" + std::to_string(index); }
+/// An array of at most `max_size` entries.
+inline const JsonValue& array(const JsonValue& v, std::size_t max_size) {
+  v.expect_array();
+  if (v.size() > max_size)
+    v.fail("too many entries (" + std::to_string(v.size()) + " > " + std::to_string(max_size) +
+           ")");
+  return v;
+}
 
-  /// Every key of `obj` must be in `allowed`.
-  void only_keys(const Json& obj, const std::string& pointer, const std::set<std::string>& allowed) const {
-    for (auto it = obj.begin(); it != obj.end(); ++it)
-      if (!allowed.count(it.key())) fail(at(pointer, it.key()), "unknown field \"" + it.key() + "\"");
-  }
-  const Json& object(const Json& v, const std::string& pointer) const {
-    if (!v.is_object()) fail(pointer, "expected an object");
-    return v;
-  }
-  const Json& array(const Json& v, const std::string& pointer, std::size_t max_size) const {
-    if (!v.is_array()) fail(pointer, "expected an array");
-    if (v.size() > max_size) fail(pointer, "too many entries (" + std::to_string(v.size()) + " > " + std::to_string(max_size) + ")");
-    return v;
-  }
-  std::string string(const Json& v, const std::string& pointer, bool allow_empty = true) const {
-    if (!v.is_string()) fail(pointer, "expected a string");
-    std::string s = v.get<std::string>();
-    if (!allow_empty && s.empty()) fail(pointer, "must not be empty");
-    if (s.size() > 4096) fail(pointer, "string too long (> 4096 bytes)");
-    return s;
-  }
-  double number(const Json& v, const std::string& pointer, double lo, double hi) const {
-    if (!v.is_number()) fail(pointer, "expected a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(pointer, "must be finite");
-    if (x < lo || x > hi) fail(pointer, "must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(x));
-    return x;
-  }
-  static std::string fmt(double x) {
-    std::string s = Json(x).dump();
-    return s;
-  }
-  const std::string& file() const noexcept { return file_; }
+/// A string of at most 4096 bytes (optionally not empty).
+inline std::string string(const JsonValue& v, bool allow_empty = true) {
+  std::string s = allow_empty ? v.string() : v.non_empty_string();
+  if (s.size() > 4096) v.fail("string too long (> 4096 bytes)");
+  return s;
+}
 
- private:
-  std::string file_;
-};
+/// The member `key`, or a "missing field" error at this object with an explanation.
+inline JsonValue required(const JsonValue& obj, const char* key, const char* hint = nullptr) {
+  if (!obj.expect_object().has(key))
+    obj.fail(std::string("missing field \"") + key + "\"" + (hint ? std::string(" ") + hint : ""));
+  return obj.at(key);
+}
+
+inline std::string fmt(double x) { return Json(x).dump(); }
 
 }  // namespace emoface::obie::detail

@@ -9,7 +9,7 @@
 namespace emoface::obie {
 
 using detail::Json;
-using detail::Reader;
+using detail::JsonValue;
 
 std::vector<std::string> MatchScript::domain_paths() const {
   std::vector<std::string> out;
@@ -49,87 +49,74 @@ void MatchScript::validate() const {
 }
 
 MatchScript parse_match(std::string_view text, const std::string& file) {
-  const Json doc = core::parse_json(text, file);
-  core::check_envelope(doc, "obie.match", core::FormatVersion{kMatchFormatMajor, kMatchFormatMinor}, file);
-  const Reader r(file);
-  r.only_keys(doc, "", {"format", "version", "generator", "title", "domain", "teams", "duration", "goal_outcomes",
-                        "events", "key_moments", "commentary"});
+  const core::JsonReader reader(text, file, "obie.match",
+                                core::FormatVersion{kMatchFormatMajor, kMatchFormatMinor});
+  const JsonValue doc = reader.root();
+  doc.only_keys({"title", "domain", "teams", "duration", "goal_outcomes", "events", "key_moments",
+                 "commentary"});
   MatchScript m;
   m.base_dir = std::filesystem::path(file).parent_path().string();
-  if (doc.contains("title")) m.title = r.string(doc["title"], "/title");
-  if (!doc.contains("domain")) r.fail("", "missing field \"domain\" (parlee domain file, relative to this file)");
-  if (doc["domain"].is_string()) {
-    m.domain.push_back(r.string(doc["domain"], "/domain", false));
+  if (auto t = doc.find("title")) m.title = detail::string(*t);
+  const JsonValue domain =
+      detail::required(doc, "domain", "(parlee domain file, relative to this file)");
+  if (domain.is_string()) {
+    m.domain.push_back(detail::string(domain, false));
   } else {
-    const Json& d = r.array(doc["domain"], "/domain", 16);
-    if (d.empty()) r.fail("/domain", "at least one domain file is required");
-    for (std::size_t i = 0; i < d.size(); ++i) m.domain.push_back(r.string(d[i], Reader::at("/domain", i), false));
+    detail::array(domain, 16);
+    if (domain.size() == 0) domain.fail("at least one domain file is required");
+    for (const JsonValue& d : domain.items()) m.domain.push_back(detail::string(d, false));
   }
-  if (doc.contains("teams")) {
-    const Json& t = r.object(doc["teams"], "/teams");
-    r.only_keys(t, "/teams", {"for", "against"});
+  if (auto t = doc.find("teams")) {
+    t->only_keys({"for", "against"});
     auto team = [&](const char* key, Team& out) {
-      const std::string p = Reader::at("/teams", key);
-      if (!t.contains(key)) r.fail("/teams", std::string("missing field \"") + key + "\"");
-      const Json& o = r.object(t[key], p);
-      r.only_keys(o, p, {"side", "name"});
-      if (!o.contains("side")) r.fail(p, "missing field \"side\" (the domain object of this team)");
-      out.side = r.string(o["side"], p + "/side", false);
-      out.name = o.contains("name") ? r.string(o["name"], p + "/name") : out.side;
+      const JsonValue o = detail::required(*t, key);
+      o.only_keys({"side", "name"});
+      out.side =
+          detail::string(detail::required(o, "side", "(the domain object of this team)"), false);
+      out.name = o.has("name") ? detail::string(o.at("name")) : out.side;
     };
     team("for", m.for_team);
     team("against", m.against_team);
-    if (m.for_team.side == m.against_team.side) r.fail("/teams/against/side", "the two teams must be different sides");
+    if (m.for_team.side == m.against_team.side)
+      t->at("against").at("side").fail("the two teams must be different sides");
   }
-  if (doc.contains("duration")) m.duration = r.number(doc["duration"], "/duration", 1e-9, 1000);
-  if (doc.contains("goal_outcomes")) {
-    const Json& g = r.array(doc["goal_outcomes"], "/goal_outcomes", 64);
+  if (auto d = doc.find("duration")) m.duration = d->number(1e-9, 1000);
+  if (auto g = doc.find("goal_outcomes")) {
     m.goal_outcomes.clear();
-    for (std::size_t i = 0; i < g.size(); ++i) m.goal_outcomes.push_back(r.string(g[i], Reader::at("/goal_outcomes", i), false));
+    for (const JsonValue& o : detail::array(*g, 64).items())
+      m.goal_outcomes.push_back(detail::string(o, false));
   }
-  if (!doc.contains("events")) r.fail("", "missing field \"events\"");
-  const Json& ev = r.array(doc["events"], "/events", kMaxMatchEvents);
   double prev = 0.0;
-  for (std::size_t i = 0; i < ev.size(); ++i) {
-    const std::string p = Reader::at("/events", i);
-    const Json& e = r.object(ev[i], p);
-    r.only_keys(e, p, {"minute", "action", "outcome", "feedback", "note"});
+  for (const JsonValue& e :
+       detail::array(detail::required(doc, "events"), kMaxMatchEvents).items()) {
+    e.only_keys({"minute", "action", "outcome", "feedback", "note"});
     MatchEvent me;
-    if (!e.contains("minute")) r.fail(p, "missing field \"minute\"");
-    me.minute = r.number(e["minute"], p + "/minute", 0, m.duration);
-    if (me.minute < prev) r.fail(p + "/minute", "minutes must not decrease (previous event at " + Reader::fmt(prev) + ")");
+    const JsonValue minute = detail::required(e, "minute");
+    me.minute = minute.number(0, m.duration);
+    if (me.minute < prev)
+      minute.fail("minutes must not decrease (previous event at " + detail::fmt(prev) + ")");
     prev = me.minute;
-    if (!e.contains("action")) r.fail(p, "missing field \"action\" (\"\" = the agent on turn passes)");
-    me.action = r.string(e["action"], p + "/action");
-    if (e.contains("outcome")) me.outcome = r.string(e["outcome"], p + "/outcome");
-    if (e.contains("feedback")) me.feedback = r.number(e["feedback"], p + "/feedback", -1, 1);
-    if (e.contains("note")) me.note = r.string(e["note"], p + "/note");
+    me.action = detail::string(detail::required(e, "action", "(\"\" = the agent on turn passes)"));
+    if (auto o = e.find("outcome")) me.outcome = detail::string(*o);
+    if (auto f = e.find("feedback")) me.feedback = f->number(-1, 1);
+    if (auto n = e.find("note")) me.note = detail::string(*n);
     m.events.push_back(std::move(me));
   }
-  if (doc.contains("key_moments")) {
-    const Json& k = r.array(doc["key_moments"], "/key_moments", 1000);
-    for (std::size_t i = 0; i < k.size(); ++i) {
-      const std::string p = Reader::at("/key_moments", i);
-      const Json& o = r.object(k[i], p);
-      r.only_keys(o, p, {"minute", "label"});
+  if (auto k = doc.find("key_moments")) {
+    for (const JsonValue& o : detail::array(*k, 1000).items()) {
+      o.only_keys({"minute", "label"});
       KeyMoment km;
-      if (!o.contains("minute")) r.fail(p, "missing field \"minute\"");
-      km.minute = r.number(o["minute"], p + "/minute", 0, m.duration);
-      if (o.contains("label")) km.label = r.string(o["label"], p + "/label");
+      km.minute = detail::required(o, "minute").number(0, m.duration);
+      if (auto l = o.find("label")) km.label = detail::string(*l);
       m.key_moments.push_back(std::move(km));
     }
   }
-  if (doc.contains("commentary")) {
-    const Json& c = r.array(doc["commentary"], "/commentary", kMaxMatchEvents);
-    for (std::size_t i = 0; i < c.size(); ++i) {
-      const std::string p = Reader::at("/commentary", i);
-      const Json& o = r.object(c[i], p);
-      r.only_keys(o, p, {"minute", "text"});
+  if (auto c = doc.find("commentary")) {
+    for (const JsonValue& o : detail::array(*c, kMaxMatchEvents).items()) {
+      o.only_keys({"minute", "text"});
       Commentary cm;
-      if (!o.contains("minute")) r.fail(p, "missing field \"minute\"");
-      cm.minute = r.number(o["minute"], p + "/minute", 0, m.duration);
-      if (!o.contains("text")) r.fail(p, "missing field \"text\"");
-      cm.text = r.string(o["text"], p + "/text", false);
+      cm.minute = detail::required(o, "minute").number(0, m.duration);
+      cm.text = detail::string(detail::required(o, "text"), false);
       m.commentary.push_back(std::move(cm));
     }
   }

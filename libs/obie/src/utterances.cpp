@@ -10,7 +10,7 @@
 namespace emoface::obie {
 
 using detail::Json;
-using detail::Reader;
+using detail::JsonValue;
 
 namespace {
 constexpr std::array<const char*, 6> kEsvNames = {"sadness", "happiness", "anger", "fear", "disgust", "surprise"};
@@ -45,38 +45,32 @@ void UtteranceSet::validate() const {
 }
 
 UtteranceSet parse_utterances(std::string_view text, const std::string& file) {
-  const Json doc = core::parse_json(text, file);
-  core::check_envelope(doc, "obie.utterances", core::FormatVersion{kUtterancesFormatMajor, kUtterancesFormatMinor},
-                       file);
-  const Reader r(file);
-  r.only_keys(doc, "", {"format", "version", "generator", "refractory", "delay", "max_wait", "rules"});
+  const core::JsonReader reader(
+      text, file, "obie.utterances",
+      core::FormatVersion{kUtterancesFormatMajor, kUtterancesFormatMinor});
+  const JsonValue doc = reader.root();
+  doc.only_keys({"refractory", "delay", "max_wait", "rules"});
   UtteranceSet set;
-  if (doc.contains("refractory")) set.refractory = r.number(doc["refractory"], "/refractory", 0.5, 600);
-  if (doc.contains("delay")) set.delay = r.number(doc["delay"], "/delay", 0, 10);
-  if (doc.contains("max_wait")) set.max_wait = r.number(doc["max_wait"], "/max_wait", 0, 600);
-  if (!doc.contains("rules")) r.fail("", "missing field \"rules\"");
-  const Json& rules = r.array(doc["rules"], "/rules", 64);
-  for (std::size_t i = 0; i < rules.size(); ++i) {
-    const std::string p = Reader::at("/rules", i);
-    const Json& o = r.object(rules[i], p);
-    r.only_keys(o, p, {"emotion", "threshold", "rise", "texts"});
+  if (auto v = doc.find("refractory")) set.refractory = v->number(0.5, 600);
+  if (auto v = doc.find("delay")) set.delay = v->number(0, 10);
+  if (auto v = doc.find("max_wait")) set.max_wait = v->number(0, 600);
+  for (const JsonValue& o : detail::array(detail::required(doc, "rules"), 64).items()) {
+    o.only_keys({"emotion", "threshold", "rise", "texts"});
     UtteranceRule rule;
-    if (!o.contains("emotion")) r.fail(p, "missing field \"emotion\"");
-    rule.emotion = r.string(o["emotion"], p + "/emotion");
+    const JsonValue emotion = detail::required(o, "emotion");
+    rule.emotion = detail::string(emotion);
     try {
       esv_index(rule.emotion);
     } catch (const InvalidInput& e) {
-      r.fail(p + "/emotion", e.what());
+      emotion.fail(e.what());
     }
-    if (o.contains("threshold")) rule.threshold = r.number(o["threshold"], p + "/threshold", 1e-9, 1);
-    if (o.contains("rise")) rule.rise = r.number(o["rise"], p + "/rise", 1e-9, 1);
-    if (!o.contains("texts")) r.fail(p, "missing field \"texts\"");
-    const Json& texts = r.array(o["texts"], p + "/texts", 256);
-    if (texts.empty()) r.fail(p + "/texts", "needs at least one text");
-    for (std::size_t k = 0; k < texts.size(); ++k) {
-      const std::string tp = Reader::at(p + "/texts", k);
-      std::string t = r.string(texts[k], tp, false);
-      if (t.size() > 200) r.fail(tp, "an utterance is short: at most 200 bytes");
+    if (auto v = o.find("threshold")) rule.threshold = v->number(1e-9, 1);
+    if (auto v = o.find("rise")) rule.rise = v->number(1e-9, 1);
+    const JsonValue texts = detail::array(detail::required(o, "texts"), 256);
+    if (texts.size() == 0) texts.fail("needs at least one text");
+    for (const JsonValue& tv : texts.items()) {
+      std::string t = detail::string(tv, false);
+      if (t.size() > 200) tv.fail("an utterance is short: at most 200 bytes");
       rule.texts.push_back(std::move(t));
     }
     set.rules.push_back(std::move(rule));

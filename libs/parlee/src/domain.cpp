@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
 
 #include "emoface/core/io.hpp"
+#include "emoface/core/text.hpp"
 #include "sexpr.hpp"
 
 namespace emoface::parlee {
@@ -30,11 +32,11 @@ const std::string& sym(const std::string& file, const SNode& n, const char* what
 
 double number(const std::string& file, const SNode& n, const char* what) {
   const std::string& s = sym(file, n, what);
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size()) fail(file, n, std::string("expected ") + what + ", found '" + s + "'");
-  if (!std::isfinite(v)) fail(file, n, std::string(what) + " is not finite");
-  return v;
+  // The locale-free parser of every emoface reader; "inf"/"nan" are numbers, but not finite ones.
+  const std::optional<double> v = core::parse_number(s, true);
+  if (!v) fail(file, n, std::string("expected ") + what + ", found '" + s + "'");
+  if (!std::isfinite(*v)) fail(file, n, std::string(what) + " is not finite");
+  return *v;
 }
 
 int integer(const std::string& file, const SNode& n, const char* what) {

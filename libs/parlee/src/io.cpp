@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
+#include "emoface/core/text.hpp"
 
 namespace emoface::parlee {
 namespace {
@@ -10,49 +12,34 @@ namespace {
 using Json = nlohmann::ordered_json;
 constexpr core::FormatVersion kAgentVersion{1, 1};  // 1.1: appraisal, display
 
-struct Reader {
-  const std::string& file;
-  [[noreturn]] void fail(const std::string& ptr, const std::string& msg) const {
-    throw FormatError(SourceLocation{file, ptr, 0, 0}, msg);
-  }
-  double number(const Json& j, const std::string& ptr, double lo, double hi) const {
-    if (!j.is_number()) fail(ptr, "expected a number");
-    const double v = j.get<double>();
-    if (!std::isfinite(v) || v < lo || v > hi)
-      fail(ptr, "value must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return v;
-  }
-  int integer(const Json& j, const std::string& ptr, int lo, int hi) const {
-    if (!j.is_number_integer()) fail(ptr, "expected an integer");
-    const auto v = j.get<long long>();
-    if (v < lo || v > hi) fail(ptr, "value must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return static_cast<int>(v);
-  }
-  std::string string(const Json& j, const std::string& ptr) const {
-    if (!j.is_string()) fail(ptr, "expected a string");
-    return j.get<std::string>();
-  }
-  bool boolean(const Json& j, const std::string& ptr) const {
-    if (!j.is_boolean()) fail(ptr, "expected true or false");
-    return j.get<bool>();
-  }
-  const Json& object(const Json& j, const std::string& ptr) const {
-    if (!j.is_object()) fail(ptr, "expected an object");
-    return j;
-  }
-};
+using core::JsonValue;
 
-std::string tok(const std::string& s) { return core::json_pointer_token(s); }
+// The unknown-field rule of docs/formats.md (core::JsonReader): a field this reader does not know
+// is an error in a document of version 1.1 or older, and ignored in a newer minor.
+void unknown_field(const JsonValue& v, const std::string& key) {
+  if (v.reader().strict()) v.fail("unknown field \"" + key + "\"");
+}
 
-void emotion_map(const Reader& r, const Json& j, const std::string& ptr, EmotionVector& out, double lo, double hi) {
-  for (const auto& [k, v] : r.object(j, ptr).items()) {
+// A name → enum lookup whose InvalidInput becomes a FormatError at `v`.
+template <class Parse>
+auto named(const JsonValue& v, Parse parse) {
+  const std::string name = v.string();
+  try {
+    return parse(name);
+  } catch (const InvalidInput& e) {
+    v.fail(e.what());
+  }
+}
+
+void emotion_map(const JsonValue& j, EmotionVector& out, double lo, double hi) {
+  for (const auto& [k, v] : j.members()) {
     Emotion e;
     try {
       e = emotion_from_string(k);
     } catch (const InvalidInput&) {
-      r.fail(ptr + "/" + tok(k), "unknown emotion '" + k + "'");
+      v.fail("unknown emotion '" + k + "'");
     }
-    out[index(e)] = r.number(v, ptr + "/" + tok(k), lo, hi);
+    out[index(e)] = v.number(lo, hi);
   }
 }
 
@@ -65,174 +52,140 @@ Json emotion_json(const EmotionVector& v) {
 }  // namespace
 
 AgentConfig parse_agent(const std::string& text, const std::string& file) {
-  const Json doc = core::parse_json(text, file);
-  core::check_envelope(doc, "parlee_agent", kAgentVersion, file);
-  const Reader r{file};
+  const core::JsonReader reader(text, file, "parlee_agent", kAgentVersion);
   AgentConfig c;
-  for (const auto& [key, v] : doc.items()) {
-    const std::string ptr = "/" + tok(key);
+  for (const auto& [key, v] : reader.root().expect_object().members()) {
     if (key == "format" || key == "version" || key == "generator") continue;
-    if (key == "name") c.name = r.string(v, ptr);
-    else if (key == "self") c.self = r.string(v, ptr);
+    if (key == "name")
+      c.name = v.string();
+    else if (key == "self")
+      c.self = v.string();
     else if (key == "seed") {
-      if (!v.is_number_unsigned()) r.fail(ptr, "expected a non-negative integer");
-      c.seed = v.get<std::uint64_t>();
+      if (!v.json().is_number_unsigned()) v.fail("expected a non-negative integer");
+      c.seed = v.json().get<std::uint64_t>();
     } else if (key == "personality") {
-      for (const auto& [k, x] : r.object(v, ptr).items()) {
+      for (const auto& [k, x] : v.members()) {
         Trait t;
         try {
           t = trait_from_string(k);
         } catch (const InvalidInput&) {
-          r.fail(ptr + "/" + tok(k), "unknown personality dimension '" + k + "'");
+          x.fail("unknown personality dimension '" + k + "'");
         }
-        c.personality[t] = r.number(x, ptr + "/" + tok(k), 0.0, 1.0);
+        c.personality[t] = x.number(0.0, 1.0);
       }
     } else if (key == "emotions") {
-      for (const auto& [k, x] : r.object(v, ptr).items()) {
-        const std::string p = ptr + "/" + tok(k);
-        if (k == "alpha") emotion_map(r, x, p, c.emotions.alpha, 0.0, 1e6);
-        else if (k == "omega") emotion_map(r, x, p, c.emotions.omega, 1e-9, 1e6);
-        else if (k == "decay") emotion_map(r, x, p, c.emotions.decay, 0.0, 1.0);
-        else if (k == "decay_model") {
-          try {
-            c.emotions.decay_model = decay_model_from_string(r.string(x, p));
-          } catch (const InvalidInput& e) {
-            r.fail(p, e.what());
-          }
-        } else if (k == "step_seconds") {
-          c.emotions.step_seconds = r.number(x, p, 1e-9, 1e9);
-        } else if (k == "low_intensity_rate") {
-          c.emotions.low_intensity_rate = r.number(x, p, 0.0, 1.0);
-        } else if (k == "effect") {
-          if (!x.is_array()) r.fail(p, "expected an array of {from, to, value}");
+      for (const auto& [k, x] : v.members()) {
+        if (k == "alpha")
+          emotion_map(x, c.emotions.alpha, 0.0, 1e6);
+        else if (k == "omega")
+          emotion_map(x, c.emotions.omega, 1e-9, 1e6);
+        else if (k == "decay")
+          emotion_map(x, c.emotions.decay, 0.0, 1.0);
+        else if (k == "decay_model")
+          c.emotions.decay_model = named(x, decay_model_from_string);
+        else if (k == "step_seconds")
+          c.emotions.step_seconds = x.number(1e-9, 1e9);
+        else if (k == "low_intensity_rate")
+          c.emotions.low_intensity_rate = x.number(0.0, 1.0);
+        else if (k == "effect") {
           c.emotions.effect = {};
-          for (std::size_t n = 0; n < x.size(); ++n) {
-            const std::string pe = p + "/" + std::to_string(n);
-            const Json& e = r.object(x[n], pe);
-            if (!e.contains("from") || !e.contains("to") || !e.contains("value")) r.fail(pe, "needs from, to, value");
+          for (const JsonValue& e : x.items()) {
+            e.expect_object();
+            if (!e.has("from") || !e.has("to") || !e.has("value")) e.fail("needs from, to, value");
             Emotion from, to;
             try {
-              from = emotion_from_string(r.string(e["from"], pe + "/from"));
-              to = emotion_from_string(r.string(e["to"], pe + "/to"));
+              from = emotion_from_string(e.at("from").string());
+              to = emotion_from_string(e.at("to").string());
             } catch (const InvalidInput& err) {
-              r.fail(pe, err.what());
+              e.fail(err.what());
             }
-            c.emotions.effect[index(from)][index(to)] = r.number(e["value"], pe + "/value", 0.0, 1.0);
+            c.emotions.effect[index(from)][index(to)] = e.at("value").number(0.0, 1.0);
+            e.only_keys({"from", "to", "value"});
           }
-        } else {
-          r.fail(p, "unknown field '" + k + "'");
-        }
+        } else
+          unknown_field(x, k);
       }
       try {
         c.emotions.validate();
       } catch (const InvalidInput& e) {
-        r.fail(ptr, e.what());
+        v.fail(e.what());
       }
     } else if (key == "motivation") {
-      for (const auto& [k, x] : r.object(v, ptr).items()) {
-        const std::string p = ptr + "/" + tok(k);
-        const double val = r.number(x, p, 0.0, 1.0);
-        if (k == "hunger") c.motivation.hunger = val;
-        else if (k == "fatigue") c.motivation.fatigue = val;
-        else if (k == "thirst") c.motivation.thirst = val;
-        else if (k == "pain") c.motivation.pain = val;
-        else r.fail(p, "unknown field '" + k + "'");
+      for (const auto& [k, x] : v.members()) {
+        if (k == "hunger")
+          c.motivation.hunger = x.number(0.0, 1.0);
+        else if (k == "fatigue")
+          c.motivation.fatigue = x.number(0.0, 1.0);
+        else if (k == "thirst")
+          c.motivation.thirst = x.number(0.0, 1.0);
+        else if (k == "pain")
+          c.motivation.pain = x.number(0.0, 1.0);
+        else
+          unknown_field(x, k);
       }
     } else if (key == "planning") {
-      for (const auto& [k, x] : r.object(v, ptr).items()) {
-        const std::string p = ptr + "/" + tok(k);
-        if (k == "horizon") c.planning.horizon = r.integer(x, p, 0, 64);
-        else if (k == "model_depth") c.planning.model_depth = r.integer(x, p, -1, 64);
-        else if (k == "semantics") {
-          try {
-            c.planning.semantics = goal_semantics_from_string(r.string(x, p));
-          } catch (const InvalidInput& e) {
-            r.fail(p, e.what());
-          }
-        } else r.fail(p, "unknown field '" + k + "'");
+      for (const auto& [k, x] : v.members()) {
+        if (k == "horizon")
+          c.planning.horizon = static_cast<int>(x.integer(0, 64));
+        else if (k == "model_depth")
+          c.planning.model_depth = static_cast<int>(x.integer(-1, 64));
+        else if (k == "semantics")
+          c.planning.semantics = named(x, goal_semantics_from_string);
+        else
+          unknown_field(x, k);
       }
     } else if (key == "replenishment") {
-      if (!v.is_array()) r.fail(ptr, "expected an array of {goal, need, threshold}");
-      for (std::size_t n = 0; n < v.size(); ++n) {
-        const std::string pe = ptr + "/" + std::to_string(n);
-        const Json& e = r.object(v[n], pe);
+      for (const JsonValue& e : v.items()) {
         ReplenishmentGoal g;
-        for (const auto& [k, x] : e.items()) {
-          const std::string p = pe + "/" + tok(k);
+        for (const auto& [k, x] : e.members()) {
           if (k == "goal")
-            g.goal = r.string(x, p);
+            g.goal = x.string();
           else if (k == "threshold")
-            g.threshold = r.number(x, p, 1e-9, 1.0);
-          else if (k == "need") {
-            try {
-              g.need = need_from_string(r.string(x, p));
-            } catch (const InvalidInput& err) {
-              r.fail(p, err.what());
-            }
-          } else
-            r.fail(p, "unknown field '" + k + "'");
+            g.threshold = x.number(1e-9, 1.0);
+          else if (k == "need")
+            g.need = named(x, need_from_string);
+          else
+            unknown_field(x, k);
         }
-        if (g.goal.empty()) r.fail(pe, "needs a goal name");
+        if (g.goal.empty()) e.fail("needs a goal name");
         c.replenishment.push_back(g);
       }
     } else if (key == "decay_clock") {
-      try {
-        c.decay_clock = decay_clock_from_string(r.string(v, ptr));
-      } catch (const InvalidInput& e) {
-        r.fail(ptr, e.what());
-      }
+      c.decay_clock = named(v, decay_clock_from_string);
     } else if (key == "time_unit_seconds") {
-      c.time_unit_seconds = r.number(v, ptr, 1e-9, 1e9);
+      c.time_unit_seconds = v.number(1e-9, 1e9);
     } else if (key == "on_disallowed") {
-      try {
-        c.on_disallowed = disallowed_event_from_string(r.string(v, ptr));
-      } catch (const InvalidInput& e) {
-        r.fail(ptr, e.what());
-      }
+      c.on_disallowed = named(v, disallowed_event_from_string);
     } else if (key == "appraisal") {
-      for (const auto& [k, x] : r.object(v, ptr).items()) {
-        const std::string p = ptr + "/" + tok(k);
-        if (k == "prospect") {
-          try {
-            c.appraisal.prospect = prospect_mode_from_string(r.string(x, p));
-          } catch (const InvalidInput& e) {
-            r.fail(p, e.what());
-          }
-        } else if (k == "compound") {
-          try {
-            c.appraisal.compound = compound_rule_from_string(r.string(x, p));
-          } catch (const InvalidInput& e) {
-            r.fail(p, e.what());
-          }
-        } else if (k == "surprise_threshold") {
-          c.appraisal.surprise_threshold = r.number(x, p, 1e-9, 1.0);
-        } else {
-          r.fail(p, "unknown field '" + k + "'");
-        }
+      for (const auto& [k, x] : v.members()) {
+        if (k == "prospect")
+          c.appraisal.prospect = named(x, prospect_mode_from_string);
+        else if (k == "compound")
+          c.appraisal.compound = named(x, compound_rule_from_string);
+        else if (k == "surprise_threshold")
+          c.appraisal.surprise_threshold = x.number(1e-9, 1.0);
+        else
+          unknown_field(x, k);
       }
     } else if (key == "learning") {
-      for (const auto& [k, x] : r.object(v, ptr).items()) {
-        const std::string p = ptr + "/" + tok(k);
-        if (k == "outcomes") c.learn_outcomes = r.boolean(x, p);
-        else if (k == "prior_count") c.learning_prior = r.number(x, p, 0.0, 1e9);
-        else if (k == "liking_rate") c.liking_rate = r.number(x, p, 0.0, 1.0);
-        else r.fail(p, "unknown field '" + k + "'");
+      for (const auto& [k, x] : v.members()) {
+        if (k == "outcomes")
+          c.learn_outcomes = x.boolean();
+        else if (k == "prior_count")
+          c.learning_prior = x.number(0.0, 1e9);
+        else if (k == "liking_rate")
+          c.liking_rate = x.number(0.0, 1.0);
+        else
+          unknown_field(x, k);
       }
     } else if (key == "liking") {
-      for (const auto& [k, x] : r.object(v, ptr).items()) c.liking[k] = r.number(x, ptr + "/" + tok(k), -1.0, 1.0);
+      for (const auto& [k, x] : v.members()) c.liking[k] = x.number(-1.0, 1.0);
     } else if (key == "body_events") {
-      for (const auto& [k, x] : r.object(v, ptr).items()) {
-        try {
-          c.body_events[k] = body_event_from_string(r.string(x, ptr + "/" + tok(k)));
-        } catch (const InvalidInput& e) {
-          r.fail(ptr + "/" + tok(k), e.what());
-        }
-      }
+      for (const auto& [k, x] : v.members()) c.body_events[k] = named(x, body_event_from_string);
     } else if (key == "praiseworthiness") {
-      for (const auto& [k, x] : r.object(v, ptr).items())
-        c.praiseworthiness[k] = r.number(x, ptr + "/" + tok(k), -1.0, 1.0);
+      for (const auto& [k, x] : v.members()) c.praiseworthiness[k] = x.number(-1.0, 1.0);
     } else {
-      r.fail(ptr, "unknown field '" + key + "'");
+      unknown_field(v, key);
     }
   }
   return c;
@@ -296,18 +249,15 @@ std::string write_agent(const AgentConfig& c) {
 
 std::vector<Event> parse_events(const std::string& text, const std::string& file) {
   std::vector<Event> out;
-  std::size_t line_no = 0, pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    const std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    auto fail = [&](const std::string& msg) { throw FormatError(SourceLocation{file, "", line_no, 0}, msg); };
+  for (const core::Line& line : core::Lines(text)) {
+    if (core::trim(line.text).empty()) continue;
+    const std::size_t line_no = line.number;
+    auto fail = [&](const std::string& msg) {
+      throw FormatError(SourceLocation{file, "", line_no, 0}, msg);
+    };
     Json j;
     try {
-      j = Json::parse(line);
+      j = Json::parse(line.text);
     } catch (const nlohmann::json::exception& e) {
       fail(std::string("malformed JSON: ") + e.what());
     }
@@ -315,17 +265,20 @@ std::vector<Event> parse_events(const std::string& text, const std::string& file
     Event ev;
     for (const auto& [k, v] : j.items()) {
       if (k == "time") {
-        if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0 || v.get<double>() > 1e9)
+        if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0 ||
+            v.get<double>() > 1e9)
           fail("time must be a number in [0, 1e9]");
         ev.time = v.get<double>();
       } else if (k == "action" || k == "outcome" || k == "note") {
         if (!v.is_string()) fail(k + " must be a string");
         (k == "action" ? ev.action : k == "outcome" ? ev.outcome : ev.note) = v.get<std::string>();
       } else if (k == "feedback") {
-        if (!v.is_number() || !(v.get<double>() >= -1.0 && v.get<double>() <= 1.0)) fail("feedback must be in [-1,1]");
+        if (!v.is_number() || !(v.get<double>() >= -1.0 && v.get<double>() <= 1.0))
+          fail("feedback must be in [-1,1]");
         ev.feedback = v.get<double>();
       } else {
-        fail("unknown field '" + k + "'");
+        // Events carry no version: every field must be known (docs/formats.md).
+        fail("unknown field \"" + k + "\"");
       }
     }
     if (!out.empty() && ev.time < out.back().time) fail("time decreases");

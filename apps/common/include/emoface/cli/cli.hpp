@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cstddef>
 #include <functional>
+#include <istream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,6 +53,40 @@ using core::Shard;
 
 /// core::parse_shard, with its errors as UsageError (exit code 1).
 Shard parse_shard(std::string_view text);
+
+/// The one progress display of the apps (issue 18): on a terminal (stderr is a TTY) a bar redrawn
+/// in place, "stage      [#####.....]  50% 5/10"; otherwise — a log file, a pipe — one plain line
+/// per 10 % and per stage, "<tool>: stage 50% (5/10)"; nothing when quiet.
+class ProgressBar {
+ public:
+  ProgressBar(std::string tool, bool quiet);
+  /// Reports `done` of `total` items of `stage` (total 0: ignored).
+  void update(std::string_view stage, std::size_t done, std::size_t total);
+  bool on_terminal() const noexcept { return tty_; }
+
+ private:
+  std::string tool_;
+  bool quiet_, tty_;
+  int last_pct_ = -1;
+  std::string stage_;
+};
+
+/// An input stream that is either stdin ("-") or a file. With `rewindable`, stdin is read into
+/// memory once so the input can be read twice (a first pass counting records for --shard).
+class Input {
+ public:
+  Input(const std::string& path, bool rewindable);
+  std::istream& stream() noexcept { return *in_; }
+  /// The file name, or "<stdin>".
+  const std::string& name() const noexcept { return name_; }
+  /// Back to the start (only when rewindable or a file).
+  void rewind();
+
+ private:
+  std::string name_;
+  std::unique_ptr<std::istream> owned_;
+  std::istream* in_ = nullptr;
+};
 
 /// An output stream that is either stdout ("-") or a file written atomically: nothing appears at
 /// `path` unless commit() is called.

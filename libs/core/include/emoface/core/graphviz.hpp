@@ -19,4 +19,8 @@ bool graphviz_available(const std::string& binary = "dot");
 /// error line quoted).
 void render_dot(std::string_view dot, const std::string& path, const std::string& binary = "dot");
 
+/// DOT text to `path`: rendered by render_dot for .svg, .png and .pdf, written as text otherwise
+/// (atomically; "-" = standard output). The one writer of `mgraph dot` and `mindmap dot`.
+void write_dot(std::string_view dot, const std::string& path, const std::string& binary = "dot");
+
 }  // namespace emoface::core

@@ -31,8 +31,9 @@ struct EvaluationRow {
 struct EvaluationOptions {
   GraphOptions graph;           ///< thresholds are overridden per row
   SmoothingOptions smoothing;   ///< smoothing of the re-synthesized samples
-  /// Evaluate only the samples whose index % shard_count == shard_index (the graph is always built
-  /// from the whole database, so shards are parts of one evaluation). shard_index < shard_count.
+  /// Evaluate only the shard_index-th of shard_count contiguous blocks of the samples
+  /// (core::Shard::block; the graph is always built from the whole database, so shards are parts
+  /// of one evaluation). shard_index < shard_count.
   std::size_t shard_index = 0, shard_count = 1;
   void validate() const;
 };

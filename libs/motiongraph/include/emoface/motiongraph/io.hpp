@@ -1,14 +1,17 @@
 #pragma once
-// Files of the motiongraph library. JSON documents carry the emoface envelope:
+// Files of the motiongraph library. JSON documents carry the emoface envelope and are read through
+// core::JsonReader (unknown fields: errors in 1.0 documents, ignored in newer minors):
 //   emoface.landmark_database 1.0 — Database (see docs/motiongraph.md for the fields)
 //   emoface.landmark_layout   1.0 — LandmarkLayout (data/motiongraph/layout_ibug68.json)
 //   emoface.motion_graph      1.0 — MotionGraph
-// CSV landmark databases: header "sequence,subject,label,frame,x0,y0[,z0],x1,..." one row per frame.
-// CK+ directory layout reader: Landmarks/<S>/<seq>/*_landmarks.txt + Emotion/<S>/<seq>/*_emotion.txt.
+// CSV landmark databases: header "sequence,subject,label,frame,x0,y0[,z0],x1,..." one row per
+// frame. CK+ directory layout reader: Landmarks/<S>/<seq>/*_landmarks.txt +
+// Emotion/<S>/<seq>/*_emotion.txt.
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "emoface/core/text.hpp"
 #include "emoface/motiongraph/database.hpp"
 #include "emoface/motiongraph/graph.hpp"
 #include "emoface/motiongraph/layout.hpp"
@@ -17,10 +20,10 @@ namespace emoface::motiongraph {
 
 /// What a database reader does with a bad sequence (a record): throw (Stop, the default) or leave
 /// the sequence out and report it (Skip). Errors outside sequences (envelope, header, dimensions)
-/// always throw.
-enum class OnError { Stop, Skip };
-std::string to_string(OnError on_error);
-OnError on_error_from_string(std::string_view name);  ///< "stop" | "skip"; InvalidInput otherwise
+/// always throw. The one OnError of emoface (core/text.hpp: to_string, on_error_from_string).
+using core::on_error_from_string;  // "stop" | "skip" → OnError; nothing otherwise
+using core::OnError;
+using core::to_string;
 
 /// Sequences a reader skipped, one message each naming the file and line or JSON pointer.
 struct ReadReport {
