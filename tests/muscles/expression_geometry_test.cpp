@@ -118,7 +118,7 @@ TEST_P(ExpressionGeometry, Happiness) {
   EXPECT_GT(rise, 3.0 * mm);   // AU12: corners up ...
   EXPECT_GT(widen, 4.0 * mm);  // ... and back
   EXPECT_GT(cheek, 1.5 * mm);  // AU6: cheeks raised
-  EXPECT_GT(lids, 0.5);        // not squinting (lid_cheek_raise is 0 by default, see solver.hpp)
+  EXPECT_GT(lids, 0.5);        // not squinting (AU6 raises the lower lid: lid_cheek_raise 0.15)
 }
 
 TEST_P(ExpressionGeometry, Surprise) {

@@ -305,10 +305,11 @@ TEST(FaceSolver, PalpebralisTightensTheLidsButNeverClosesThem) {
 
 TEST(FaceSolver, CheekRaiserPushesTheLowerLidUpButNeverShutsTheEye) {
   // FACS AU6 (orbitalis): SolverOptions::lid_cheek_raise turns the lower lid up by
-  // lid_cheek_raise·close_angle·s at orbitalis level s; 0 (the default) leaves the lids alone.
+  // lid_cheek_raise·close_angle·s at orbitalis level s; 0 leaves the lids alone (default 0.15).
   const auto& eye = face().rig.eyes[0];
   SolverOptions o;
   o.eyelid_coupling = EyelidCoupling::Off;
+  o.lid_cheek_raise = 0.0;
   const auto named = values({{"orbicularis_oculi_orbitalis_r", 0.8}});
   const auto plain = FaceSolver(face().mesh, face().rig, o).deform(named);
   o.lid_cheek_raise = 0.3;

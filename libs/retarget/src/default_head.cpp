@@ -19,6 +19,12 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
+// 0 at e0, 1 at e1, smooth (cubic Hermite) between.
+double smoothstep(double e0, double e1, double x) {
+  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
 // A mesh under construction: positions (rig frame) and triangles, appended part by part.
 struct Builder {
   std::vector<Vec3> v;
@@ -408,6 +414,68 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
   const auto tongue = add_tongue(tongue_c, tongue_a, b);
   orient_outward(b, tongue_first_face);
   rep.tongue = tongue.size();
+
+  // ---- Mouth cavity. The head's mouth bag is a shallow pocket: its back wall stands right behind
+  // the lips (MakeHuman: 9 mm behind the lips' front, in front of the teeth), so an opened mouth
+  // showed a pale wall where a person shows teeth and a dark cavity. Bag vertices in front of the
+  // teeth's back are moved straight back (−z) to 3 mm behind it, fully over the teeth's width and
+  // height and fading out over 60 % more to the sides and 6 mm above/below, so the lining between the
+  // lips and the wall becomes the mouth's inside; they are coloured as mouth interior, and a vertex
+  // bound to the lip surface keeps its rest position through its offset (S(u, v) + offset).
+  {
+    Vec3 t_min = Vec3::Constant(1e9), t_max = Vec3::Constant(-1e9);
+    for (const auto* ids : {&upper, &lower})
+      for (int v : *ids) t_min = t_min.cwiseMin(b.v[v]), t_max = t_max.cwiseMax(b.v[v]);
+    const double cx = 0.5 * (t_min.x() + t_max.x()), hw = 0.5 * (t_max.x() - t_min.x());
+    const double back = t_min.z() - 0.003;
+    std::map<int, std::size_t> bound_index;
+    for (std::size_t k = 0; k < rig.lips.bound.size(); ++k) bound_index[rig.lips.bound[k].vertex] = k;
+    for (int v = 0; v < nh; ++v) {
+      if (!in_bag(v)) continue;
+      Vec3& p = b.v[static_cast<std::size_t>(v)];
+      if (p.z() <= back) continue;
+      const double ax = std::abs(p.x() - cx);
+      const double dy = std::max({0.0, t_min.y() - p.y(), p.y() - t_max.y()});
+      const double s = (1.0 - smoothstep(hw, 1.6 * hw, ax)) * (1.0 - smoothstep(0.0, 0.006, dy));
+      if (s <= 0.0) continue;
+      const Vec3 delta(0.0, 0.0, -s * (p.z() - back));
+      p += delta;
+      const auto it = bound_index.find(v);
+      if (it != bound_index.end()) rig.lips.bound[it->second].offset += delta;
+      b.mat[static_cast<std::size_t>(v)] = fm::Material::MouthInterior;
+      ++rep.mouth_cavity_vertices;
+    }
+    // The bag does not stay closed when the jaw opens (its lining tears at the fold), and the head
+    // behind it is an open shell: an opened mouth showed the lit inside of the back of the head.
+    // A dark backdrop 4 mm behind the moved wall, curving back towards the sides, 3 × the teeth's
+    // width, from 10 mm above the teeth to 14 mm below them, closes the view; its rows below the
+    // teeth's middle turn with the jaw (weight 1, blended over ±2 mm) so it stays behind the lower
+    // teeth and tongue as the mouth opens.
+    constexpr int kCols = 13, kRows = 9;
+    const double x0 = cx - 1.5 * hw, x1 = cx + 1.5 * hw;
+    const double y0 = t_min.y() - 0.014, y1 = t_max.y() + 0.010, y_mid = 0.5 * (t_min.y() + t_max.y());
+    const int first = static_cast<int>(b.v.size());
+    fm::Part backdrop;
+    backdrop.name = "mouth_backdrop";
+    backdrop.kind = fm::PartKind::Other;
+    for (int r = 0; r < kRows; ++r)
+      for (int c = 0; c < kCols; ++c) {
+        const double x = x0 + (x1 - x0) * c / (kCols - 1), y = y0 + (y1 - y0) * r / (kRows - 1);
+        const double ax = (x - cx) / (1.5 * hw);
+        const int id = b.add(Vec3(x, y, back - 0.004 - 0.008 * ax * ax), fm::Material::MouthInterior);
+        backdrop.vertices.push_back(id);
+        const double w = 1.0 - smoothstep(y_mid - 0.002, y_mid + 0.002, y);
+        if (w > 0.0) rig.jaw.vertices.push_back(id), rig.jaw.weights.push_back(w);
+      }
+    for (int r = 0; r + 1 < kRows; ++r)
+      for (int c = 0; c + 1 < kCols; ++c) {
+        const int a = first + r * kCols + c;  // counter-clockwise seen from +z (facing the viewer)
+        b.f.push_back({a, a + 1, a + kCols + 1});
+        b.f.push_back({a, a + kCols + 1, a + kCols});
+      }
+    rig.parts.push_back(backdrop);
+    rep.mouth_backdrop = backdrop.vertices.size();
+  }
 
   for (int v : lower) rig.jaw.vertices.push_back(v), rig.jaw.weights.push_back(1.0);
   for (int v : tongue) rig.jaw.vertices.push_back(v), rig.jaw.weights.push_back(1.0);

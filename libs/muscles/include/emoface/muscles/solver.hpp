@@ -67,8 +67,9 @@ struct SolverOptions {
   /// cheek"): at orbitalis level s the lower lid turns up by a further
   /// lid_cheek_raise·close_angle·s, in [0, 0.6]. The lower lid's total (tightener + cheek) is
   /// capped at 0.8 − lid_tighten_upper of close_angle, so the two together never shut the eye
-  /// either (issue 14).
-  double lid_cheek_raise = 0.0;
+  /// either (issue 14). Default 0.15: on the default face (the MakeHuman head) the smile then reads
+  /// as happiness to the expression oracle; 0 gives the generic face's old lids (docs/muscles.md).
+  double lid_cheek_raise = 0.15;
   void validate() const;
 };
 

@@ -27,8 +27,8 @@ struct DefaultHeadReport {
   std::size_t head_vertices = 0;  ///< the MakeHuman head's own vertices (ids 0 .. head_vertices−1)
   std::array<std::size_t, 2> eyeball_vertices{};  ///< added sphere vertices per eye (right, left)
   std::array<std::size_t, 2> socket_vertices{};   ///< head vertices pulled behind each eyeball
-  /// the lower lip's outside, taken for mouth bag by the transfer, bound to the lip surface here
-  std::size_t lower_lip_bound = 0;
+  std::size_t mouth_cavity_vertices = 0;  ///< bag vertices moved behind the teeth (the cavity)
+  std::size_t mouth_backdrop = 0;         ///< vertices of the dark sheet closing the mouth's back
   std::size_t upper_teeth = 0, lower_teeth = 0, tongue = 0, lashes = 0, neck_cap = 0;
 };
 
