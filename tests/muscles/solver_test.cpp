@@ -268,13 +268,16 @@ TEST(FaceSolver, PalpebralisTightensTheLidsButNeverClosesThem) {
       values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_palpebralis_l", 1.0}}));
   EXPECT_NEAR(eye_aperture(face().rig, both.vertices, 0), a1, 1e-6);
   EXPECT_NEAR(eye_aperture(face().rig, both.vertices, 1), a1, 1e-6);
-  // monotone in the level and never below 30 % of neutral, with or without the orbitalis squeeze
+  // monotone in the level and never below 25 % of neutral without the orbitalis squeeze; with it
+  // (AU6 raises the lower lid too, lid_cheek_raise 0.15 by default) the lower lid's share is capped
+  // at 0.8 − lid_tighten_upper of the closing angle: never below 20 % (measured 24.6 % at 1 + 1)
   double previous = a0;
   for (double t = 0.1; t <= 1.0001; t += 0.1) {
     for (double sq : {0.0, 1.0}) {
       const auto x = solver().deform(
           values({{"orbicularis_oculi_palpebralis_r", t}, {"orbicularis_oculi_orbitalis_r", sq}}));
-      EXPECT_GE(eye_aperture(face().rig, x.vertices, 0), 0.25 * a0) << t << " " << sq;
+      EXPECT_GE(eye_aperture(face().rig, x.vertices, 0), (sq == 0.0 ? 0.25 : 0.20) * a0)
+          << t << " " << sq;
       if (sq == 0.0) {
         const double a = eye_aperture(face().rig, x.vertices, 0);
         EXPECT_LT(a, previous);
