@@ -73,12 +73,7 @@ int main(int argc, char** argv) {
     fm::Face face = rig_path.empty()          ? fm::make_default_face()
                     : rig_path == "generic" ? fm::make_generic_face()
                                             : fm::load_face(rig_path);
-    if (format.empty()) {
-      const bool gltf_doc = face.document && (face.document->format() == fm::MeshFormat::Gltf ||
-                                              face.document->format() == fm::MeshFormat::Glb);
-      const bool ply_doc = face.document && face.document->format() == fm::MeshFormat::Ply;
-      format = gltf_doc ? "glb" : ply_doc ? "ply" : "obj";
-    }
+    if (format.empty()) format = fm::frame_format(face);
     mu::SolverOptions options;
     options.delta_c = delta_c;
     options.wrinkles = !no_wrinkles;

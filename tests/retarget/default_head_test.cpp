@@ -1,6 +1,8 @@
 // The default face (issue 14 part 1): data/face regenerates byte for byte from the MakeHuman head
 // with one command; make_default_face() is those files; the parts added to the head (eyeballs, teeth,
 // tongue, lashes) are bound through the rig so that the solver moves them; bad input.
+#include "emoface/retarget/default_head.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -13,7 +15,6 @@
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/facemesh/render.hpp"
 #include "emoface/muscles/solver.hpp"
-#include "emoface/retarget/default_head.hpp"
 
 namespace fs = std::filesystem;
 namespace fm = emoface::facemesh;
@@ -171,9 +172,9 @@ TEST(DefaultFace, TeethHiddenBehindClosedLips) {
   EXPECT_LT(parts_front, lips_front - 0.005);
 }
 
-// Rendered with the teeth pure green: the opened jaw shows them (it used to stretch a curtain of lip
-// triangles across the mouth: the transfer bound the inside of MakeHuman's lower lip to the upper
-// lip's part of the lip surface; fixed by binding the lips by the head's own slit, s3-mouth).
+// Rendered with the teeth pure green: the opened jaw shows them (it used to stretch a curtain of
+// lip triangles across the mouth: the transfer bound the inside of MakeHuman's lower lip to the
+// upper lip's part of the lip surface; fixed by binding the lips by the head's own slit, s3-mouth).
 TEST(DefaultFace, TeethShowWhenTheMouthOpens) {
   const fm::Face face = fm::make_default_face();
   const mu::FaceSolver solver(face.mesh, face.rig);
@@ -237,7 +238,8 @@ TEST(DefaultFace, TheOpenedMouthIsDarkInside) {
   const mu::FaceSolver solver(face.mesh, face.rig);
   const mu::Deformation d = solver.deform(std::map<std::string, double>{{"masseter", 1.0}});
   double lips_front = -1e9, x0 = 1e9, x1 = -1e9;
-  for (const auto& lb : face.rig.lips.bound) lips_front = std::max(lips_front, d.vertices(lb.vertex, 2));
+  for (const auto& lb : face.rig.lips.bound)
+    lips_front = std::max(lips_front, d.vertices(lb.vertex, 2));
   for (int v : part(face.rig, "upper_teeth").vertices)
     x0 = std::min(x0, face.mesh.vertices(v, 0)), x1 = std::max(x1, face.mesh.vertices(v, 0));
   const double cx = 0.5 * (x0 + x1), hw = 0.5 * (x1 - x0), cy = face.rig.lips.centre.y();

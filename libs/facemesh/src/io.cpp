@@ -381,6 +381,21 @@ void write_rig(const std::string& path, const Rig& rig) {
   core::write_file_atomic(path, format_rig(rig));
 }
 
+std::string frame_format(const Face& face) {
+  if (!face.document) return "obj";
+  switch (face.document->format()) {
+    case MeshFormat::Gltf:
+    case MeshFormat::Glb:
+      return "glb";
+    case MeshFormat::Ply:
+      return "ply";
+    case MeshFormat::Obj:
+    case MeshFormat::Off:
+      return "obj";
+  }
+  return "obj";
+}
+
 Face load_face(const std::string& rig_path) {
   Face face;
   face.rig = read_rig(rig_path);

@@ -352,9 +352,9 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
 
   // ---- Colours around the mouth (kept as a guard): the transfer may leave lip material on
   // skin vertices that the lip surface does not drive, and mouth-bag material on vertices of the
-  // face's outside at the mouth corners — dark and pink spikes around the lips. Lip colour only where
-  // the lip surface drives the vertex (weight ≥ 0.5); bag colour only where the surface does not face
-  // forward (n_z ≤ 0.3) or lies more than 6 mm behind the lips' front.
+  // face's outside at the mouth corners — dark and pink spikes around the lips. Lip colour only
+  // where the lip surface drives the vertex (weight ≥ 0.5); bag colour only where the surface does
+  // not face forward (n_z ≤ 0.3) or lies more than 6 mm behind the lips' front.
   {
     std::vector<double> lip_w(static_cast<std::size_t>(nh), 0.0);
     double front = -1e9;
@@ -419,9 +419,9 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
   // the lips (MakeHuman: 9 mm behind the lips' front, in front of the teeth), so an opened mouth
   // showed a pale wall where a person shows teeth and a dark cavity. Bag vertices in front of the
   // teeth's back are moved straight back (−z) to 3 mm behind it, fully over the teeth's width and
-  // height and fading out over 60 % more to the sides and 6 mm above/below, so the lining between the
-  // lips and the wall becomes the mouth's inside; they are coloured as mouth interior, and a vertex
-  // bound to the lip surface keeps its rest position through its offset (S(u, v) + offset).
+  // height and fading out over 60 % more to the sides and 6 mm above/below, so the lining between
+  // the lips and the wall becomes the mouth's inside; they are coloured as mouth interior, and a
+  // vertex bound to the lip surface keeps its rest position through its offset (S(u, v) + offset).
   {
     Vec3 t_min = Vec3::Constant(1e9), t_max = Vec3::Constant(-1e9);
     for (const auto* ids : {&upper, &lower})
@@ -429,7 +429,8 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
     const double cx = 0.5 * (t_min.x() + t_max.x()), hw = 0.5 * (t_max.x() - t_min.x());
     const double back = t_min.z() - 0.003;
     std::map<int, std::size_t> bound_index;
-    for (std::size_t k = 0; k < rig.lips.bound.size(); ++k) bound_index[rig.lips.bound[k].vertex] = k;
+    for (std::size_t k = 0; k < rig.lips.bound.size(); ++k)
+      bound_index[rig.lips.bound[k].vertex] = k;
     for (int v = 0; v < nh; ++v) {
       if (!in_bag(v)) continue;
       Vec3& p = b.v[static_cast<std::size_t>(v)];
@@ -453,23 +454,25 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
     // teeth and tongue as the mouth opens.
     constexpr int kCols = 13, kRows = 9;
     const double x0 = cx - 1.5 * hw, x1 = cx + 1.5 * hw;
-    const double y0 = t_min.y() - 0.014, y1 = t_max.y() + 0.010, y_mid = 0.5 * (t_min.y() + t_max.y());
+    const double y0 = t_min.y() - 0.014, y1 = t_max.y() + 0.010,
+                 y_mid = 0.5 * (t_min.y() + t_max.y());
     const int first = static_cast<int>(b.v.size());
     fm::Part backdrop;
     backdrop.name = "mouth_backdrop";
     backdrop.kind = fm::PartKind::Other;
-    for (int r = 0; r < kRows; ++r)
-      for (int c = 0; c < kCols; ++c) {
-        const double x = x0 + (x1 - x0) * c / (kCols - 1), y = y0 + (y1 - y0) * r / (kRows - 1);
+    for (int row = 0; row < kRows; ++row)
+      for (int col = 0; col < kCols; ++col) {
+        const double x = x0 + (x1 - x0) * col / (kCols - 1), y = y0 + (y1 - y0) * row / (kRows - 1);
         const double ax = (x - cx) / (1.5 * hw);
-        const int id = b.add(Vec3(x, y, back - 0.004 - 0.008 * ax * ax), fm::Material::MouthInterior);
+        const int id =
+            b.add(Vec3(x, y, back - 0.004 - 0.008 * ax * ax), fm::Material::MouthInterior);
         backdrop.vertices.push_back(id);
         const double w = 1.0 - smoothstep(y_mid - 0.002, y_mid + 0.002, y);
         if (w > 0.0) rig.jaw.vertices.push_back(id), rig.jaw.weights.push_back(w);
       }
-    for (int r = 0; r + 1 < kRows; ++r)
-      for (int c = 0; c + 1 < kCols; ++c) {
-        const int a = first + r * kCols + c;  // counter-clockwise seen from +z (facing the viewer)
+    for (int row = 0; row + 1 < kRows; ++row)
+      for (int col = 0; col + 1 < kCols; ++col) {
+        const int a = first + row * kCols + col;  // counter-clockwise seen from +z (the viewer)
         b.f.push_back({a, a + 1, a + kCols + 1});
         b.f.push_back({a, a + kCols + 1, a + kCols});
       }

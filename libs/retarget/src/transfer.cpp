@@ -293,9 +293,9 @@ Eigen::Vector3d polyline_at(const fm::Vertices& X, const std::vector<int>& ids, 
 
 // The lip grid fitted to the target's own lips: the registered generic's lips are a smooth
 // surface of the generic's shape (MakeHuman's fuller lower lip lay up to 9 mm in front of it), and
-// a bound vertex keeps its offset from S(u, v) constant in the rig frame, so a large offset does not
-// turn or stretch with the lip and tears it off its neighbours. The control points C = C0 + D take
-// the displacement D that minimises  Σ_i |S_D(u_i, v_i) − x_i|²  over the full-weight bindings
+// a bound vertex keeps its offset from S(u, v) constant in the rig frame, so a large offset does
+// not turn or stretch with the lip and tears it off its neighbours. The control points C = C0 + D
+// take the displacement D that minimises  Σ_i |S_D(u_i, v_i) − x_i|²  over the full-weight bindings
 // + λ_s Σ_(grid neighbours a, b) |D_a − D_b|² + λ_0 Σ |D|²  (a smooth displacement of the whole
 // grid; the three coordinates decouple: one 144×144 LDLT). The offsets are then recomputed (the
 // neutral face is kept exactly).
@@ -567,8 +567,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
         const Eigen::Vector3d a = T.row(row.front()).transpose(), b = T.row(row.back()).transpose();
         std::vector<int> kept;
         for (int q : row) {
-          const double t = b.x() > a.x() ? std::clamp((T(q, 0) - a.x()) / (b.x() - a.x()), 0.0, 1.0)
-                                         : 0.5;
+          const double t =
+              b.x() > a.x() ? std::clamp((T(q, 0) - a.x()) / (b.x() - a.x()), 0.0, 1.0) : 0.5;
           const Eigen::Vector3d l = (1.0 - t) * a + t * b;
           if (std::abs(T(q, 1) - l.y()) < 0.15 * slit.width &&
               T(q, 2) > std::min(a.z(), b.z()) - 0.1 * slit.width)
@@ -883,12 +883,11 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     // lip than the generic's) and, behind a closed mouth's slit, faces away from the mouth cavity;
     // the bag's floor and roof (up to 22 mm from the lips on MakeHuman) used to be bound to the
     // lip surface with weight 1 and tore across the mouth under every muscle.
-    const bool lip_facing =
-        !closed_slit ||
-        n.dot((p - mouth_probe).normalized()) > 0.0 || h.distance < 0.0025 * head_height_rig;
+    const bool lip_facing = !closed_slit || n.dot((p - mouth_probe).normalized()) > 0.0 ||
+                            h.distance < 0.0025 * head_height_rig;
     if (lip_face[static_cast<std::size_t>(h.face)] &&
-        (agree || h.distance < 0.0025 * head_height_rig) &&
-        h.distance < 0.04 * head_height_rig && lip_facing)
+        (agree || h.distance < 0.0025 * head_height_rig) && h.distance < 0.04 * head_height_rig &&
+        lip_facing)
       on_lip[static_cast<std::size_t>(v)] = 1;
     else if (cavity_face[static_cast<std::size_t>(h.face)]
                  ? on_surface
@@ -1031,10 +1030,8 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       }
       if (slit_side != 0) {
         detail::SurfaceHit alt;
-        if (slit_side > 0 && !upper_index.empty())
-          alt = upper_index.closest(T.row(v).transpose());
-        if (slit_side < 0 && !lower_index.empty())
-          alt = lower_index.closest(T.row(v).transpose());
+        if (slit_side > 0 && !upper_index.empty()) alt = upper_index.closest(T.row(v).transpose());
+        if (slit_side < 0 && !lower_index.empty()) alt = lower_index.closest(T.row(v).transpose());
         if (alt.face >= 0) lh = alt;
       } else if ((std::isfinite(uq) || std::isfinite(lq)) && std::abs(s) > 0.3 &&
                  std::min(uq, lq) < 0.8 * std::max(uq, lq)) {

@@ -48,6 +48,10 @@ Face load_face(const std::string& rig_path);
 /// write_mesh.
 void save_face(const std::string& rig_path, const Face& face);
 
+/// The file format that keeps what face.document holds when frames of the face are written:
+/// "glb" for a glTF document, "ply" for a PLY document, otherwise "obj" (faceanim's default).
+std::string frame_format(const Face& face);
+
 /// Writes `positions` (#V by 3, rig frame: face.mesh or a deformation of it) as a mesh file in the
 /// mesh frame (to_mesh_frame, unmoved vertices bit for bit): through face.document when `path` is
 /// of the document's kind (.obj for an OBJ, .ply for a PLY, .gltf/.glb for a glTF document: UVs,
