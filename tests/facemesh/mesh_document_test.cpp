@@ -21,13 +21,7 @@
 namespace emoface::facemesh {
 namespace {
 
-class MeshDocumentTest : public testing::TempDirTest {
- protected:
-  std::string put(const std::string& name, const std::string& text) {
-    core::write_file_atomic(path(name), text);
-    return path(name);
-  }
-};
+class MeshDocumentTest : public testing::TempDirTest {};
 
 // Every OBJ feature: comments, mtllib, o/g/usemtl/s, coloured vertices, a continued line, vt, vn,
 // the four corner forms, negative indices, a quad, a degenerate polygon, a line element, an unknown

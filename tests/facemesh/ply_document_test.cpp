@@ -21,13 +21,7 @@
 namespace emoface::facemesh {
 namespace {
 
-class PlyDocumentTest : public testing::TempDirTest {
- protected:
-  std::string put(const std::string& name, const std::string& bytes) {
-    core::write_file_atomic(path(name), bytes);
-    return path(name);
-  }
-};
+class PlyDocumentTest : public testing::TempDirTest {};
 
 // A scanner's PLY: a quad and a triangle, float positions, float normals, uchar colours with alpha,
 // a property we do not know (quality), a texture-coordinate list on the faces, an edge element.

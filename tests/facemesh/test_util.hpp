@@ -1,10 +1,11 @@
 #pragma once
 // Small fixtures shared by the facemesh tests.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 
-#include <gtest/gtest.h>
-
+#include "emoface/core/io.hpp"
 #include "emoface/facemesh/mesh.hpp"
 
 namespace emoface::facemesh::testing {
@@ -31,6 +32,11 @@ class TempDirTest : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  /// Writes `bytes` to `name` in the test's directory; returns its path.
+  std::string put(const std::string& name, const std::string& bytes) const {
+    core::write_file_atomic(path(name), bytes);
+    return path(name);
+  }
   std::filesystem::path dir_;
 };
 
