@@ -1,8 +1,14 @@
 #pragma once
 // The mgraph subcommands: glue between parsed arguments and the motiongraph library.
+#include <CLI/CLI.hpp>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "emoface/motiongraph/graph.hpp"
+#include "emoface/motiongraph/io.hpp"
+#include "emoface/motiongraph/synthetic.hpp"
 
 namespace emoface::mgraph {
 
@@ -36,6 +42,25 @@ struct Args {
   double weight_noise = 0.01, timecode_fps = 60.0;
   bool raw = false;
 };
+
+// The subcommands registered by add_analysis_commands (options.cpp); main.cpp the others.
+struct AnalysisCommands {
+  CLI::App *eval, *capture, *example, *dot;
+};
+AnalysisCommands add_analysis_commands(CLI::App& app, Args& a);
+/// --db/--ckplus/--layout and preprocessing options (build, eval).
+void add_source_options(CLI::App* c, Args& a);
+
+// Glue shared by the subcommands (commands.cpp).
+motiongraph::OnError on_error(const Args& a);
+/// The skipped records on stderr, then "<n> <what> skipped".
+void print_skipped(const motiongraph::ReadReport& report, const char* what = "record(s)");
+motiongraph::Database load_database(const Args& a);
+/// `clean` = false gives the raw samples (eval --raw).
+motiongraph::PreparedDatabase prepare(const Args& a, const motiongraph::Database& db, bool clean,
+                                      bool quiet = false);
+motiongraph::GraphOptions graph_options(const Args& a, int dimensions);
+std::unique_ptr<motiongraph::LandmarkModel> landmark_model(const Args& a);
 
 int generate(const Args& a);
 int build(const Args& a);

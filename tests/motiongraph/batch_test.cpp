@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "emoface/core/csv.hpp"
+#include "emoface/core/io.hpp"
 #include "emoface/core/shard.hpp"
+#include "emoface/motiongraph/layout.hpp"
+#include "emoface/motiongraph/render.hpp"
 #include "fixtures.hpp"
 
 namespace emoface::motiongraph {
@@ -184,6 +187,102 @@ TEST(EvaluationCsv, BadInput) {
   extra.insert(good.find('\n', row) + 5, ",x");
   EXPECT_NE(err(extra).find("unexpected columns"), std::string::npos);
   EXPECT_EQ(err(good), "no error");
+}
+
+// The table mgraph eval prints; the expected text written out by hand (the printf widths).
+TEST(EvaluationTable, HeaderRowsAndThePaperLine) {
+  EvaluationRow r;
+  r.threshold = 0.5;
+  r.compression = 0.5753;
+  r.nodes = 12;
+  r.length_mean = 1.25;
+  r.length_std = 0.5;
+  r.pose_mean = 2.125;
+  r.pose_std = 0.25;
+  const std::string paper =
+      "paper (CK+, 70 sequences): 90% -> 0.98 +- 1.84 frames, 2.86 +- 2.3 px; 78% -> 0.071 +- "
+      "0.39, 2.12 +- 1.81; 57.53% -> 0 +- 0, 1.52 +- 1.51\n";
+  EXPECT_EQ(evaluation_table({r}, "px"),
+            " threshold  compression %   nodes   length diff (frames)         pose diff (px)\n"
+            "    0.5000          57.53      12      1.250 +- 0.500        2.1250 +- 0.2500  \n" +
+                paper);
+  EvaluationRow w;
+  w.threshold = 0.012;
+  w.compression = 0.9;
+  w.nodes = 3;
+  w.pose_mean = 0.0125;
+  w.pose_std = 0.001;
+  w.has_raw = true;
+  w.raw_pose_mean = 0.02;
+  w.raw_pose_std = 0.5;
+  EXPECT_EQ(evaluation_table({w}, "weight"),
+            " threshold  compression %   nodes   length diff (frames)     pose diff (weight)"
+            "   vs raw samples (weight)\n"
+            "    0.0120          90.00       3      0.000 +- 0.000        0.0125 +- 0.0010   "
+            "    0.0200 +- 0.5000  \n" +
+                paper);
+}
+
+TEST(DatabaseBlock, SlicesTheSequences) {
+  const Database whole = test::small_synthetic();
+  const std::size_t n = whole.sequences.size();
+  const Database mid = database_block(whole, {3, 5});
+  ASSERT_EQ(mid.sequences.size(), 2u);
+  EXPECT_EQ(mid.sequences[0].id, whole.sequences[3].id);
+  EXPECT_EQ(mid.sequences[1].id, whole.sequences[4].id);
+  EXPECT_EQ(mid.landmark_count, whole.landmark_count);
+  EXPECT_EQ(mid.frame_rate, whole.frame_rate);
+  EXPECT_TRUE(database_block(whole, {n, n}).sequences.empty());
+  EXPECT_THROW(database_block(whole, {0, n + 1}), InvalidInput);
+  EXPECT_THROW(database_block(whole, {2, 1}), InvalidInput);
+}
+
+TEST(LabelPeaks, NeutralThenTheFirstPeakOfEachLabel) {
+  Database db;
+  db.landmark_count = 4;
+  db.sequences = {test::line_sequence("a", Label::Fear, 3, 4, 1.0),
+                  test::line_sequence("b", Label::Happiness, 4, 4, 2.0),
+                  test::line_sequence("c", Label::Fear, 5, 4, 3.0)};
+  const std::vector<Pose> peaks = label_peaks(db);
+  ASSERT_EQ(peaks.size(), 3u);
+  EXPECT_TRUE(peaks[0] == db.sequences[0].frames.front());
+  EXPECT_TRUE(peaks[1] == db.sequences[0].frames.back());  // fear: a's peak (c comes later)
+  EXPECT_TRUE(peaks[2] == db.sequences[1].frames.back());
+  EXPECT_TRUE(label_peaks(Database{}).empty());
+}
+
+TEST(PeaksSheet, OnlyForIbugDatabases) {
+  const std::string dir = ::testing::TempDir() + "/peaks_sheet";
+  core::OutputBundle bundle;
+  Database small;
+  small.landmark_count = 4;
+  small.sequences = {test::line_sequence("a", Label::Fear, 3, 4, 1.0)};
+  EXPECT_THROW(stage_peaks_sheet(bundle, dir + "/a.png", small, 4, 100), InvalidInput);
+  Database weights = test::small_synthetic();
+  weights.dimensions = 1;
+  EXPECT_THROW(stage_peaks_sheet(bundle, dir + "/b.png", weights, 4, 100), InvalidInput);
+  Database empty = test::small_synthetic();
+  empty.sequences.clear();
+  EXPECT_THROW(stage_peaks_sheet(bundle, dir + "/c.png", empty, 4, 100), InvalidInput);
+  // The sheet is the contact sheet of the peaks, iBUG regions coloured (as mgraph generate drew
+  // it).
+  const Database db = test::small_synthetic();
+  stage_peaks_sheet(bundle, dir + "/d.png", db, 4, 100);
+  bundle.commit();
+  const std::string png = core::read_file(dir + "/d.png");
+  std::vector<int> ids(68);
+  for (int i = 0; i < 68; ++i) ids[static_cast<std::size_t>(i)] = i;
+  const std::vector<int> layout_groups = [] {
+    std::vector<int> g(68, 8);
+    const LandmarkLayout l = default_layout();
+    for (std::size_t r = 0; r < l.regions.size(); ++r)
+      for (int i : l.regions[r].landmarks) g[static_cast<std::size_t>(i)] = static_cast<int>(r);
+    return g;
+  }();
+  EXPECT_EQ(layout_groups[40], 0);  // the layout's first region holds the eyes
+  EXPECT_EQ(png, encode_png(
+                     contact_sheet(label_peaks(db), layout_groups, 4, 100, 87, contours_for(ids))));
+  EXPECT_EQ(label_peaks(db).size(), 1u + 7u);  // neutral + the 7 labels of small_synthetic
 }
 
 }  // namespace

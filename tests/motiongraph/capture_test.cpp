@@ -457,5 +457,48 @@ TEST(CaptureExample, DeterministicWithHeadMotionAndDropouts) {
   EXPECT_THROW(generate_capture_takes(ParametricLandmarkModel(), bad), InvalidInput);
 }
 
+// The side file of the example generator: per take, the labels of the subject's sequences in order
+// (the truth the takes were made from), and it labels an unlabelled capture like the column does.
+TEST(CaptureExample, SegmentLabelTable) {
+  const Database truth =
+      generate_synthetic_database(ParametricLandmarkModel(), small_example().database);
+  const LabelTable side = segment_label_table(example_takes());
+  for (const std::string subject : {"S001", "S002", "S003"}) {
+    std::vector<Label> expected, found;
+    for (const auto& s : truth.sequences)
+      if (s.subject == subject) expected.push_back(s.label);
+    for (std::size_t k = 0; k < 100; ++k) {
+      const auto it = side.entries.find({"take_" + subject, std::to_string(k)});
+      if (it != side.entries.end()) found.push_back(it->second);
+    }
+    EXPECT_EQ(found, expected) << subject;
+  }
+  std::vector<TrackedFrames> unlabelled = example_takes();
+  for (auto& t : unlabelled) t.labels.clear();
+  const Database by_column = capture_database(example_takes());
+  const Database by_table = capture_database(unlabelled, {}, &side);
+  ASSERT_EQ(by_table.sequences.size(), by_column.sequences.size());
+  for (std::size_t i = 0; i < by_table.sequences.size(); ++i)
+    EXPECT_EQ(by_table.sequences[i].label, by_column.sequences[i].label);
+  EXPECT_THROW(segment_label_table(unlabelled), InvalidInput);  // no label column
+}
+
+// A take written as MediaPipe NDJSON reads back as the same iBUG-68 take.
+TEST(MediaPipe, TakeRoundTrip) {
+  const TrackedFrames& take = example_takes()[0];
+  const TrackedFrames back = parse_mediapipe_ndjson(mediapipe_ndjson(take), "t.ndjson");
+  ASSERT_EQ(back.size(), take.size());
+  EXPECT_EQ(back.labels, take.labels);
+  EXPECT_EQ(back.success, take.success);
+  std::size_t compared = 0;
+  for (std::size_t i = 0; i < take.size(); ++i) {
+    EXPECT_NEAR(back.times[i], take.times[i], 1e-9);
+    if (!take.success[i]) continue;
+    EXPECT_LT((back.frames[i] - take.frames[i]).cwiseAbs().maxCoeff(), 1e-4) << i;  // %.8g
+    ++compared;
+  }
+  EXPECT_GT(compared, take.size() / 2);
+}
+
 }  // namespace
 }  // namespace emoface::motiongraph

@@ -172,5 +172,18 @@ TEST(Graph, BadInput) {
   EXPECT_THROW(build_graph(broken, {}), InvalidInput);
 }
 
+TEST(Graph, RegionByName) {
+  const MotionGraph g = build_graph(test::small_prepared(), {});
+  EXPECT_EQ(g.region("mouth").name, "mouth");
+  EXPECT_EQ(&g.region("eyes"), &g.regions[0]);
+  try {
+    g.region("lips");
+    ADD_FAILURE() << "found lips";
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(),
+                 "no region \"lips\" (the graph has eyes, eyebrows, nose, mouth, cheeks_jaw)");
+  }
+}
+
 }  // namespace
 }  // namespace emoface::motiongraph

@@ -95,6 +95,16 @@ TEST(SyntheticDatabase, SeededAndBadOptions) {
 }  // namespace emoface::motiongraph
 
 namespace emoface::motiongraph {
+namespace {
+// The same sequence, bit for bit.
+void expect_same_sequence(const Sequence& s, const Sequence& w) {
+  EXPECT_EQ(s.id, w.id);
+  EXPECT_EQ(s.label, w.label);
+  ASSERT_EQ(s.frames.size(), w.frames.size());
+  for (std::size_t f = 0; f < s.frames.size(); ++f) EXPECT_TRUE(s.frames[f] == w.frames[f]) << s.id;
+}
+}  // namespace
+
 TEST(Synthetic, SingleSequencesMatchTheDatabase) {
   SyntheticOptions o;
   o.sequences_per_label = 2;
@@ -103,14 +113,32 @@ TEST(Synthetic, SingleSequencesMatchTheDatabase) {
   const ParametricLandmarkModel model;
   const Database db = generate_synthetic_database(model, o);
   ASSERT_EQ(synthetic_sequence_count(o), db.sequences.size());
-  for (std::size_t i : {std::size_t{0}, std::size_t{5}, db.sequences.size() - 1}) {
-    const Sequence s = synthetic_sequence(model, o, i);
-    EXPECT_EQ(s.id, db.sequences[i].id);
-    EXPECT_EQ(s.label, db.sequences[i].label);
-    ASSERT_EQ(s.frames.size(), db.sequences[i].frames.size());
-    for (std::size_t f = 0; f < s.frames.size(); ++f) EXPECT_TRUE(s.frames[f] == db.sequences[i].frames[f]);
-  }
+  for (std::size_t i : {std::size_t{0}, std::size_t{5}, db.sequences.size() - 1})
+    expect_same_sequence(synthetic_sequence(model, o, i), db.sequences[i]);
   EXPECT_EQ(db.sequences[4].id, "S002_002");  // 5th sequence: subject 2's second recording
   EXPECT_THROW(synthetic_sequence(model, o, db.sequences.size()), InvalidInput);
+}
+
+// A shard's block is what the whole database holds at those indices, bit for bit.
+TEST(Synthetic, BlocksMatchTheDatabase) {
+  SyntheticOptions o;
+  o.sequences_per_label = 2;
+  o.subjects = 3;
+  o.max_frames = 12;
+  const ParametricLandmarkModel model;
+  const Database whole = generate_synthetic_database(model, o);
+  const std::size_t n = whole.sequences.size();
+  std::size_t next = 0;
+  for (const auto& block :
+       std::vector<std::pair<std::size_t, std::size_t>>{{0, 5}, {5, 5}, {5, n}}) {
+    const Database part = generate_synthetic_database(model, o, block);
+    EXPECT_EQ(part.landmark_count, whole.landmark_count);
+    EXPECT_EQ(part.frame_rate, whole.frame_rate);
+    ASSERT_EQ(part.sequences.size(), block.second - block.first);
+    for (const Sequence& s : part.sequences) expect_same_sequence(s, whole.sequences[next++]);
+  }
+  EXPECT_EQ(next, n);
+  EXPECT_THROW(generate_synthetic_database(model, o, {0, n + 1}), InvalidInput);
+  EXPECT_THROW(generate_synthetic_database(model, o, {3, 2}), InvalidInput);
 }
 }  // namespace emoface::motiongraph

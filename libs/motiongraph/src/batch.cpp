@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "emoface/core/csv.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/rng.hpp"
 #include "emoface/core/text.hpp"
 #include "emoface/core/video.hpp"
+#include "emoface/motiongraph/layout.hpp"
 #include "emoface/motiongraph/render.hpp"
 #include "emoface/motiongraph/weights.hpp"
 
@@ -330,6 +332,79 @@ Database animation_database(const MotionGraph& g, std::vector<Sequence> sequence
   db.landmark_count = db.landmark_ids.size();
   db.sequences = std::move(sequences);
   return db;
+}
+
+// --- databases and tables of a run
+// -------------------------------------------------------------------------------------
+
+void stage_database(core::OutputBundle& bundle, const std::string& path, const Database& db) {
+  const bool csv = path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0;
+  bundle.add(path, csv ? database_to_csv(db) : database_to_json(db));
+}
+
+Database database_block(Database db, std::pair<std::size_t, std::size_t> block) {
+  if (block.first > block.second || block.second > db.sequences.size())
+    throw InvalidInput("database_block: [" + std::to_string(block.first) + ", " +
+                       std::to_string(block.second) + ") is not within the " +
+                       std::to_string(db.sequences.size()) + " sequences");
+  const auto first = db.sequences.begin();
+  db.sequences = std::vector<Sequence>(first + static_cast<std::ptrdiff_t>(block.first),
+                                       first + static_cast<std::ptrdiff_t>(block.second));
+  return db;
+}
+
+std::vector<Pose> label_peaks(const Database& db) {
+  std::vector<Pose> shown;
+  if (db.sequences.empty() || db.sequences.front().frames.empty()) return shown;
+  shown.push_back(db.sequences.front().frames.front());
+  std::vector<Label> seen;
+  for (const Sequence& s : db.sequences)
+    if (!s.frames.empty() && std::find(seen.begin(), seen.end(), s.label) == seen.end()) {
+      seen.push_back(s.label);
+      shown.push_back(s.frames.back());
+    }
+  return shown;
+}
+
+void stage_peaks_sheet(core::OutputBundle& bundle, const std::string& path, const Database& db,
+                       int columns, int cell_width) {
+  if (is_weight_space(db.dimensions) || db.landmark_count != 68)
+    throw InvalidInput("a sheet of label peaks needs a 68-landmark iBUG database");
+  const std::vector<Pose> shown = label_peaks(db);
+  if (shown.empty()) throw InvalidInput("a sheet of label peaks needs a sequence");
+  const LandmarkLayout layout = default_layout();
+  std::vector<int> groups(68, 8);  // 8: grey in render.cpp's palette
+  for (std::size_t r = 0; r < layout.regions.size(); ++r)
+    for (int i : layout.regions[r].landmarks)
+      groups[static_cast<std::size_t>(i)] = static_cast<int>(r);
+  std::vector<int> all_ids(68);
+  for (int i = 0; i < 68; ++i) all_ids[static_cast<std::size_t>(i)] = i;
+  bundle.add(path, encode_png(contact_sheet(shown, groups, columns, cell_width, cell_width * 7 / 8,
+                                            contours_for(all_ids))));
+}
+
+std::string evaluation_table(const std::vector<EvaluationRow>& rows, const std::string& unit) {
+  const bool raw = !rows.empty() && rows.front().has_raw;
+  const std::string pose = "pose diff (" + unit + ")";
+  const std::string vs_raw = "   vs raw samples (" + unit + ")";
+  char line[256];
+  std::snprintf(line, sizeof line, "%10s %14s %7s %22s %22s%s\n", "threshold", "compression %",
+                "nodes", "length diff (frames)", pose.c_str(), raw ? vs_raw.c_str() : "");
+  std::string out = line;
+  for (const EvaluationRow& r : rows) {
+    std::snprintf(line, sizeof line, "%10.4f %14.2f %7zu %10.3f +- %-8.3f %10.4f +- %-8.4f",
+                  r.threshold, 100 * r.compression, r.nodes, r.length_mean, r.length_std,
+                  r.pose_mean, r.pose_std);
+    out += line;
+    if (raw) {
+      std::snprintf(line, sizeof line, " %10.4f +- %-8.4f", r.raw_pose_mean, r.raw_pose_std);
+      out += line;
+    }
+    out += "\n";
+  }
+  return out +
+         "paper (CK+, 70 sequences): 90% -> 0.98 +- 1.84 frames, 2.86 +- 2.3 px; 78% -> 0.071 +- "
+         "0.39, 2.12 +- 1.81; 57.53% -> 0 +- 0, 1.52 +- 1.51\n";
 }
 
 }  // namespace emoface::motiongraph

@@ -490,4 +490,13 @@ std::string mediapipe_ndjson(const std::vector<double>& times,
   return out;
 }
 
+std::string mediapipe_ndjson(const TrackedFrames& take, const MediaPipeReadOptions& options) {
+  take.validate();
+  std::vector<Eigen::MatrixXd> points;
+  for (std::size_t i = 0; i < take.size(); ++i)
+    points.push_back(take.success[i] ? mediapipe_points_from_ibug68(take.frames[i], options)
+                                     : Eigen::MatrixXd());
+  return mediapipe_ndjson(take.times, points, take.labels);
+}
+
 }  // namespace emoface::motiongraph

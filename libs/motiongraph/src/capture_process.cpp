@@ -279,6 +279,24 @@ std::string label_table_csv(const LabelTable& table) {
   return out;
 }
 
+LabelTable segment_label_table(const std::vector<TrackedFrames>& takes) {
+  LabelTable side;
+  for (const TrackedFrames& t : takes) {
+    if (t.labels.size() != t.size())
+      throw InvalidInput("segment_label_table: take \"" + t.id + "\" has no label column");
+    std::size_t k = 0;  // segment index over the take's parts, as capture_database counts them
+    for (TrackedFrames& part : clean_frames(t)) {
+      stabilise_head(part);
+      for (const TakeSegment& seg : find_segments(part)) {
+        const Label l = label_from_string(part.labels[seg.peak]);
+        if (l != Label::Neutral) side.entries[{t.id, std::to_string(k)}] = l;
+        ++k;
+      }
+    }
+  }
+  return side;
+}
+
 void CaptureOptions::validate() const {
   filter.validate();
   stabilisation.validate();

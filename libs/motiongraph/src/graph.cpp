@@ -49,6 +49,15 @@ std::vector<int> MotionGraph::landmark_regions() const {
   return out;
 }
 
+const RegionGraph& MotionGraph::region(std::string_view name) const {
+  std::string names;
+  for (const RegionGraph& r : regions) {
+    if (r.name == name) return r;
+    names += (names.empty() ? "" : ", ") + r.name;
+  }
+  throw InvalidInput("no region \"" + std::string(name) + "\" (the graph has " + names + ")");
+}
+
 void GraphOptions::validate() const {
   if (!(sample_threshold >= 0.0) || !std::isfinite(sample_threshold))
     throw InvalidInput("graph: sample_threshold must be a finite number >= 0");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
@@ -244,13 +245,22 @@ Sequence synthetic_sequence(const LandmarkModel& model, const SyntheticOptions& 
 }
 
 Database generate_synthetic_database(const LandmarkModel& model, const SyntheticOptions& options) {
+  return generate_synthetic_database(model, options, {0, synthetic_sequence_count(options)});
+}
+
+Database generate_synthetic_database(const LandmarkModel& model, const SyntheticOptions& options,
+                                     std::pair<std::size_t, std::size_t> block) {
   const std::size_t count = synthetic_sequence_count(options);
+  if (block.first > block.second || block.second > count)
+    throw InvalidInput("generate_synthetic_database: block [" + std::to_string(block.first) + ", " +
+                       std::to_string(block.second) + ") is not within the " +
+                       std::to_string(count) + " sequences");
   const std::vector<Identity> people = identities(options);
   Database db;
   db.dimensions = 2;
   db.landmark_count = 68;
   db.frame_rate = options.frame_rate;
-  for (std::size_t index = 0; index < count; ++index)
+  for (std::size_t index = block.first; index < block.second; ++index)
     db.sequences.push_back(make_sequence(model, options, people, index));
   return db;
 }

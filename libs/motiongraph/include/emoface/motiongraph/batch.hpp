@@ -116,4 +116,30 @@ void stage_animation_pictures(core::OutputBundle& bundle, const MotionGraph& gra
 /// The sequences as a database of the graph's reduced landmarks (or weight channels).
 Database animation_database(const MotionGraph& graph, std::vector<Sequence> sequences);
 
+// --- databases and tables of a run --------------------------------------------------------------
+
+/// Stages `db` for `path`: CSV for a ".csv" name, else JSON ("-": JSON on standard output).
+void stage_database(core::OutputBundle& bundle, const std::string& path, const Database& db);
+
+/// The sequences [block.first, block.second) of `db` (a shard's contiguous block,
+/// core::Shard::block), everything else kept. InvalidInput unless first <= second <= size.
+Database database_block(Database db, std::pair<std::size_t, std::size_t> block);
+
+/// The frames of a database's contact sheet (mgraph generate --sheet): the first frame of the first
+/// sequence (neutral), then the last (peak) frame of the first sequence of each label, labels in
+/// the order they first appear. Empty for a database without sequences.
+std::vector<Pose> label_peaks(const Database& db);
+
+/// Stages a contact sheet PNG of label_peaks(db) for a 68-landmark iBUG database: landmarks
+/// coloured by the regions of default_layout() (the others grey), iBUG contours drawn, cells
+/// `cell_width` by 7/8 of it. InvalidInput for a weight database, another landmark count or no
+/// sequences.
+void stage_peaks_sheet(core::OutputBundle& bundle, const std::string& path, const Database& db,
+                       int columns, int cell_width);
+
+/// The mgraph eval table (paper §7): a header, one line per row ("threshold compression % nodes
+/// length-diff mean +- std, pose-diff mean +- std", and the raw comparison when the rows have it),
+/// then the paper's CK+ figures for comparison. `unit` names the pose unit ("px", "weight").
+std::string evaluation_table(const std::vector<EvaluationRow>& rows, const std::string& unit);
+
 }  // namespace emoface::motiongraph

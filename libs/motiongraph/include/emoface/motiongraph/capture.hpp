@@ -109,6 +109,10 @@ Eigen::MatrixXd mediapipe_points_from_ibug68(const Pose& ibug,
 std::string mediapipe_ndjson(const std::vector<double>& times,
                              const std::vector<Eigen::MatrixXd>& points,
                              const std::vector<std::string>& labels = {});
+/// An iBUG-68 take (2 or 3 dimensions, pixels) as MediaPipe NDJSON: each frame through
+/// mediapipe_points_from_ibug68 (with `options`), a failed frame (success 0) without a face, the
+/// take's labels kept.
+std::string mediapipe_ndjson(const TrackedFrames& take, const MediaPipeReadOptions& options = {});
 
 // ---- Cleaning, stabilisation, trimming ----------------------------------------------------------
 
@@ -185,6 +189,12 @@ struct LabelTable {
 LabelTable parse_label_table(std::string_view text, const std::string& file);
 LabelTable read_label_table(const std::string& path);
 std::string label_table_csv(const LabelTable& table);
+/// The side file of takes that carry a label column (the example generator's): for each take, the
+/// segments the default options find (clean_frames, stabilise_head, find_segments, in that order,
+/// segment k counted over the take's parts) labelled with the take's label at the segment's peak
+/// frame; neutral peaks are left out. InvalidInput for a take without a label column or an unknown
+/// label.
+LabelTable segment_label_table(const std::vector<TrackedFrames>& takes);
 
 struct CaptureOptions {
   FrameFilterOptions filter;

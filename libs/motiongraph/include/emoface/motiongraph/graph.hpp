@@ -1,12 +1,12 @@
 #pragma once
 // Region motion graphs (paper §4, §4.1): per region a directed graph whose nodes hold landmark
 // displacements from the averaged neutral pose and whose edges hold eq. (1) similarity values.
+#include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "emoface/motiongraph/database.hpp"
 #include "emoface/motiongraph/preprocess.hpp"
@@ -64,6 +64,8 @@ struct MotionGraph {
   std::vector<int> landmark_ids() const;
   /// Region index of each synthesized landmark (same order as landmark_ids()).
   std::vector<int> landmark_regions() const;
+  /// The region called `name`; InvalidInput naming the regions the graph has otherwise.
+  const RegionGraph& region(std::string_view name) const;
 };
 
 struct GraphOptions {

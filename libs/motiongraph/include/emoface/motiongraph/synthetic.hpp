@@ -3,11 +3,11 @@
 // 30 fps) for tests, demos and the §7 evaluation. Expressions come from a LandmarkModel; the built-in
 // ParametricLandmarkModel is a documented parametric face. The face-driven model (default
 // face + fuzzyexpr + muscles, projected to 2D) plugs in through the same interface.
+#include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "emoface/motiongraph/database.hpp"
 
@@ -71,6 +71,11 @@ struct SyntheticOptions {
 /// Labelled neutral-to-peak sequences: intensity(frame i) = peak · φ+(i, n−1). Seeded; ids
 /// "S<subject>_<n>" like CK+.
 Database generate_synthetic_database(const LandmarkModel& model, const SyntheticOptions& options = {});
+/// Sequences [block.first, block.second) of generate_synthetic_database (a shard's contiguous
+/// block, core::Shard::block): the same sequences, bit for bit, as the whole database holds at
+/// those indices. InvalidInput unless first <= second <= synthetic_sequence_count(options).
+Database generate_synthetic_database(const LandmarkModel& model, const SyntheticOptions& options,
+                                     std::pair<std::size_t, std::size_t> block);
 
 /// Number of sequences generate_synthetic_database makes: sequences_per_label × labels.
 std::size_t synthetic_sequence_count(const SyntheticOptions& options);
