@@ -59,6 +59,35 @@ TEST(MindMapDot, MoodAtPicksTheLastSampleAtOrBeforeTheTime) {
   EXPECT_THROW(mood_at(r, 1, 0.0), InvalidInput);
 }
 
+// mindmap dot: the map as it stands at a time, with its mood then.
+TEST(MindMapDot, AtATime) {
+  const std::vector<MindMap> maps{test::make_alice(), test::make_bob()};
+  EXPECT_EQ(mind_map_dot_at(maps, "bob", nullptr, -1.0), mind_map_dot(test::make_bob()));
+  // No events: the starting mood (alice: happiness 0.2, sadness 0.4).
+  const std::string start = mind_map_dot_at(maps, "alice", nullptr, 0.0);
+  EXPECT_NE(start.find("label=\"happiness\\nmood 0.20\""), std::string::npos) << start;
+  EXPECT_NE(start.find("label=\"sadness\\nmood 0.40\""), std::string::npos) << start;
+  // With events: the simulated mood at the time (the simulation runs up to it).
+  Event gift;
+  gift.time = 1.0;
+  gift.target = "alice";
+  gift.stimulus = "gift";
+  const std::vector<Event> events{gift};
+  SimulationOptions sim;
+  sim.duration = 2.0;
+  MindMapDotOptions o;
+  o.mood = mood_at(simulate(maps, events, sim), 0, 2.0);
+  EXPECT_GT(o.mood[0], 0.2);  // the gift raised happiness
+  EXPECT_EQ(mind_map_dot_at(maps, "alice", &events, 2.0), mind_map_dot(test::make_alice(), o));
+  try {
+    mind_map_dot_at(maps, "carol", nullptr, 0.0);
+    ADD_FAILURE() << "drew carol";
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "no mind map of \"carol\"");
+  }
+  EXPECT_THROW(mind_map_dot_at(maps, "alice", &events, -1.0), InvalidInput);
+}
+
 TEST(MindMapDot, DotParsesIt) {
   if (!core::graphviz_available()) GTEST_SKIP() << "Graphviz (dot) not installed: scripts/setup.sh";
   const std::string path =

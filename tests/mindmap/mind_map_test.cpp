@@ -93,3 +93,9 @@ TEST(MindMap, LabelsAreCheckedAgainstAKnownSet) {
         << e.what();
   }
 }
+
+TEST(MindMap, SummaryCountsNodesActionsAndEdges) {
+  // alice: 2 emotions, 6 actions, 2 stimulus + 3 response + 1 chain edges (fixtures.hpp).
+  EXPECT_EQ(mm::summary(mm::test::make_alice()), "alice: 2 emotion nodes, 6 actions, 6 edges");
+  EXPECT_EQ(mm::summary(mm::test::make_bob()), "bob: 2 emotion nodes, 2 actions, 3 edges");
+}

@@ -106,6 +106,11 @@ Paint build_default_face_paint() {
 
 Face make_default_face() { return default_face_cached(); }
 
+Face load_face_or_builtin(const std::string& rig) {
+  if (rig.empty()) return make_default_face();
+  return rig == "generic" ? make_generic_face() : load_face(rig);
+}
+
 const Paint& default_face_paint() {
   static const Paint paint = build_default_face_paint();
   return paint;

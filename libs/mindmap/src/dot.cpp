@@ -105,4 +105,22 @@ std::vector<double> mood_at(const SimulationResult& result, std::size_t characte
           result.mood[character].begin() + static_cast<std::ptrdiff_t>((k + 1) * n)};
 }
 
+std::string mind_map_dot_at(const std::vector<MindMap>& maps, const std::string& character,
+                            const std::vector<Event>* events, double time,
+                            SimulationOptions simulation) {
+  std::size_t c = maps.size();
+  for (std::size_t i = 0; i < maps.size(); ++i)
+    if (maps[i].character == character) c = i;
+  if (c == maps.size()) throw InvalidInput("no mind map of \"" + character + "\"");
+  MindMapDotOptions o;
+  if (events) {
+    if (!(time >= 0.0)) throw InvalidInput("mind_map_dot_at: events need a time >= 0");
+    simulation.duration = time;
+    o.mood = mood_at(simulate(maps, *events, simulation), c, time);
+    return mind_map_dot(map_at(maps, *events, c, time, simulation), o);  // as it stands by then
+  }
+  if (time >= 0.0) o.mood = maps[c].traits.starting_mood;  // no stimuli: the starting mood
+  return mind_map_dot(maps[c], o);
+}
+
 }  // namespace emoface::mindmap

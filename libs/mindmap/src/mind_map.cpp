@@ -151,4 +151,11 @@ void validate_labels(const MindMap& map, const std::vector<std::string>& known) 
   }
 }
 
+std::string summary(const MindMap& map) {
+  const std::size_t edges =
+      map.stimulus_edges.size() + map.response_edges.size() + map.chain_edges.size();
+  return map.character + ": " + std::to_string(map.emotion_count()) + " emotion nodes, " +
+         std::to_string(map.actions.size()) + " actions, " + std::to_string(edges) + " edges";
+}
+
 }  // namespace emoface::mindmap

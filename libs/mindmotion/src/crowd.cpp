@@ -57,9 +57,7 @@ CrowdFaces::CrowdFaces(const std::vector<mindmap::MindMap>& maps, const std::vec
   std::map<std::string, CrowdRig> by_file;
   for (const auto& f : file_of) {
     if (by_file.count(f)) continue;
-    auto face = f.empty()          ? fm::make_default_face()
-                 : f == "generic" ? fm::make_generic_face()
-                                  : fm::load_face(f);
+    auto face = fm::load_face_or_builtin(f);
     solvers_.push_back(std::make_unique<muscles::FaceSolver>(std::move(face.mesh), std::move(face.rig)));
     fitters_.push_back(std::make_unique<bridge::LandmarkFitter>(*solvers_.back()));
     by_file[f] = {solvers_.back().get(), fitters_.back().get()};

@@ -146,6 +146,17 @@ CrowdOutputReport stage_crowd_outputs(core::OutputBundle& bundle, const std::str
   return rep;
 }
 
+std::string simulation_summary(const mindmap::SimulationResult& result, std::size_t characters,
+                               std::size_t files, const std::string& dir) {
+  std::ostringstream out;  // default stream formatting of doubles (6 significant digits)
+  for (const auto& s : result.copied)
+    out << s.character << " learnt \"" << s.stimulus << "\" from " << s.from << " at " << s.time
+        << " s\n";
+  out << result.actions.size() << " action(s) by " << characters << " character(s) over "
+      << result.duration << " s; wrote " << files << " file(s) to " << dir << "\n";
+  return out.str();
+}
+
 std::string crowd_report(const Crowd& crowd, const CrowdRenderer& renderer,
                          const CrowdTimings& timings, const CrowdOutputReport& rep) {
   std::ostringstream out;

@@ -21,6 +21,10 @@ Face make_generic_face();
 /// process from the compiled-in data/face files; returns a copy. mesh_file is "default_face.obj".
 Face make_default_face();
 
+/// The face a `--rig` option names: "" the default face, "generic" the generic face, anything else
+/// a rig file (load_face, with its errors).
+Face load_face_or_builtin(const std::string& rig);
+
 /// The generic face's surface paint (render()): skin, brows and hairline drawn analytically (the same
 /// curves as its Brow/Hair materials, edges anti-aliased over ≈ 0.6 mm) into a texture over the
 /// frontal (x, y) plane of the neutral face, 0.25 mm per texel; texture coordinates for the skin

@@ -26,4 +26,13 @@ std::string mind_map_dot(const MindMap& map, const MindMapDotOptions& options = 
 /// seconds (the first sample for earlier times). Throws InvalidInput for a bad index or no samples.
 std::vector<double> mood_at(const SimulationResult& result, std::size_t character, double time);
 
+/// The mind map of `character` (one of `maps`) as DOT (mindmap dot): with `events`, as it stands
+/// at `time` seconds after them (map_at: learnt stimuli, changed context) with its simulated mood
+/// then (`simulation`'s duration replaced by `time`); without events and `time` >= 0, with its
+/// starting mood; otherwise without a mood. InvalidInput naming the character if no map is its,
+/// or if events are given with a negative time.
+std::string mind_map_dot_at(const std::vector<MindMap>& maps, const std::string& character,
+                            const std::vector<Event>* events, double time,
+                            SimulationOptions simulation = {});
+
 }  // namespace emoface::mindmap

@@ -97,6 +97,10 @@ struct MindMap {
 /// decay duration > 0). Throws InvalidInput naming the offending node or field.
 void validate(const MindMap& map);
 
+/// One line for `mindmap check`: "<character>: <n> emotion nodes, <n> actions, <n> edges" (edges:
+/// stimulus, response and chain edges together), no newline.
+std::string summary(const MindMap& map);
+
 /// Checks that every performing action's label is one of `known` (e.g. the labels of a motion graph).
 /// Throws InvalidInput naming the action and the label.
 void validate_labels(const MindMap& map, const std::vector<std::string>& known);

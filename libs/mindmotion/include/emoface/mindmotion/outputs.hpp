@@ -46,6 +46,12 @@ std::string stage_simulation_outputs(core::OutputBundle& bundle, const std::stri
                                      const mindmap::SimulationResult& result,
                                      const SimulationOutputs& options);
 
+/// The end of `mindmap simulate`'s console report: one line per stimulus a character learnt
+/// ("<who> learnt \"<stimulus>\" from <whom> at <t> s"), then "<n> action(s) by <m> character(s)
+/// over <d> s; wrote <files> file(s) to <dir>".
+std::string simulation_summary(const mindmap::SimulationResult& result, std::size_t characters,
+                               std::size_t files, const std::string& dir);
+
 struct CrowdOutputs {
   mindmap::ChartOptions chart;
   bool charts = true;
