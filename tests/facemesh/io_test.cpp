@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <fstream>
-
-#include <Eigen/Geometry>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
@@ -38,8 +40,10 @@ TEST(RigIo, RoundTripsTheDefaultRig) {
   EXPECT_EQ(back.lips.control_points[17], rig.lips.control_points[17]);  // %.17g round trip is exact
 }
 
-// Applies `edit` to the default rig JSON and expects a FormatError whose pointer starts with `pointer`.
-void expect_bad(const std::function<void(Json&)>& edit, const std::string& pointer) {
+// Applies `edit` to the default rig JSON and expects a FormatError whose pointer starts with
+// `pointer` (and whose message holds `message`).
+void expect_bad(const std::function<void(Json&)>& edit, const std::string& pointer,
+                const std::string& message = "") {
   Json doc = Json::parse(format_rig(default_face().rig));
   edit(doc);
   try {
@@ -48,13 +52,16 @@ void expect_bad(const std::function<void(Json&)>& edit, const std::string& point
   } catch (const FormatError& e) {
     EXPECT_EQ(e.where().file, "bad.rig");
     EXPECT_EQ(e.where().json_pointer.rfind(pointer, 0), 0u) << e.what() << " expected " << pointer;
+    EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
   }
 }
 
 TEST(RigIo, RejectsBadContent) {
   expect_bad([](Json& d) { d["format"] = "emoface.mesh"; }, "/format");
   expect_bad([](Json& d) { d["version"] = "2.0"; }, "/version");
-  expect_bad([](Json& d) { d.erase("jaw"); }, "/jaw");
+  // A missing field is located at its object (core::JsonReader), the message names it.
+  expect_bad([](Json& d) { d.erase("jaw"); }, "", "bad.rig: missing field \"jaw\"");
+  expect_bad([](Json& d) { d["eyes"][1].erase("radius"); }, "/eyes/1", "missing field \"radius\"");
   expect_bad([](Json& d) { d["vertex_count"] = -3; }, "/vertex_count");
   expect_bad([](Json& d) { d["vertex_count"] = 1e12; }, "/vertex_count");
   expect_bad([](Json& d) { d["jaw"]["vertices"][0] = 99999999; }, "/jaw/vertices/0");
@@ -125,20 +132,62 @@ TEST(RigIo, RoundTripsFormat11Fields) {
   EXPECT_EQ(back.parts[0].vertices, (std::vector<int>{1, 2, 5}));
 }
 
-TEST(RigIo, ReadsVersion10WithDefaultsAndIgnoresUnknownFields) {
+TEST(RigIo, ReadsVersion10WithDefaults) {
   Json doc = Json::parse(format_rig(default_face().rig));
   EXPECT_FALSE(doc.contains("frame"));  // 1.1 fields at their defaults are not written
   EXPECT_FALSE(doc.contains("parts"));
   EXPECT_FALSE(doc["lips"].contains("bound"));
   doc["version"] = "1.0";
-  doc["a_later_minor_field"] = Json::object({{"x", 1}});  // minor versions only add fields
-  doc["lips"]["another_one"] = 3;
   const Rig rig = parse_rig(doc.dump(), "old.rig");
   EXPECT_TRUE(rig.frame.is_identity());
   EXPECT_TRUE(rig.lips.samples_in_mesh);
   EXPECT_TRUE(rig.lips.bound.empty());
   EXPECT_TRUE(rig.parts.empty());
   EXPECT_TRUE(same_rig(rig, default_face().rig));
+}
+
+// The unknown-field rule of docs/formats.md (core::JsonReader): a newer minor version may add
+// fields anywhere and they are ignored; the reader's own or an older minor version rejects an
+// unknown field (a typo) at its pointer.
+TEST(RigIo, UnknownFieldRule) {
+  const Json base = Json::parse(format_rig(rig_1_1()));
+  Json newer = base;
+  newer["version"] = "1.2";
+  newer["a_later_minor_field"] = Json::object({{"x", 1}});
+  newer["lips"]["another_one"] = 3;
+  newer["lips"]["bound"][1]["stiffness"] = 0.5;
+  newer["eyes"][0]["iris_radius"] = 0.006;
+  newer["muscles"][2]["note"] = "added in 1.2";
+  newer["frame"]["units"] = "dm";
+  newer["parts"][0]["colour"] = "white";
+  EXPECT_EQ(format_rig(parse_rig(newer.dump(), "new.rig")), format_rig(rig_1_1()));
+  const std::vector<std::pair<std::function<void(Json&)>, std::string>> typos{
+      {[](Json& d) { d["lipz"] = 1; }, "/lipz"},
+      {[](Json& d) { d["lips"]["samples_arround"] = 24; }, "/lips/samples_arround"},
+      {[](Json& d) { d["lips"]["bound"][1]["wieght"] = 1; }, "/lips/bound/1/wieght"},
+      {[](Json& d) { d["jaw"]["max_angel"] = 0.3; }, "/jaw/max_angel"},
+      {[](Json& d) { d["eyes"][1]["raduis"] = 0.01; }, "/eyes/1/raduis"},
+      {[](Json& d) { d["landmarks"]["ibug"] = Json::array(); }, "/landmarks/ibug"},
+      {[](Json& d) { d["muscles"][3]["omgea"] = 1; }, "/muscles/3/omgea"},
+      {[](Json& d) { d["frame"]["scael"] = 1; }, "/frame/scael"},
+      {[](Json& d) { d["parts"][1]["sied"] = 0; }, "/parts/1/sied"},
+      {[](Json& d) { d["a/b~c"] = 0; }, "/a~1b~0c"},  // RFC 6901 escapes
+  };
+  for (const char* version : {"1.1", "1.0"}) {
+    for (const auto& [edit, pointer] : typos) {
+      Json doc = base;
+      doc["version"] = version;
+      edit(doc);
+      try {
+        parse_rig(doc.dump(), "typo.rig");
+        ADD_FAILURE() << "accepted " << pointer << " in " << version;
+      } catch (const FormatError& e) {
+        EXPECT_EQ(e.where().file, "typo.rig");
+        EXPECT_EQ(e.where().json_pointer, pointer) << e.what();
+        EXPECT_NE(std::string(e.what()).find("unknown field"), std::string::npos) << e.what();
+      }
+    }
+  }
 }
 
 // As expect_bad, starting from rig_1_1().
@@ -158,7 +207,7 @@ TEST(RigIo, RejectsBadFormat11Content) {
   expect_bad_11([](Json& d) { d["frame"]["scale"] = 0.0; }, "/frame/scale");
   expect_bad_11([](Json& d) { d["frame"]["scale"] = -1.0; }, "/frame/scale");
   expect_bad_11([](Json& d) { d["frame"]["scale"] = "big"; }, "/frame/scale");
-  expect_bad_11([](Json& d) { d["frame"].erase("translation"); }, "/frame/translation");
+  expect_bad_11([](Json& d) { d["frame"].erase("translation"); }, "/frame");
   expect_bad_11([](Json& d) { d["frame"]["rotation"].erase(2); }, "/frame/rotation");
   expect_bad_11([](Json& d) { d["frame"]["rotation"][1] = Json::array({0, 2, 0}); }, "/frame/rotation");
   // a reflection is orthonormal but not a rotation
@@ -173,7 +222,7 @@ TEST(RigIo, RejectsBadFormat11Content) {
   expect_bad_11([](Json& d) { d["lips"]["bound"][0]["v"] = 1.5; }, "/lips/bound/0/v");
   expect_bad_11([](Json& d) { d["lips"]["bound"][0]["weight"] = 1.01; }, "/lips/bound/0/weight");
   expect_bad_11([](Json& d) { d["lips"]["bound"][0]["offset"][2] = "nan"; }, "/lips/bound/0/offset/2");
-  expect_bad_11([](Json& d) { d["lips"]["bound"][0].erase("weight"); }, "/lips/bound/0/weight");
+  expect_bad_11([](Json& d) { d["lips"]["bound"][0].erase("weight"); }, "/lips/bound/0");
   expect_bad_11([](Json& d) { d["lips"]["bound"] = 3; }, "/lips/bound");
   expect_bad_11([](Json& d) { d["lips"]["samples_in_mesh"] = "no"; }, "/lips/samples_in_mesh");
   // with the grid in the mesh, a bound vertex may not also be a grid sample
@@ -255,6 +304,17 @@ TEST_F(FaceIo, RejectsMissingOrMismatchedMesh) {
   EXPECT_THROW(load_face(path("face.rig")), FormatError);
   write_mesh(path("default_face.obj"), testing::tetrahedron());
   EXPECT_THROW(load_face(path("face.rig")), FormatError);  // vertex count mismatch
+}
+
+// What a --rig option names: the built-in faces by name, anything else a rig file.
+TEST_F(FaceIo, LoadFaceOrBuiltin) {
+  EXPECT_TRUE(same_rig(load_face_or_builtin("").rig, make_default_face().rig));
+  EXPECT_TRUE(same_rig(load_face_or_builtin("generic").rig, default_face().rig));
+  save_face(path("face.rig"), default_face());
+  const Face disk = load_face_or_builtin(path("face.rig"));
+  EXPECT_TRUE(same_rig(disk.rig, default_face().rig));
+  EXPECT_EQ(disk.mesh.vertex_count(), default_face().mesh.vertex_count());
+  EXPECT_THROW(load_face_or_builtin(path("none.rig")), IoError);
 }
 
 }  // namespace

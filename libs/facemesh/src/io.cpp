@@ -4,12 +4,12 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
 
 namespace emoface::facemesh {
@@ -17,101 +17,68 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-struct Reader {
-  const std::string& source;
+using core::JsonValue;
 
-  [[noreturn]] void fail(const std::string& pointer, const std::string& message) const {
-    SourceLocation where;
-    where.file = source;
-    where.json_pointer = pointer;
-    throw FormatError(where, message);
+// Typed getters over core::JsonValue (located errors "FILE: at /pointer: message").
+int integer(const JsonValue& v) {
+  return static_cast<int>(
+      v.integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+}
+Eigen::Vector3d vec3(const JsonValue& v) {
+  v.expect_array(3);
+  return {v[0].number(), v[1].number(), v[2].number()};
+}
+Eigen::Vector2d vec2(const JsonValue& v) {
+  v.expect_array(2);
+  return {v[0].number(), v[1].number()};
+}
+std::vector<int> ints(const JsonValue& v) {
+  std::vector<int> out;
+  for (const JsonValue& x : v.expect_array().items()) out.push_back(integer(x));
+  return out;
+}
+std::vector<double> doubles(const JsonValue& v) {
+  std::vector<double> out;
+  for (const JsonValue& x : v.expect_array().items()) out.push_back(x.number());
+  return out;
+}
+// An enum from its string, the parse error located at the value.
+template <class Enum, class FromString>
+Enum enum_value(const JsonValue& v, FromString from_string) {
+  try {
+    return from_string(v.string());
+  } catch (const InvalidInput& e) {
+    v.fail(e.what());
   }
-  const Json& field(const Json& obj, const char* key, const std::string& p) const {
-    if (!obj.is_object()) fail(p, "expected an object");
-    auto it = obj.find(key);
-    if (it == obj.end()) fail(p + "/" + key, "missing field");
-    return *it;
-  }
-  double number(const Json& j, const std::string& p) const {
-    if (!j.is_number()) fail(p, "expected a number");
-    const double x = j.get<double>();
-    if (!std::isfinite(x)) fail(p, "not a finite number");
-    return x;
-  }
-  int integer(const Json& j, const std::string& p) const {
-    if (!j.is_number_integer()) fail(p, "expected an integer");
-    if (j.is_number_unsigned()) {
-      const auto u = j.get<std::uint64_t>();
-      if (u > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) fail(p, "integer out of range");
-      return static_cast<int>(u);
+}
+// {"label": [vertex ids ...], ...}: every vertex exactly once.
+template <class Enum, class FromString>
+std::vector<Enum> labels(const JsonValue& v, std::size_t n, FromString from_string) {
+  if (!v.is_object()) v.fail("expected an object of label -> vertex ids");
+  std::vector<char> seen(n, 0);
+  std::vector<Enum> out(n);
+  for (const auto& [key, ids] : v.members()) {
+    Enum label;
+    try {
+      label = from_string(key);
+    } catch (const InvalidInput& e) {
+      ids.fail(e.what());
     }
-    const auto i = j.get<std::int64_t>();
-    if (i < std::numeric_limits<int>::min() || i > std::numeric_limits<int>::max()) fail(p, "integer out of range");
-    return static_cast<int>(i);
-  }
-  std::string string(const Json& j, const std::string& p) const {
-    if (!j.is_string()) fail(p, "expected a string");
-    return j.get<std::string>();
-  }
-  bool boolean(const Json& j, const std::string& p) const {
-    if (!j.is_boolean()) fail(p, "expected true or false");
-    return j.get<bool>();
-  }
-  const Json& array(const Json& j, const std::string& p) const {
-    if (!j.is_array()) fail(p, "expected an array");
-    return j;
-  }
-  Eigen::Vector3d vec3(const Json& j, const std::string& p) const {
-    if (!j.is_array() || j.size() != 3) fail(p, "expected an array of 3 numbers");
-    return {number(j[0], p + "/0"), number(j[1], p + "/1"), number(j[2], p + "/2")};
-  }
-  Eigen::Vector2d vec2(const Json& j, const std::string& p) const {
-    if (!j.is_array() || j.size() != 2) fail(p, "expected an array of 2 numbers");
-    return {number(j[0], p + "/0"), number(j[1], p + "/1")};
-  }
-  std::vector<int> ints(const Json& j, const std::string& p) const {
-    array(j, p);
-    std::vector<int> out;
-    out.reserve(j.size());
-    for (std::size_t i = 0; i < j.size(); ++i) out.push_back(integer(j[i], p + "/" + std::to_string(i)));
-    return out;
-  }
-  std::vector<double> doubles(const Json& j, const std::string& p) const {
-    array(j, p);
-    std::vector<double> out;
-    out.reserve(j.size());
-    for (std::size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], p + "/" + std::to_string(i)));
-    return out;
-  }
-  template <class Enum, class FromString>
-  std::vector<Enum> labels(const Json& j, const std::string& p, std::size_t n, FromString from_string) const {
-    // {"label": [vertex ids ...], ...}: every vertex exactly once.
-    if (!j.is_object()) fail(p, "expected an object of label -> vertex ids");
-    std::vector<int> seen(n, -1);
-    std::vector<Enum> out(n);
-    for (auto it = j.begin(); it != j.end(); ++it) {
-      const std::string q = p + "/" + core::json_pointer_token(it.key());
-      Enum label;
-      try {
-        label = from_string(it.key());
-      } catch (const InvalidInput& e) {
-        fail(q, e.what());
-      }
-      const auto ids = ints(it.value(), q);
-      for (std::size_t i = 0; i < ids.size(); ++i) {
-        const int v = ids[i];
-        if (v < 0 || static_cast<std::size_t>(v) >= n) fail(q + "/" + std::to_string(i), "vertex id " + std::to_string(v) + " out of range");
-        if (seen[static_cast<std::size_t>(v)] >= 0) fail(q + "/" + std::to_string(i), "vertex " + std::to_string(v) + " listed twice");
-        seen[static_cast<std::size_t>(v)] = 1;
-        out[static_cast<std::size_t>(v)] = label;
-      }
+    const std::vector<JsonValue> items = ids.expect_array().items();
+    for (const JsonValue& id : items) {
+      const int vertex = integer(id);
+      if (vertex < 0 || static_cast<std::size_t>(vertex) >= n)
+        id.fail("vertex id " + std::to_string(vertex) + " out of range");
+      if (seen[static_cast<std::size_t>(vertex)])
+        id.fail("vertex " + std::to_string(vertex) + " listed twice");
+      seen[static_cast<std::size_t>(vertex)] = 1;
+      out[static_cast<std::size_t>(vertex)] = label;
     }
-    for (std::size_t v = 0; v < n; ++v) {
-      if (seen[v] < 0) fail(p, "vertex " + std::to_string(v) + " has no label");
-    }
-    return out;
   }
-};
+  for (std::size_t i = 0; i < n; ++i)
+    if (!seen[i]) v.fail("vertex " + std::to_string(i) + " has no label");
+  return out;
+}
 
 Json vec(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
@@ -131,133 +98,120 @@ constexpr std::size_t kMaxVertices = 10'000'000;  // bounds the memory a hostile
 }  // namespace
 
 Rig parse_rig(std::string_view text, const std::string& source) {
-  const Json doc = core::parse_json(text, source);
-  core::check_envelope(doc, "rig", {kRigFormatMajor, kRigFormatMinor}, source);
-  const Reader r{source};
+  // The unknown-field rule of docs/formats.md: a newer 1.x may add fields; 1.0 and 1.1 may not.
+  const core::JsonReader reader(text, source, "rig", {kRigFormatMajor, kRigFormatMinor});
+  const JsonValue doc = reader.root();
+  doc.only_keys({"mesh", "vertex_count", "regions", "materials", "head_pivot", "lips", "jaw",
+                 "eyes", "landmarks", "muscles", "frame", "parts"});
   Rig rig;
-  rig.mesh_file = r.string(r.field(doc, "mesh", ""), "/mesh");
-  const int nv = r.integer(r.field(doc, "vertex_count", ""), "/vertex_count");
-  if (nv <= 0 || static_cast<std::size_t>(nv) > kMaxVertices) r.fail("/vertex_count", "must be in [1, 10000000]");
-  rig.vertex_count = static_cast<std::size_t>(nv);
-  rig.regions = r.labels<Region>(r.field(doc, "regions", ""), "/regions", rig.vertex_count, region_from_string);
-  rig.materials = r.labels<Material>(r.field(doc, "materials", ""), "/materials", rig.vertex_count, material_from_string);
-  rig.head_pivot = r.vec3(r.field(doc, "head_pivot", ""), "/head_pivot");
+  rig.mesh_file = doc.at("mesh").string();
+  rig.vertex_count = static_cast<std::size_t>(
+      doc.at("vertex_count").integer(1, static_cast<std::int64_t>(kMaxVertices)));
+  rig.regions = labels<Region>(doc.at("regions"), rig.vertex_count, region_from_string);
+  rig.materials = labels<Material>(doc.at("materials"), rig.vertex_count, material_from_string);
+  rig.head_pivot = vec3(doc.at("head_pivot"));
 
-  const Json& lips = r.field(doc, "lips", "");
-  const Json& cps = r.array(r.field(lips, "control_points", "/lips"), "/lips/control_points");
-  for (std::size_t i = 0; i < cps.size(); ++i) rig.lips.control_points.push_back(r.vec3(cps[i], "/lips/control_points/" + std::to_string(i)));
-  rig.lips.samples_around = r.integer(r.field(lips, "samples_around", "/lips"), "/lips/samples_around");
-  rig.lips.samples_across = r.integer(r.field(lips, "samples_across", "/lips"), "/lips/samples_across");
-  rig.lips.first_vertex = r.integer(r.field(lips, "first_vertex", "/lips"), "/lips/first_vertex");
-  rig.lips.centre = r.vec3(r.field(lips, "centre", "/lips"), "/lips/centre");
+  const JsonValue lips = doc.at("lips");
+  lips.only_keys({"control_points", "samples_around", "samples_across", "first_vertex", "centre",
+                  "samples_in_mesh", "bound"});
+  for (const JsonValue& c : lips.at("control_points").expect_array().items())
+    rig.lips.control_points.push_back(vec3(c));
+  rig.lips.samples_around = integer(lips.at("samples_around"));
+  rig.lips.samples_across = integer(lips.at("samples_across"));
+  rig.lips.first_vertex = integer(lips.at("first_vertex"));
+  rig.lips.centre = vec3(lips.at("centre"));
   // format 1.1 (absent in 1.0: the defaults)
-  if (lips.contains("samples_in_mesh")) rig.lips.samples_in_mesh = r.boolean(lips["samples_in_mesh"], "/lips/samples_in_mesh");
-  if (lips.contains("bound")) {
-    const Json& bound = r.array(lips["bound"], "/lips/bound");
-    if (bound.size() > kMaxVertices) r.fail("/lips/bound", "too many bound vertices");
-    rig.lips.bound.reserve(bound.size());
-    for (std::size_t i = 0; i < bound.size(); ++i) {
-      const std::string p = "/lips/bound/" + std::to_string(i);
-      const Json& j = bound[i];
+  rig.lips.samples_in_mesh = lips.boolean_or("samples_in_mesh", true);
+  if (const auto bound = lips.find("bound")) {
+    if (bound->expect_array().size() > kMaxVertices) bound->fail("too many bound vertices");
+    for (const JsonValue& j : bound->items()) {
+      j.only_keys({"vertex", "u", "v", "offset", "weight"});
       LipBinding b;
-      b.vertex = r.integer(r.field(j, "vertex", p), p + "/vertex");
-      b.u = r.number(r.field(j, "u", p), p + "/u");
-      b.v = r.number(r.field(j, "v", p), p + "/v");
-      b.offset = r.vec3(r.field(j, "offset", p), p + "/offset");
-      b.weight = r.number(r.field(j, "weight", p), p + "/weight");
+      b.vertex = integer(j.at("vertex"));
+      b.u = j.at("u").number();
+      b.v = j.at("v").number();
+      b.offset = vec3(j.at("offset"));
+      b.weight = j.at("weight").number();
       rig.lips.bound.push_back(b);
     }
   }
 
-  const Json& jaw = r.field(doc, "jaw", "");
-  rig.jaw.pivot = r.vec3(r.field(jaw, "pivot", "/jaw"), "/jaw/pivot");
-  rig.jaw.max_angle = r.number(r.field(jaw, "max_angle", "/jaw"), "/jaw/max_angle");
-  rig.jaw.vertices = r.ints(r.field(jaw, "vertices", "/jaw"), "/jaw/vertices");
-  rig.jaw.weights = r.doubles(r.field(jaw, "weights", "/jaw"), "/jaw/weights");
+  const JsonValue jaw = doc.at("jaw");
+  jaw.only_keys({"pivot", "max_angle", "vertices", "weights"});
+  rig.jaw.pivot = vec3(jaw.at("pivot"));
+  rig.jaw.max_angle = jaw.at("max_angle").number();
+  rig.jaw.vertices = ints(jaw.at("vertices"));
+  rig.jaw.weights = doubles(jaw.at("weights"));
 
-  const Json& eyes = r.array(r.field(doc, "eyes", ""), "/eyes");
-  if (eyes.size() != 2) r.fail("/eyes", "expected two eyes (right, left)");
+  const JsonValue eyes = doc.at("eyes").expect_array();
+  if (eyes.size() != 2) eyes.fail("expected two eyes (right, left)");
   for (std::size_t e = 0; e < 2; ++e) {
-    const std::string p = "/eyes/" + std::to_string(e);
-    const Json& j = eyes[e];
+    const JsonValue j = eyes[e];
+    j.only_keys({"centre", "radius", "eyeball_vertices", "upper_lid", "upper_lid_weights",
+                 "lower_lid", "lower_lid_weights", "close_angle", "open_angle", "yaw_limit",
+                 "pitch_limit"});
     Eye& eye = rig.eyes[e];
-    eye.centre = r.vec3(r.field(j, "centre", p), p + "/centre");
-    eye.radius = r.number(r.field(j, "radius", p), p + "/radius");
-    eye.eyeball_vertices = r.ints(r.field(j, "eyeball_vertices", p), p + "/eyeball_vertices");
-    eye.upper_lid = r.ints(r.field(j, "upper_lid", p), p + "/upper_lid");
-    eye.upper_lid_weights = r.doubles(r.field(j, "upper_lid_weights", p), p + "/upper_lid_weights");
-    eye.lower_lid = r.ints(r.field(j, "lower_lid", p), p + "/lower_lid");
-    eye.lower_lid_weights = r.doubles(r.field(j, "lower_lid_weights", p), p + "/lower_lid_weights");
-    eye.close_angle = r.number(r.field(j, "close_angle", p), p + "/close_angle");
-    eye.open_angle = r.number(r.field(j, "open_angle", p), p + "/open_angle");
-    eye.yaw_limit = r.number(r.field(j, "yaw_limit", p), p + "/yaw_limit");
-    eye.pitch_limit = r.number(r.field(j, "pitch_limit", p), p + "/pitch_limit");
+    eye.centre = vec3(j.at("centre"));
+    eye.radius = j.at("radius").number();
+    eye.eyeball_vertices = ints(j.at("eyeball_vertices"));
+    eye.upper_lid = ints(j.at("upper_lid"));
+    eye.upper_lid_weights = doubles(j.at("upper_lid_weights"));
+    eye.lower_lid = ints(j.at("lower_lid"));
+    eye.lower_lid_weights = doubles(j.at("lower_lid_weights"));
+    eye.close_angle = j.at("close_angle").number();
+    eye.open_angle = j.at("open_angle").number();
+    eye.yaw_limit = j.at("yaw_limit").number();
+    eye.pitch_limit = j.at("pitch_limit").number();
   }
-  const Json& landmarks = r.field(doc, "landmarks", "");
-  rig.ibug68 = r.ints(r.field(landmarks, "ibug68", "/landmarks"), "/landmarks/ibug68");
-  const Json& named = r.field(landmarks, "retarget", "/landmarks");
-  if (!named.is_object()) r.fail("/landmarks/retarget", "expected an object name -> vertex id");
-  for (auto it = named.begin(); it != named.end(); ++it) {
-    rig.retarget_landmarks.push_back({it.key(), r.integer(it.value(), "/landmarks/retarget/" + core::json_pointer_token(it.key()))});
-  }
-  const Json& muscles = r.array(r.field(doc, "muscles", ""), "/muscles");
-  for (std::size_t i = 0; i < muscles.size(); ++i) {
-    const std::string p = "/muscles/" + std::to_string(i);
-    const Json& j = muscles[i];
+  const JsonValue landmarks = doc.at("landmarks");
+  landmarks.only_keys({"ibug68", "retarget"});
+  rig.ibug68 = ints(landmarks.at("ibug68"));
+  const JsonValue named = landmarks.at("retarget");
+  if (!named.is_object()) named.fail("expected an object name -> vertex id");
+  for (const auto& [name, vertex] : named.members())
+    rig.retarget_landmarks.push_back({name, integer(vertex)});
+
+  for (const JsonValue& j : doc.at("muscles").expect_array().items()) {
+    j.only_keys({"name", "parameter", "kind", "head", "tail", "omega", "rs", "rf", "semi_axes", "k",
+                 "regions", "moves_lips", "wrinkle_count", "wrinkle_height"});
     MuscleSpec m;
-    m.name = r.string(r.field(j, "name", p), p + "/name");
-    m.parameter = r.string(r.field(j, "parameter", p), p + "/parameter");
-    try {
-      m.kind = muscle_kind_from_string(r.string(r.field(j, "kind", p), p + "/kind"));
-    } catch (const InvalidInput& e) {
-      r.fail(p + "/kind", e.what());
-    }
-    m.head = r.vec3(r.field(j, "head", p), p + "/head");
+    m.name = j.at("name").string();
+    m.parameter = j.at("parameter").string();
+    m.kind = enum_value<MuscleKind>(j.at("kind"), muscle_kind_from_string);
+    m.head = vec3(j.at("head"));
     if (m.kind == MuscleKind::Vector) {
-      m.tail = r.vec3(r.field(j, "tail", p), p + "/tail");
-      m.omega = r.number(r.field(j, "omega", p), p + "/omega");
-      m.rs = r.number(r.field(j, "rs", p), p + "/rs");
-      m.rf = r.number(r.field(j, "rf", p), p + "/rf");
+      m.tail = vec3(j.at("tail"));
+      m.omega = j.at("omega").number();
+      m.rs = j.at("rs").number();
+      m.rf = j.at("rf").number();
     } else {
-      m.semi_axes = r.vec2(r.field(j, "semi_axes", p), p + "/semi_axes");
+      m.semi_axes = vec2(j.at("semi_axes"));
     }
-    m.k = r.number(r.field(j, "k", p), p + "/k");
-    const Json& regs = r.array(r.field(j, "regions", p), p + "/regions");
-    for (std::size_t k = 0; k < regs.size(); ++k) {
-      const std::string q = p + "/regions/" + std::to_string(k);
-      try {
-        m.regions.push_back(region_from_string(r.string(regs[k], q)));
-      } catch (const InvalidInput& e) {
-        r.fail(q, e.what());
-      }
-    }
-    m.moves_lips = r.boolean(r.field(j, "moves_lips", p), p + "/moves_lips");
-    m.wrinkle_count = r.integer(r.field(j, "wrinkle_count", p), p + "/wrinkle_count");
-    m.wrinkle_height = r.number(r.field(j, "wrinkle_height", p), p + "/wrinkle_height");
+    m.k = j.at("k").number();
+    for (const JsonValue& r : j.at("regions").expect_array().items())
+      m.regions.push_back(enum_value<Region>(r, region_from_string));
+    m.moves_lips = j.at("moves_lips").boolean();
+    m.wrinkle_count = integer(j.at("wrinkle_count"));
+    m.wrinkle_height = j.at("wrinkle_height").number();
     rig.muscles.push_back(std::move(m));
   }
-  if (doc.contains("frame")) {
-    const Json& f = doc["frame"];
-    rig.frame.scale = r.number(r.field(f, "scale", "/frame"), "/frame/scale");
-    const Json& rot = r.field(f, "rotation", "/frame");
-    if (!rot.is_array() || rot.size() != 3) r.fail("/frame/rotation", "expected 3 rows of 3 numbers");
-    for (int i = 0; i < 3; ++i) rig.frame.rotation.row(i) = r.vec3(rot[static_cast<std::size_t>(i)], "/frame/rotation/" + std::to_string(i)).transpose();
-    rig.frame.translation = r.vec3(r.field(f, "translation", "/frame"), "/frame/translation");
+  if (const auto f = doc.find("frame")) {
+    f->only_keys({"scale", "rotation", "translation"});
+    rig.frame.scale = f->at("scale").number();
+    const JsonValue rot = f->at("rotation");
+    if (!rot.is_array() || rot.size() != 3) rot.fail("expected 3 rows of 3 numbers");
+    for (std::size_t i = 0; i < 3; ++i)
+      rig.frame.rotation.row(static_cast<Eigen::Index>(i)) = vec3(rot[i]).transpose();
+    rig.frame.translation = vec3(f->at("translation"));
   }
-  if (doc.contains("parts")) {
-    const Json& parts = r.array(doc["parts"], "/parts");
-    for (std::size_t i = 0; i < parts.size(); ++i) {
-      const std::string p = "/parts/" + std::to_string(i);
-      const Json& j = parts[i];
+  if (const auto parts = doc.find("parts")) {
+    for (const JsonValue& j : parts->expect_array().items()) {
+      j.only_keys({"name", "kind", "side", "vertices"});
       Part part;
-      part.name = r.string(r.field(j, "name", p), p + "/name");
-      try {
-        part.kind = part_kind_from_string(r.string(r.field(j, "kind", p), p + "/kind"));
-      } catch (const InvalidInput& e) {
-        r.fail(p + "/kind", e.what());
-      }
-      part.side = r.integer(r.field(j, "side", p), p + "/side");
-      part.vertices = r.ints(r.field(j, "vertices", p), p + "/vertices");
+      part.name = j.at("name").string();
+      part.kind = enum_value<PartKind>(j.at("kind"), part_kind_from_string);
+      part.side = integer(j.at("side"));
+      part.vertices = ints(j.at("vertices"));
       rig.parts.push_back(std::move(part));
     }
   }

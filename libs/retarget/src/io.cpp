@@ -1,10 +1,10 @@
 #include "emoface/retarget/io.hpp"
 
 #include <cmath>
-
 #include <nlohmann/json.hpp>
 
 #include "emoface/core/io.hpp"
+#include "emoface/core/json_reader.hpp"
 
 namespace emoface::retarget {
 namespace {
@@ -167,45 +167,31 @@ void write_transfer_report(const std::string& path, const TransferResult& result
 }
 
 UserLandmarks parse_landmarks(std::string_view text, const std::string& source) {
-  const auto doc = core::parse_json(text, source);
-  core::check_envelope(doc, "landmarks", {kLandmarksFormatMajor, kLandmarksFormatMinor}, source);
-  auto fail = [&](const std::string& pointer, const std::string& message) -> FormatError {
-    return FormatError({source, pointer, 0, 0}, message);
-  };
-  for (auto it = doc.begin(); it != doc.end(); ++it)
-    if (it.key() != "format" && it.key() != "version" && it.key() != "generator" && it.key() != "scheme" && it.key() != "points")
-      throw fail("/" + core::json_pointer_token(it.key()), "unknown field");
-  if (!doc.contains("scheme") || !doc["scheme"].is_string() || doc["scheme"].get<std::string>() != "ibug68")
-    throw fail("/scheme", "must be \"ibug68\"");
-  if (!doc.contains("points") || !doc["points"].is_array()) throw fail("/points", "must be an array of 68 entries");
-  const auto& pts = doc["points"];
+  // The unknown-field rule of docs/formats.md: a newer 1.x may add fields; 1.0 may not.
+  const core::JsonReader reader(text, source, "landmarks",
+                                {kLandmarksFormatMajor, kLandmarksFormatMinor});
+  const core::JsonValue doc = reader.root();
+  doc.only_keys({"scheme", "points"});
+  const core::JsonValue scheme = doc.at("scheme");
+  if (!scheme.is_string() || scheme.string() != "ibug68") scheme.fail("must be \"ibug68\"");
+  const core::JsonValue pts = doc.at("points").expect_array();
   if (pts.size() != static_cast<std::size_t>(UserLandmarks::kCount))
-    throw fail("/points", "expected 68 iBUG points, got " + std::to_string(pts.size()));
+    pts.fail("expected 68 iBUG points, got " + std::to_string(pts.size()));
   UserLandmarks out;
   out.points.resize(pts.size());
   for (std::size_t k = 0; k < pts.size(); ++k) {
-    const auto& e = pts[k];
-    const std::string ptr = "/points/" + std::to_string(k);
+    const core::JsonValue e = pts[k];
     auto& p = out.points[k];
     if (e.is_null()) continue;
-    if (e.is_number_integer() || e.is_number_unsigned()) {
-      const auto id = e.get<long long>();
-      if (id < 0 || id > 2147483647LL) throw fail(ptr, "vertex id " + std::to_string(id) + " out of range");
-      p.kind = UserLandmarkKind::Vertex;
-      p.vertex = static_cast<int>(id);
-      continue;
-    }
     if (e.is_array()) {
-      if (e.size() != 3) throw fail(ptr, "a point needs 3 coordinates");
-      for (int c = 0; c < 3; ++c) {
-        if (!e[static_cast<std::size_t>(c)].is_number()) throw fail(ptr + "/" + std::to_string(c), "not a number");
-        p.point(c) = e[static_cast<std::size_t>(c)].get<double>();
-        if (!std::isfinite(p.point(c))) throw fail(ptr + "/" + std::to_string(c), "not finite");
-      }
+      p.point = {e.expect_array(3)[0].number(), e[1].number(), e[2].number()};
       p.kind = UserLandmarkKind::Point;
-      continue;
+    } else if (e.is_number()) {
+      p.vertex = static_cast<int>(e.integer(0, 2147483647));
+      p.kind = UserLandmarkKind::Vertex;
+    } else {
+      e.fail("expected a vertex id, [x, y, z] or null");
     }
-    throw fail(ptr, "expected a vertex id, [x, y, z] or null");
   }
   return out;
 }
