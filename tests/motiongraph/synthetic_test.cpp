@@ -103,13 +103,18 @@ void expect_same_sequence(const Sequence& s, const Sequence& w) {
   ASSERT_EQ(s.frames.size(), w.frames.size());
   for (std::size_t f = 0; f < s.frames.size(); ++f) EXPECT_TRUE(s.frames[f] == w.frames[f]) << s.id;
 }
-}  // namespace
-
-TEST(Synthetic, SingleSequencesMatchTheDatabase) {
+// 7 labels × 2 sequences of 3 subjects, at most 12 frames.
+SyntheticOptions small_options() {
   SyntheticOptions o;
   o.sequences_per_label = 2;
   o.subjects = 3;
   o.max_frames = 12;
+  return o;
+}
+}  // namespace
+
+TEST(Synthetic, SingleSequencesMatchTheDatabase) {
+  const SyntheticOptions o = small_options();
   const ParametricLandmarkModel model;
   const Database db = generate_synthetic_database(model, o);
   ASSERT_EQ(synthetic_sequence_count(o), db.sequences.size());
@@ -121,10 +126,7 @@ TEST(Synthetic, SingleSequencesMatchTheDatabase) {
 
 // A shard's block is what the whole database holds at those indices, bit for bit.
 TEST(Synthetic, BlocksMatchTheDatabase) {
-  SyntheticOptions o;
-  o.sequences_per_label = 2;
-  o.subjects = 3;
-  o.max_frames = 12;
+  const SyntheticOptions o = small_options();
   const ParametricLandmarkModel model;
   const Database whole = generate_synthetic_database(model, o);
   const std::size_t n = whole.sequences.size();
