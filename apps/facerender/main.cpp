@@ -14,6 +14,7 @@
 #include "emoface/facemesh/render.hpp"
 
 namespace fm = emoface::facemesh;
+namespace core = emoface::core;
 
 int main(int argc, char** argv) {
   CLI::App app{"Render face meshes to PNG with a software rasteriser (Phong shading).\n"
@@ -112,7 +113,7 @@ int main(int argc, char** argv) {
         }
       }
     }
-    std::vector<fm::Image> images;
+    std::vector<core::Image> images;
     for (const auto& in : inputs) images.push_back(fm::render(in.mesh, in.colors, {}, options, in.paint));
     auto numbered = [](const std::string& base, std::size_t i) {
       const std::filesystem::path p(base);
@@ -122,11 +123,12 @@ int main(int argc, char** argv) {
     };
     if (!out.empty()) {
       if (sheet > 0) {
-        fm::write_png(out, fm::contact_sheet(images, sheet));
+        core::write_png(out, core::tile(images, sheet));
       } else if (images.size() == 1) {
-        fm::write_png(out, images[0]);
+        core::write_png(out, images[0]);
       } else {
-        for (std::size_t i = 0; i < images.size(); ++i) fm::write_png(numbered(out, i), images[i]);
+        for (std::size_t i = 0; i < images.size(); ++i)
+          core::write_png(numbered(out, i), images[i]);
       }
     }
     if (!video.empty()) {

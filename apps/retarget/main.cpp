@@ -12,13 +12,14 @@
 #include "emoface/retarget/outputs.hpp"
 
 namespace fm = emoface::facemesh;
+namespace core = emoface::core;
 namespace fx = emoface::fuzzyexpr;
 namespace rt = emoface::retarget;
 
 namespace {
 
 // The six emotions (thesis ch. 6 fuzzy rules, ESV 0.9) as named parameters for the sheet.
-fm::Image emotion_sheet(const fm::Face& face, int tile) {
+core::Image emotion_sheet(const fm::Face& face, int tile) {
   const fx::Engine engine;
   std::vector<std::map<std::string, double>> expressions;
   for (std::size_t e = 0; e < fx::kEmotionCount; ++e) {
@@ -44,7 +45,7 @@ int run_transfer(const fm::Face& source, const std::string& target_path, const s
       std::fprintf(stderr, "retarget: generation %d  best E %.6g\n", p.generation, p.best_error);
   };
   rt::TransferResult r = rt::transfer_rig(source, doc.triangles(), doc.groups(), o, landmarks, progress);
-  const fm::Image sheet = no_png ? fm::Image{} : emotion_sheet(r.face, tile);
+  const core::Image sheet = no_png ? core::Image{} : emotion_sheet(r.face, tile);
   rt::write_transfer_outputs(doc, r, out_dir, no_png ? nullptr : &sheet);
   if (!quiet) std::fputs(rt::transfer_summary(r, out_dir).c_str(), stderr);
   return 0;
@@ -139,7 +140,7 @@ int main(int argc, char** argv) {
     };
     const rt::RetargetResult r = rt::retarget_face(source, target, o, progress);
     if (!quiet) std::fputs(rt::fit_summary(r).c_str(), stderr);
-    const fm::Image emotions = no_png ? fm::Image{} : emotion_sheet(r.face, tile);
+    const core::Image emotions = no_png ? core::Image{} : emotion_sheet(r.face, tile);
     rt::write_deform_source_outputs(r, out_dir, !no_png, tile, &emotions);
     std::fputs(rt::fit_result_line(r, out_dir).c_str(), stderr);
     return 0;

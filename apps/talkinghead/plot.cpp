@@ -5,36 +5,16 @@
 #include <cstdint>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/image.hpp"
 #include "emoface/core/io.hpp"
-#include "emoface/core/png.hpp"
 
 namespace emoface::talkinghead {
 
 const char* const kPlotColours[8] = {"blue", "red", "green", "orange", "purple", "brown", "black", "cyan"};
 
 namespace {
-constexpr std::uint8_t kRgb[8][3] = {{31, 90, 200}, {215, 40, 40}, {30, 150, 60}, {240, 140, 0},
-                                     {130, 60, 170}, {140, 85, 40}, {0, 0, 0}, {0, 170, 190}};
-
-struct Image {
-  int w, h;
-  std::vector<std::uint8_t> px;
-  void set(int x, int y, const std::uint8_t* c) {
-    if (x < 0 || y < 0 || x >= w || y >= h) return;
-    std::copy(c, c + 3, px.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * w + x));
-  }
-  void line(double x0, double y0, double x1, double y1, const std::uint8_t* c, int thick) {
-    const int n = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
-    for (int i = 0; i <= n; ++i) {
-      const double t = static_cast<double>(i) / n;
-      const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0)));
-      const int y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
-      for (int dx = -thick / 2; dx <= thick / 2; ++dx)
-        for (int dy = -thick / 2; dy <= thick / 2; ++dy) set(x + dx, y + dy, c);
-    }
-  }
-};
-
+constexpr core::Rgb kRgb[8] = {{31, 90, 200},  {215, 40, 40}, {30, 150, 60}, {240, 140, 0},
+                               {130, 60, 170}, {140, 85, 40}, {0, 0, 0},     {0, 170, 190}};
 }  // namespace
 
 void plot_png(const std::string& path, const std::vector<std::vector<double>>& series, double fps, int width,
@@ -50,23 +30,25 @@ void plot_png(const std::string& path, const std::vector<std::vector<double>>& s
       hi = std::max(hi, v);
     }
   }
-  Image img{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 3, 255)};
+  core::Image img(width, height);
   const int m = 20;  // margin, pixels
   const double duration = frames > 1 ? static_cast<double>(frames - 1) / fps : 1.0;
   const auto X = [&](double t) { return m + (width - 2 * m) * t / duration; };
   const auto Y = [&](double v) { return height - m - (height - 2 * m) * (v - lo) / (hi - lo); };
-  const std::uint8_t grid[3] = {225, 225, 225}, axis[3] = {120, 120, 120};
-  for (double v = std::ceil(lo * 10) / 10; v <= hi + 1e-9; v += 0.1) img.line(X(0), Y(v), X(duration), Y(v), grid, 1);
+  const core::Rgb grid{225, 225, 225}, axis{120, 120, 120};
+  for (double v = std::ceil(lo * 10) / 10; v <= hi + 1e-9; v += 0.1)
+    core::draw_line(img, X(0), Y(v), X(duration), Y(v), grid, 1);
   const double step = duration > 60 ? 10.0 : 1.0;
-  for (double t = 0; t <= duration + 1e-9; t += step) img.line(X(t), Y(lo), X(t), Y(hi), grid, 1);
-  img.line(X(0), Y(0), X(duration), Y(0), axis, 1);
-  img.line(X(0), Y(lo), X(0), Y(hi), axis, 1);
+  for (double t = 0; t <= duration + 1e-9; t += step)
+    core::draw_line(img, X(t), Y(lo), X(t), Y(hi), grid, 1);
+  core::draw_line(img, X(0), Y(0), X(duration), Y(0), axis, 1);
+  core::draw_line(img, X(0), Y(lo), X(0), Y(hi), axis, 1);
   for (std::size_t k = 0; k < series.size(); ++k) {
     const auto& s = series[k];
     for (std::size_t f = 1; f < s.size(); ++f)
-      img.line(X((f - 1) / fps), Y(s[f - 1]), X(f / fps), Y(s[f]), kRgb[k % 8], 3);
+      core::draw_line(img, X((f - 1) / fps), Y(s[f - 1]), X(f / fps), Y(s[f]), kRgb[k % 8], 3);
   }
-  emoface::core::write_png(path, img.w, img.h, img.px);
+  core::write_png(path, img);
 }
 
 }  // namespace emoface::talkinghead

@@ -8,6 +8,7 @@
 namespace {
 
 namespace fm = emoface::facemesh;
+namespace core = emoface::core;
 
 const fm::Face& face() {
   static const fm::Face f = fm::make_generic_face();
@@ -58,8 +59,8 @@ void BM_EncodePng(benchmark::State& state) {
   fm::RenderOptions ro;
   ro.width = 480;
   ro.height = 560;
-  const fm::Image image = fm::render(f.mesh, fm::material_colors(f.rig, f.mesh), {}, ro);
-  for (auto _ : state) benchmark::DoNotOptimize(fm::encode_png(image).data());
+  const core::Image image = fm::render(f.mesh, fm::material_colors(f.rig, f.mesh), {}, ro);
+  for (auto _ : state) benchmark::DoNotOptimize(core::encode_png(image).data());
 }
 BENCHMARK(BM_EncodePng)->Unit(benchmark::kMillisecond);
 

@@ -17,7 +17,7 @@ const Face& face() {
 }
 
 // Fraction of pixels that differ from the background.
-double covered(const Image& image, const RenderOptions& o) {
+double covered(const core::Image& image, const RenderOptions& o) {
   long n = 0;
   for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
     bool bg = true;

@@ -13,7 +13,7 @@
 namespace emoface::facemesh {
 namespace {
 
-std::size_t non_background(const Image& im, const RenderOptions& o) {
+std::size_t non_background(const core::Image& im, const RenderOptions& o) {
   std::size_t n = 0;
   for (std::size_t i = 0; i < im.rgb.size(); i += 3) {
     if (std::abs(im.rgb[i] - o.background.x() * 255) > 2 || std::abs(im.rgb[i + 1] - o.background.y() * 255) > 2) ++n;
@@ -28,7 +28,7 @@ TEST(Render, DrawsTheDefaultFaceInBothViews) {
   o.height = 112;
   for (View v : {View::Front, View::ThreeQuarter}) {
     o.view = v;
-    const Image im = render(f.mesh, material_colors(f.rig), {}, o);
+    const core::Image im = render(f.mesh, material_colors(f.rig), {}, o);
     ASSERT_EQ(im.rgb.size(), 96u * 112u * 3u);
     const std::size_t covered = non_background(im, o);
     EXPECT_GT(covered, 96u * 112u / 4) << to_string(v);
@@ -50,10 +50,10 @@ TEST(Render, ShadingFollowsTheLight) {
   RenderOptions o;
   o.width = o.height = 32;
   o.target = Eigen::Vector3d::Zero();
-  const Image flat = render(m, {}, {}, o);
+  const core::Image flat = render(m, {}, {}, o);
   Mesh tilted = m;
   for (long v = 0; v < 4; ++v) tilted.vertices(v, 2) = -tilted.vertices(v, 0);  // normal turns to +x
-  const Image dark = render(tilted, {}, {}, o);
+  const core::Image dark = render(tilted, {}, {}, o);
   const std::size_t c = (16u * 32u + 16u) * 3u;
   EXPECT_GT(flat.rgb[c], dark.rgb[c] + 10);
 }
@@ -73,7 +73,7 @@ TEST(Render, Validation) {
 
 // A black square in the plane z = 0 whose right edge projects to screen column `edge_x` (pixels)
 // with the default front camera on a white background.
-Image square_with_edge_at(double edge_x, int w, int h) {
+core::Image square_with_edge_at(double edge_x, int w, int h) {
   RenderOptions o;
   o.width = w;
   o.height = h;
@@ -101,7 +101,7 @@ TEST(Render, RotatedGridAntiAliasing) {
     int value;
   } cases[] = {{0.3, 191}, {0.55, 128}, {0.8, 64}};
   for (const auto& c : cases) {
-    const Image im = square_with_edge_at(40.0 + c.frac, w, h);
+    const core::Image im = square_with_edge_at(40.0 + c.frac, w, h);
     const std::size_t row = static_cast<std::size_t>(h / 2) * w;
     EXPECT_NEAR(im.rgb[(row + 40) * 3], c.value, 1) << c.frac;
     EXPECT_EQ(im.rgb[(row + 39) * 3], 0);    // inside: black
@@ -135,14 +135,14 @@ TEST(Render, PaintIsSampledAtTheInterpolatedCoordinates) {
   o.width = o.height = 64;
   o.target = Eigen::Vector3d::Zero();
   o.specular = 0.0;
-  const Image plain = render(m, {}, {}, o);
-  const Image painted = render(m, {}, {}, o, &p);
+  const core::Image plain = render(m, {}, {}, o);
+  const core::Image painted = render(m, {}, {}, o, &p);
   const std::size_t left = (32u * 64u + 26u) * 3u, right = (32u * 64u + 38u) * 3u;
   EXPECT_LT(painted.rgb[left], 5);
   EXPECT_GT(painted.rgb[right], plain.rgb[right]);  // white paint is brighter than skin
   // a vertex without coordinates leaves its triangles unpainted
   p.uv[1] = Eigen::Vector2f(std::nanf(""), std::nanf(""));
-  const Image half = render(m, {}, {}, o, &p);
+  const core::Image half = render(m, {}, {}, o, &p);
   EXPECT_EQ(half.rgb[right], plain.rgb[right]);
   // bad paints
   Paint bad = p;
@@ -185,31 +185,6 @@ TEST(Render, DefaultFacePaint) {
   EXPECT_LT(at(0.03, 0.0235).x(), 0.4f);
   EXPECT_GT(at(0.0, 0.045).x(), 0.8f);
   EXPECT_LT(at(0.0, 0.110).x(), 0.3f);  // hair
-}
-
-class Png : public testing::TempDirTest {};
-
-TEST_F(Png, SheetAndPngBytes) {
-  Image a;
-  a.width = 4;
-  a.height = 3;
-  a.rgb.assign(36, 10);
-  const Image s = contact_sheet({a, a, a}, 2, 1);
-  EXPECT_EQ(s.width, 2 * 4 + 3);
-  EXPECT_EQ(s.height, 2 * 3 + 3);
-  EXPECT_EQ(s.rgb[((1u * s.width) + 1u) * 3u], 10);  // first tile starts at (1,1)
-  EXPECT_EQ(s.rgb[0], 255);                        // gap
-  Image b = a;
-  b.width = 5;
-  b.rgb.assign(45, 0);
-  EXPECT_THROW(contact_sheet({a, b}, 2), InvalidInput);
-  EXPECT_THROW(contact_sheet({}, 2), InvalidInput);
-  EXPECT_THROW(contact_sheet({a}, 0), InvalidInput);
-  const std::string png = encode_png(a);
-  ASSERT_GT(png.size(), 8u);
-  EXPECT_EQ(png.substr(1, 3), "PNG");
-  write_png(path("a.png"), a);
-  EXPECT_EQ(core::read_file(path("a.png")), png);
 }
 
 }  // namespace

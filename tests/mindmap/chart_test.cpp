@@ -46,7 +46,7 @@ TEST(Chart, CarriesTitleLegendTicksAndLabels) {
   e.target = "alice";
   e.stimulus = "gift";
   const auto r = mm::simulate({mm::test::make_alice()}, {e}, {});
-  auto ink_in = [](const mm::Raster& im, int x0, int y0, int x1, int y1) {
+  auto ink_in = [](const emoface::core::Image& im, int x0, int y0, int x1, int y1) {
     int k = 0;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {

@@ -22,6 +22,7 @@ namespace mo = emoface::mindmotion;
 namespace mg = emoface::motiongraph;
 namespace mm = emoface::mindmap;
 namespace fm = emoface::facemesh;
+namespace core = emoface::core;
 
 namespace {
 
@@ -116,7 +117,8 @@ mo::CrowdRenderOptions tiny() {
   return r;
 }
 
-std::size_t count_colour(const fm::Image& img, std::uint32_t c, int x0 = 0, int y0 = 0, int x1 = -1, int y1 = -1) {
+std::size_t count_colour(const core::Image& img, std::uint32_t c, int x0 = 0, int y0 = 0,
+                         int x1 = -1, int y1 = -1) {
   if (x1 < 0) x1 = img.width;
   if (y1 < 0) y1 = img.height;
   std::size_t n = 0;
@@ -256,12 +258,12 @@ TEST(Crowd, FrameIsTheGridLayout) {
   EXPECT_EQ(r.rows(), 1);
   EXPECT_EQ(r.cell_width(), 36);
   EXPECT_EQ(r.cell_height(), 36 * 7 / 6 + 12);  // 42 + 12
-  const fm::Image f = r.frame(5);
+  const core::Image f = r.frame(5);
   EXPECT_EQ(f.width, 3 * 36 + 4 * 2);
   EXPECT_EQ(f.height, 54 + 2 * 2);
   EXPECT_EQ(f.rgb.size(), static_cast<std::size_t>(f.width) * f.height * 3);
   // The cell of character 1 sits at (gap + cell + gap, gap).
-  const fm::Image cell = r.cell(1, 5);
+  const core::Image cell = r.cell(1, 5);
   for (int y = 0; y < cell.height; ++y)
     ASSERT_EQ(0, std::memcmp(&cell.rgb[static_cast<std::size_t>(y) * cell.width * 3],
                              &f.rgb[(static_cast<std::size_t>(2 + y) * f.width + 2 + 36 + 2) * 3], 36 * 3));
@@ -271,7 +273,7 @@ TEST(Crowd, FrameIsTheGridLayout) {
   EXPECT_EQ(g.columns(), 2);
   EXPECT_EQ(g.rows(), 2);
   EXPECT_EQ(g.frame(0).height, 2 * 54 + 3 * 2);
-  const fm::Image sheet = r.key_moment_sheet();
+  const core::Image sheet = r.key_moment_sheet();
   EXPECT_EQ(sheet.width, f.width);
   EXPECT_EQ(sheet.height, 2 * f.height + 2);  // two moments, a 2-pixel rule between
 }
@@ -285,7 +287,7 @@ TEST(Crowd, MoreThanFourCharactersMakeAGrid) {
   const mo::CrowdRenderer r(c, rigs(), tiny());
   EXPECT_EQ(r.columns(), 3);  // ⌈√5⌉
   EXPECT_EQ(r.rows(), 2);
-  const fm::Image f = r.frame(c.frame_count() - 1);
+  const core::Image f = r.frame(c.frame_count() - 1);
   EXPECT_EQ(f.width, 3 * 36 + 4 * 2);
   EXPECT_EQ(f.height, 2 * 54 + 3 * 2);
   // The sixth cell is empty: white.
@@ -297,12 +299,12 @@ TEST(Crowd, MoodStripBarsFollowTheMood) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // 60 × 20, three slots of 20 px: frame columns 3…16 (bar 4…15: 12 px), frame rows 2 and 17, bar
   // rows inside: 14 px; a value v fills round(14·v) rows.
-  const fm::Image zero = mo::mood_strip({0.0, 0.0, 0.0}, colours, 60, 20);
+  const core::Image zero = mo::mood_strip({0.0, 0.0, 0.0}, colours, 60, 20);
   ASSERT_EQ(zero.width, 60);
   ASSERT_EQ(zero.height, 20);
   for (auto c : colours) EXPECT_EQ(count_colour(zero, c), 0u);  // empty bars
   EXPECT_GT(count_colour(zero, 0xc8c8c8), 0u);                  // but their frames
-  const fm::Image mixed = mo::mood_strip({1.0, 0.5, nan}, colours, 60, 20);
+  const core::Image mixed = mo::mood_strip({1.0, 0.5, nan}, colours, 60, 20);
   EXPECT_EQ(count_colour(mixed, colours[0]), 14u * 12u);
   EXPECT_EQ(count_colour(mixed, colours[1]), 7u * 12u);
   EXPECT_EQ(count_colour(mixed, colours[1], 20, 0, 40, 10), 0u);  // bars grow from the bottom
@@ -319,20 +321,21 @@ TEST(Crowd, TheStripUnderEachFaceShowsThatCharactersMood) {
   const mo::CrowdRenderer r(c, rigs(), tiny());
   const int face_h = 42;
   for (std::size_t k : {std::size_t{0}, std::size_t{8}, c.frame_count() - 1}) {
-    const fm::Image zen_cell = r.cell(2, k);
+    const core::Image zen_cell = r.cell(2, k);
     for (std::size_t e = 0; e < c.emotions.size(); ++e)  // zen's mood is 0: no bar in any colour
       EXPECT_EQ(count_colour(zen_cell, mm::emotion_colour(e), 0, face_h, 36, zen_cell.height), 0u) << k;
-    const fm::Image hot_cell = r.cell(0, k);  // hot's anger (slot 1) is never below its personality 0.4
+    const core::Image hot_cell =
+        r.cell(0, k);  // hot's anger (slot 1) is never below its personality 0.4
     EXPECT_GT(count_colour(hot_cell, mm::emotion_colour(1), 0, face_h, 36, hot_cell.height), 0u) << k;
     EXPECT_EQ(c.strip_values(2, k)[3], 0.0);
     EXPECT_TRUE(std::isnan(c.strip_values(2, k)[0]));
   }
   // The strip drawn in a cell is mood_strip of the character's values at that frame.
-  const fm::Image cell = r.cell(1, 9);
-  const fm::Image strip = mo::mood_strip(c.strip_values(1, 9),
-                                         {mm::emotion_colour(0), mm::emotion_colour(1), mm::emotion_colour(2),
-                                          mm::emotion_colour(3)},
-                                         36, 12);
+  const core::Image cell = r.cell(1, 9);
+  const core::Image strip = mo::mood_strip(
+      c.strip_values(1, 9),
+      {mm::emotion_colour(0), mm::emotion_colour(1), mm::emotion_colour(2), mm::emotion_colour(3)},
+      36, 12);
   EXPECT_EQ(0, std::memcmp(&cell.rgb[static_cast<std::size_t>(face_h) * 36 * 3], strip.rgb.data(), strip.rgb.size()));
   EXPECT_THROW(c.strip_values(3, 0), emoface::InvalidInput);
   EXPECT_THROW(c.strip_values(0, c.frame_count()), emoface::InvalidInput);
@@ -468,11 +471,11 @@ TEST(CrowdFaces, RigSpecsAssignFacesPerCharacter) {
 TEST(Crowd, StripsAndCellsCarryLabels) {
   const std::vector<std::uint32_t> colours = {0x1f77b4, 0xff7f0e, 0x2ca02c};
   const std::vector<std::string> names = {"happiness", "sadness", "anger"};
-  auto ink = [](const fm::Image& im, int x0, int y0, int x1, int y1) {
+  auto ink = [](const core::Image& im, int x0, int y0, int x1, int y1) {
     return count_colour(im, 0x3c3c3c, x0, y0, x1, y1);
   };
   // 90 × 40, three slots of 30 px: bars in the top 32 rows (frame rows 3 and 28), labels below
-  const fm::Image s = mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 40, names);
+  const core::Image s = mo::mood_strip({1.0, 0.5, 0.0}, colours, 90, 40, names);
   EXPECT_EQ(ink(s, 0, 0, 90, 32), 0u);
   for (int i = 0; i < 3; ++i) EXPECT_GT(ink(s, 30 * i, 33, 30 * i + 30, 38), 5u) << i;
   // bar of 1.0 fills the inside of its frame: 32 − 2·3 − 2 = 24 rows (rows 4…27), 30 − 2·5 − 2 = 18
@@ -489,7 +492,7 @@ TEST(Crowd, StripsAndCellsCarryLabels) {
   o.face_width = 80;
   o.strip_height = 30;
   const mo::CrowdRenderer r(c, rigs(), o);
-  const fm::Image cell = r.cell(0, 3);
+  const core::Image cell = r.cell(0, 3);
   const int name_w = 4 * static_cast<int>(c.characters[0].name.size());
   EXPECT_GT(count_colour(cell, 0x282828, 3, 3, 3 + name_w, 8), 3u);
   EXPECT_EQ(count_colour(cell, 0x282828, 0, 0, 4 + name_w, 10) +

@@ -120,6 +120,7 @@ TEST_F(Apps, FacerenderPngAndSheet) {
 }
 
 namespace fm = emoface::facemesh;
+namespace core = emoface::core;
 
 // A user's rig: the built-in face's rig on an OBJ in decimetres with UVs, a group, a material library.
 std::string user_obj_rig(const std::string& dir) {
@@ -224,12 +225,12 @@ TEST_F(Apps, FaceanimWritesGlbFramesForAGltfRig) {
 
 // Size of a PNG of a uniform background (what a blank render compresses to).
 std::size_t blank_png_size(int w, int h) {
-  fm::Image image;
+  core::Image image;
   image.width = w, image.height = h;
   const fm::RenderOptions o;
   image.rgb.resize(static_cast<std::size_t>(w) * h * 3);
   for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(std::lround(o.background[static_cast<long>(i % 3)] * 255));
-  return fm::encode_png(image).size();
+  return core::encode_png(image).size();
 }
 
 TEST_F(Apps, FacerenderFramesAMeshInAnyFrame) {

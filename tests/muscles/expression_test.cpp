@@ -74,7 +74,7 @@ TEST(Expressions, EyesNarrowButNeverShut) {
 // --- brows and forehead wrinkles as rendered (issue 14) ---
 
 struct Shot {
-  fm::Image image;
+  core::Image image;
   fm::RenderOptions options;
 };
 
@@ -99,7 +99,7 @@ Eigen::Vector2d project(const fm::RenderOptions& o, const Eigen::Vector3d& p) {
           0.5 * o.height - focal * (p.y() - eye.y()) / z};
 }
 
-double luminance(const fm::Image& im, int x, int y) {
+double luminance(const core::Image& im, int x, int y) {
   const std::size_t i = (static_cast<std::size_t>(y) * im.width + x) * 3;
   return 0.299 * im.rgb[i] + 0.587 * im.rgb[i + 1] + 0.114 * im.rgb[i + 2];
 }
@@ -120,7 +120,7 @@ std::vector<double> frontalis(double level) {
 
 // Dark rows (the brow) in column x between rows y0 and y1: centroid and count; dark = below the
 // midpoint of the column's darkest value and its median (the skin).
-std::pair<double, int> dark_rows(const fm::Image& im, int x, int y0, int y1) {
+std::pair<double, int> dark_rows(const core::Image& im, int x, int y0, int y1) {
   std::vector<double> l;
   for (int y = y0; y <= y1; ++y) l.push_back(luminance(im, x, y));
   std::vector<double> sorted = l;
@@ -174,7 +174,7 @@ TEST(Expressions, ForeheadWrinklesAreVisibleAndClean) {
       static_cast<int>(project(neutral.options, Eigen::Vector3d(b.x(), 0.066, 0.09)).y());
   const int y_bottom = static_cast<int>(b.y()) - 22;
   ASSERT_GT(y_bottom - y_top, 20);
-  auto roughness = [&](const fm::Image& im, double* darkest) {
+  auto roughness = [&](const core::Image& im, double* darkest) {
     double r = 0.0;
     *darkest = 255.0;
     for (int y = y_top + 1; y < y_bottom; ++y) {

@@ -12,6 +12,7 @@
 #include "emoface/muscles/solver.hpp"
 
 namespace fm = emoface::facemesh;
+namespace core = emoface::core;
 namespace mu = emoface::muscles;
 namespace fx = emoface::fuzzyexpr;
 using Named = std::map<std::string, double>;
@@ -23,7 +24,8 @@ const fm::Face& face() {
   return f;
 }
 
-fm::Image shot(const mu::Deformation& d, fm::View view, int w, int h, const std::vector<Eigen::Vector3f>& colors) {
+core::Image shot(const mu::Deformation& d, fm::View view, int w, int h,
+                 const std::vector<Eigen::Vector3f>& colors) {
   fm::RenderOptions o;
   o.view = view;
   o.width = w;
@@ -54,8 +56,10 @@ int main(int argc, char** argv) {
   const auto neutral = solver.deform(Named{});
 
   // facemesh: neutral face, front and three-quarter; regions
-  fm::write_png((out / "facemesh/neutral.png").string(),
-                fm::contact_sheet({shot(neutral, fm::View::Front, 320, 376, colors), shot(neutral, fm::View::ThreeQuarter, 320, 376, colors)}, 2));
+  core::write_png((out / "facemesh/neutral.png").string(),
+                  core::tile({shot(neutral, fm::View::Front, 320, 376, colors),
+                              shot(neutral, fm::View::ThreeQuarter, 320, 376, colors)},
+                             2));
   {
     const Eigen::Vector3f palette[fm::kRegionCount] = {
         {0.85f, 0.35f, 0.30f}, {0.95f, 0.65f, 0.30f}, {0.55f, 0.80f, 0.40f}, {0.35f, 0.70f, 0.75f}, {0.45f, 0.50f, 0.90f},
@@ -63,13 +67,15 @@ int main(int argc, char** argv) {
         {0.80f, 0.80f, 0.80f}};
     std::vector<Eigen::Vector3f> rc(face().rig.regions.size());
     for (std::size_t v = 0; v < rc.size(); ++v) rc[v] = palette[static_cast<int>(face().rig.regions[v])];
-    fm::write_png((out / "facemesh/regions.png").string(),
-                  fm::contact_sheet({shot(neutral, fm::View::Front, 320, 376, rc), shot(neutral, fm::View::ThreeQuarter, 320, 376, rc)}, 2));
+    core::write_png((out / "facemesh/regions.png").string(),
+                    core::tile({shot(neutral, fm::View::Front, 320, 376, rc),
+                                shot(neutral, fm::View::ThreeQuarter, 320, 376, rc)},
+                               2));
   }
 
   // each muscle type at full contraction (both sides), Table 2.1 order, neutral first
   {
-    std::vector<fm::Image> tiles{shot(neutral, fm::View::Front, 190, 222, colors)};
+    std::vector<core::Image> tiles{shot(neutral, fm::View::Front, 190, 222, colors)};
     for (const auto& type : mu::muscle_type_names()) {
       Named n;
       for (const auto& p : mu::side_parameter_names()) {
@@ -77,7 +83,7 @@ int main(int argc, char** argv) {
       }
       tiles.push_back(shot(solver.deform(n), fm::View::Front, 190, 222, colors));
     }
-    fm::write_png((out / "muscles/muscle_types.png").string(), fm::contact_sheet(tiles, 5));
+    core::write_png((out / "muscles/muscle_types.png").string(), core::tile(tiles, 5));
   }
 
   // the six basic emotions and two blends through fuzzyexpr (thesis ch. 6 rules)
@@ -86,9 +92,10 @@ int main(int argc, char** argv) {
       {0.9, 0, 0, 0, 0, 0}, {0, 0.9, 0, 0, 0, 0}, {0, 0, 0.9, 0, 0, 0}, {0, 0, 0, 0.9, 0, 0},
       {0, 0, 0, 0, 0.9, 0}, {0, 0, 0, 0, 0, 0.9}, {0, 0.7, 0, 0, 0, 0.6}, {0.7, 0, 0, 0.5, 0, 0}};
   for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
-    std::vector<fm::Image> tiles;
+    std::vector<core::Image> tiles;
     for (const auto& esv : esvs) tiles.push_back(shot(solver.deform(from_esv(engine, esv)), view, 230, 270, colors));
-    fm::write_png((out / ("muscles/emotions_" + fm::to_string(view) + ".png")).string(), fm::contact_sheet(tiles, 4));
+    core::write_png((out / ("muscles/emotions_" + fm::to_string(view) + ".png")).string(),
+                    core::tile(tiles, 4));
   }
 
   // wrinkles and parallel contraction on/off (like thesis Fig. 2.24): sadness and surprise
@@ -97,7 +104,7 @@ int main(int argc, char** argv) {
     plain.wrinkles = false;
     plain.parallel = false;
     const mu::FaceSolver old_style(face().mesh, face().rig, plain);
-    std::vector<fm::Image> tiles;
+    std::vector<core::Image> tiles;
     for (const auto& esv : {esvs[0], esvs[5]}) {
       const Named n = from_esv(engine, esv);
       fm::RenderOptions o;
@@ -112,13 +119,13 @@ int main(int argc, char** argv) {
       tiles.push_back(fm::render(fm::Mesh{b.vertices, face().mesh.faces}, colors, b.crease, o,
                                  fm::paint_for(face().rig)));
     }
-    fm::write_png((out / "muscles/wrinkles_on_off.png").string(), fm::contact_sheet(tiles, 2));
+    core::write_png((out / "muscles/wrinkles_on_off.png").string(), core::tile(tiles, 2));
   }
 
   // forehead close-up: frontalis (medialis + lateralis, both sides) at 0, 0.5, 0.75 and 1 (issue
   // 14)
   {
-    std::vector<fm::Image> tiles;
+    std::vector<core::Image> tiles;
     for (double level : {0.0, 0.5, 0.75, 1.0}) {
       Named n;
       for (const char* p : {"frontalis_medialis_l", "frontalis_medialis_r", "frontalis_lateralis_l",
@@ -133,7 +140,7 @@ int main(int argc, char** argv) {
       tiles.push_back(fm::render(fm::Mesh{a.vertices, face().mesh.faces}, colors, a.crease, o,
                                  fm::paint_for(face().rig)));
     }
-    fm::write_png((out / "muscles/forehead_closeup.png").string(), fm::contact_sheet(tiles, 2));
+    core::write_png((out / "muscles/forehead_closeup.png").string(), core::tile(tiles, 2));
   }
 
   // eyes, lids, jaw, lips
@@ -152,9 +159,9 @@ int main(int argc, char** argv) {
         {{"orbicularis_oris_pressor", 1.0}},
         {{"masseter", 0.6}, {"orbicularis_oris_funneler", 0.8}},
         {{"head_yaw", 0.4}, {"head_pitch", 0.15}, {"eye_gaze_yaw", -0.3}}};
-    std::vector<fm::Image> tiles;
+    std::vector<core::Image> tiles;
     for (const auto& p : poses) tiles.push_back(shot(solver.deform(p), fm::View::Front, 190, 222, colors));
-    fm::write_png((out / "muscles/eyes_jaw_lips.png").string(), fm::contact_sheet(tiles, 4));
+    core::write_png((out / "muscles/eyes_jaw_lips.png").string(), core::tile(tiles, 4));
   }
   return 0;
 }

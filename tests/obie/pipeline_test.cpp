@@ -41,7 +41,7 @@ struct Collect : FrameSink {
   int width = 0, height = 0, begun = 0, finished = 0;
   double fps = 0;
   std::size_t audio = 0;
-  std::vector<facemesh::Image> frames;
+  std::vector<core::Image> frames;
   void begin(const ObieResult& r, int w, int h, double f) override {
     ++begun;
     width = w;
@@ -49,7 +49,7 @@ struct Collect : FrameSink {
     fps = f;
     audio = r.head.audio.size();
   }
-  void frame(const facemesh::Image& image) override { frames.push_back(image); }
+  void frame(const core::Image& image) override { frames.push_back(image); }
   void finish() override { ++finished; }
 };
 
@@ -296,8 +296,8 @@ TEST(Pipeline, DeterministicWithASeed) {
   for (std::size_t i = 0; i < a.gltf_frames.size(); ++i) EXPECT_TRUE(a.gltf_frames[i] == c.gltf_frames[i]);
   EXPECT_EQ(format_summary(a, match, false), format_summary(b, match, false));
   EXPECT_EQ(format_timeline(a), format_timeline(c));
-  EXPECT_EQ(parlee::encode_png(key_moment_sheet(a)), parlee::encode_png(key_moment_sheet(c)));
-  EXPECT_EQ(parlee::encode_png(emotion_chart(a)), parlee::encode_png(emotion_chart(b)));
+  EXPECT_EQ(core::encode_png(key_moment_sheet(a)), core::encode_png(key_moment_sheet(c)));
+  EXPECT_EQ(core::encode_png(emotion_chart(a)), core::encode_png(emotion_chart(b)));
   EXPECT_EQ(a.frames_rendered, 0u);
   EXPECT_TRUE(a.utterances.empty());
   for (auto s : a.head.audio) ASSERT_EQ(s, 0);

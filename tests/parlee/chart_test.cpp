@@ -10,7 +10,7 @@
 namespace emoface::parlee {
 namespace {
 
-std::array<std::uint8_t, 3> pixel(const RgbImage& im, int x, int y) {
+std::array<std::uint8_t, 3> pixel(const core::Image& im, int x, int y) {
   const auto i = (static_cast<std::size_t>(y) * im.width + x) * 3;
   return {im.rgb[i], im.rgb[i + 1], im.rgb[i + 2]};
 }
@@ -23,7 +23,7 @@ TEST(Chart, LayoutAndSeries) {
   ChartOptions o;
   o.width = 416;  // plot width 416 − 40 − 16 = 360 px: x = 50 → pixel 40 + 180
   o.panel_height = 100;
-  const RgbImage im = draw_chart({{"a", {s}, 1.0}, {"b", {}, 2.0}}, o);
+  const core::Image im = draw_chart({{"a", {s}, 1.0}, {"b", {}, 2.0}}, o);
   EXPECT_EQ(im.width, 416);
   EXPECT_EQ(im.height, 8 + 2 * 100 + 22 + 28);  // top + panels + gap + axis labels
   EXPECT_EQ(im.rgb.size(), 416u * im.height * 3u);
@@ -31,7 +31,7 @@ TEST(Chart, LayoutAndSeries) {
   EXPECT_EQ(pixel(im, 40 + 90, 58), s.rgb);  // (25, 0.5): halfway up the rising line
   o.markers = {{50, "1-0", {255, 0, 0}}};
   o.x_max = 100;  // no series to take the range from
-  const RgbImage marked = draw_chart({{"a", {}, 1.0}}, o);
+  const core::Image marked = draw_chart({{"a", {}, 1.0}}, o);
   EXPECT_EQ(marked.height, 8 + 100 + 44);  // room for the marker labels
   EXPECT_EQ(pixel(marked, 220, 50), (std::array<std::uint8_t, 3>{255, 0, 0}));
 }
@@ -50,7 +50,7 @@ TEST(Chart, TitleLegendAxisLabelsAndTicks) {
   o.width = 416;
   o.panel_height = 100;
   o.x_max = 100;
-  const RgbImage plain = draw_chart({{"p", {a, b}, 1.0}}, o);
+  const core::Image plain = draw_chart({{"p", {a, b}, 1.0}}, o);
   o.title = "happiness";
   o.x_label = "match minute";
   o.y_label = "intensity";
@@ -59,7 +59,7 @@ TEST(Chart, TitleLegendAxisLabelsAndTicks) {
   EXPECT_EQ(l.top, 6 + 20 + 18);
   EXPECT_EQ(l.left, 56);
   EXPECT_EQ(l.height, l.top + 100 + 28 + 16);
-  const RgbImage im = draw_chart({{"p", {a, b}, 1.0}}, o);
+  const core::Image im = draw_chart({{"p", {a, b}, 1.0}}, o);
   EXPECT_EQ(im.height, l.height);
   EXPECT_EQ(plain.height, 6 + 18 + 100 + 28);  // named series: a legend row, no title
   auto count = [&](int x0, int y0, int x1, int y1, std::array<std::uint8_t, 3> c) {
@@ -71,13 +71,13 @@ TEST(Chart, TitleLegendAxisLabelsAndTicks) {
   const std::array<std::uint8_t, 3> ink{40, 40, 40};
   // legend swatches (18 × 4 px lines) in the series colours, the first at the plot's left edge
   EXPECT_EQ(pixel(im, l.left + 9, l.legend_y + 4), a.rgb);
-  const int second = l.left + 24 + text_width("neutral") + 20;
+  const int second = l.left + 24 + core::text_width("neutral") + 20;
   EXPECT_EQ(pixel(im, second + 9, l.legend_y + 4), b.rgb);
   EXPECT_GT(count(l.left + 24, l.legend_y, second, l.legend_y + 10, ink), 40);  // "neutral"
   // title ink centred above, x label ink below the tick values, y label ink left of the ticks
   const int pw = l.plot_width;
-  const int tx = l.left + (pw - text_width("happiness")) / 2;
-  EXPECT_GT(count(tx, l.title_y, tx + text_width("happiness"), l.title_y + 10, ink), 60);
+  const int tx = l.left + (pw - core::text_width("happiness")) / 2;
+  EXPECT_GT(count(tx, l.title_y, tx + core::text_width("happiness"), l.title_y + 10, ink), 60);
   EXPECT_EQ(count(0, l.title_y, tx - 1, l.title_y + 10, ink), 0);
   EXPECT_GT(count(l.left, l.height - 16, l.left + pw, l.height, ink), 60);
   EXPECT_GT(count(0, l.top, 16, l.top + 100, ink), 60);
@@ -96,15 +96,6 @@ TEST(Chart, PngCarriesTheVersionStamp) {
   EXPECT_NE(png.find(kGenerator), std::string::npos);
 }
 
-TEST(Chart, Text) {
-  RgbImage im{40, 12, std::vector<std::uint8_t>(40 * 12 * 3, 255)};
-  draw_text(im, 0, 0, "1", {0, 0, 0}, 2);  // glyph '1' row 0 = 010: pixels x 2..3 set
-  EXPECT_EQ(pixel(im, 2, 0), (std::array<std::uint8_t, 3>{0, 0, 0}));
-  EXPECT_EQ(pixel(im, 0, 0), (std::array<std::uint8_t, 3>{255, 255, 255}));
-  draw_text(im, 30, 0, "zzzz", {0, 0, 0}, 2);  // clipped, no crash
-  EXPECT_EQ(text_width("abc", 2), 24);
-}
-
 TEST(Chart, RejectsBadInput) {
   ChartOptions o;
   EXPECT_THROW(draw_chart({}, o), InvalidInput);
@@ -114,7 +105,6 @@ TEST(Chart, RejectsBadInput) {
   o = {};
   o.x_max = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(o.validate(), InvalidInput);
-  EXPECT_THROW(encode_png(RgbImage{2, 2, {1, 2, 3}}), InvalidInput);
 }
 
 TEST(Chart, EmotionPanels) {

@@ -18,6 +18,7 @@
 
 namespace fs = std::filesystem;
 namespace fm = emoface::facemesh;
+namespace core = emoface::core;
 namespace rt = emoface::retarget;
 namespace mu = emoface::muscles;
 
@@ -40,7 +41,7 @@ const fm::Part& part(const fm::Rig& rig, const std::string& name) {
 
 // Pixels of a front render that show the teeth: the teeth are coloured pure green, everything else
 // keeps its material colour (none of which is green-dominant).
-int teeth_pixels(const fm::Image& img) {
+int teeth_pixels(const core::Image& img) {
   int n = 0;
   for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3)
     if (img.rgb[i + 1] > 60 && img.rgb[i + 1] > 2 * img.rgb[i] && img.rgb[i + 1] > 2 * img.rgb[i + 2]) ++n;
@@ -158,7 +159,7 @@ TEST(DefaultFace, TeethHiddenBehindClosedLips) {
   auto colors = fm::material_colors(face.rig, face.mesh);
   for (std::size_t v = 0; v < colors.size(); ++v)
     if (face.rig.materials[v] == fm::Material::Teeth) colors[v] = Eigen::Vector3f(0.0f, 1.0f, 0.0f);
-  const fm::Image closed = fm::render(face.mesh, colors, {}, o, fm::paint_for(face.rig));
+  const core::Image closed = fm::render(face.mesh, colors, {}, o, fm::paint_for(face.rig));
   // measured 42 px after the transfer moved the lips onto the head's own mouth slit (the bound of
   // 40 was set before that); teeth seen between parted lips are hundreds of pixels
   EXPECT_LT(teeth_pixels(closed), 60) << "teeth show through the closed lips";
@@ -183,8 +184,8 @@ TEST(DefaultFace, TeethShowWhenTheMouthOpens) {
   for (std::size_t v = 0; v < colors.size(); ++v)
     if (face.rig.materials[v] == fm::Material::Teeth) colors[v] = Eigen::Vector3f(0.0f, 1.0f, 0.0f);
   const mu::Deformation d = solver.deform(std::map<std::string, double>{{"masseter", 1.0}});
-  const fm::Image open = fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, o,
-                                    fm::paint_for(face.rig));
+  const core::Image open = fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, o,
+                                      fm::paint_for(face.rig));
   const int px = teeth_pixels(open);
   std::printf("teeth pixels at masseter 1: %d\n", px);
   // 503 pixels before the mouth cavity (the lower teeth seen through the torn bag, in front of the

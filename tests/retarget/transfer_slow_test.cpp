@@ -163,7 +163,7 @@ TEST(Transfer, MakeHumanCloseUps) {
   for (const auto& p : rig.lips.control_points)
     mouth += p / static_cast<double>(rig.lips.control_points.size());
   auto sheet = [&](const Eigen::Vector3d& target, const std::vector<std::size_t>& which) {
-    std::vector<fm::Image> tiles;
+    std::vector<emoface::core::Image> tiles;
     for (auto view : {fm::View::Front, fm::View::ThreeQuarter})
       for (std::size_t i : which) {
         const auto d = solver.deform(cases[i]);
@@ -175,11 +175,11 @@ TEST(Transfer, MakeHumanCloseUps) {
         ro.field_of_view = 0.2;
         tiles.push_back(fm::render(fm::Mesh{d.vertices, r.face.mesh.faces}, colors, d.crease, ro));
       }
-    return fm::contact_sheet(tiles, static_cast<int>(which.size()));
+    return emoface::core::tile(tiles, static_cast<int>(which.size()));
   };
   const Eigen::Vector3d eyes =
       0.5 * (rig.eyes[0].centre + rig.eyes[1].centre) + Eigen::Vector3d(0.0, 0.0, 0.02);
-  fm::write_png(std::string(dir) + "/makehuman_eyes.png", sheet(eyes, {0, 1, 2, 3, 4}));
-  fm::write_png(std::string(dir) + "/makehuman_mouth.png",
-                sheet(mouth + Eigen::Vector3d(0.0, 0.0, 0.01), {0, 4}));
+  emoface::core::write_png(std::string(dir) + "/makehuman_eyes.png", sheet(eyes, {0, 1, 2, 3, 4}));
+  emoface::core::write_png(std::string(dir) + "/makehuman_mouth.png",
+                           sheet(mouth + Eigen::Vector3d(0.0, 0.0, 0.01), {0, 4}));
 }

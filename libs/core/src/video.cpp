@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/image.hpp"
 #include "emoface/core/version.hpp"
 
 extern char** environ;
@@ -237,6 +238,14 @@ void VideoWriter::add_frame(const std::vector<std::uint8_t>& rgb) {
     throw InvalidInput(path_ + ": frame has " + std::to_string(rgb.size()) + " bytes, expected " + std::to_string(n) +
                        " (" + std::to_string(options_.width) + "x" + std::to_string(options_.height) + " RGB)");
   add_frame(rgb.data());
+}
+
+void VideoWriter::add_frame(const Image& frame) {
+  if (frame.width != options_.width || frame.height != options_.height)
+    throw InvalidInput(path_ + ": frame is " + std::to_string(frame.width) + "x" +
+                       std::to_string(frame.height) + ", the video " +
+                       std::to_string(options_.width) + "x" + std::to_string(options_.height));
+  add_frame(frame.rgb);
 }
 
 void VideoWriter::finish() {

@@ -1,20 +1,17 @@
 // Software rasteriser: perspective camera, z-buffer, per-pixel Phong shading (Bui Tuong Phong 1975,
 // the shading the thesis uses in §2.3), 4-sample rotated-grid anti-aliasing, deferred shading,
-// optional surface paint (texture); PNG through core::encode_png.
+// optional surface paint (texture), into a core::Image.
 #include "emoface/facemesh/render.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <string>
 
 #include <Eigen/Geometry>
 
 #include "emoface/core/errors.hpp"
-#include "emoface/core/io.hpp"
-#include "emoface/core/png.hpp"
 
 namespace emoface::facemesh {
 namespace {
@@ -131,9 +128,9 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig, const Mesh& mesh, i
   return colors;
 }
 
-Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
-             const std::vector<std::uint8_t>& crease, const RenderOptions& options,
-             const Paint* paint) {
+core::Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
+                   const std::vector<std::uint8_t>& crease, const RenderOptions& options,
+                   const Paint* paint) {
   options.validate();
   const std::size_t nv = mesh.vertex_count();
   if (!colors.empty() && colors.size() != nv) throw InvalidInput("render: colors must be empty or one per vertex");
@@ -310,7 +307,7 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
   };
 
   // Pass 2 fused with the box filter: each visible sample is shaded exactly once.
-  Image image;
+  core::Image image;
   image.width = options.width;
   image.height = options.height;
   image.rgb.resize(static_cast<std::size_t>(options.width) * options.height * 3);
@@ -328,41 +325,5 @@ Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
   }
   return image;
 }
-
-Image contact_sheet(const std::vector<Image>& images, int columns, int gap) {
-  if (images.empty()) throw InvalidInput("contact_sheet: no images");
-  if (columns < 1) throw InvalidInput("contact_sheet: columns must be >= 1");
-  if (gap < 0 || gap > 1000) throw InvalidInput("contact_sheet: gap must be in [0, 1000]");
-  const int w = images[0].width, h = images[0].height;
-  for (const auto& im : images) {
-    if (im.width != w || im.height != h || im.rgb.size() != static_cast<std::size_t>(w) * h * 3) {
-      throw InvalidInput("contact_sheet: images differ in size");
-    }
-  }
-  const int cols = std::min<int>(columns, static_cast<int>(images.size()));
-  const int rows = (static_cast<int>(images.size()) + cols - 1) / cols;
-  Image sheet;
-  sheet.width = cols * w + (cols + 1) * gap;
-  sheet.height = rows * h + (rows + 1) * gap;
-  sheet.rgb.assign(static_cast<std::size_t>(sheet.width) * sheet.height * 3, 255);
-  for (std::size_t i = 0; i < images.size(); ++i) {
-    const int cx = gap + static_cast<int>(i % cols) * (w + gap);
-    const int cy = gap + static_cast<int>(i / cols) * (h + gap);
-    for (int y = 0; y < h; ++y) {
-      std::memcpy(&sheet.rgb[(static_cast<std::size_t>(cy + y) * sheet.width + cx) * 3],
-                  &images[i].rgb[static_cast<std::size_t>(y) * w * 3], static_cast<std::size_t>(w) * 3);
-    }
-  }
-  return sheet;
-}
-
-std::string encode_png(const Image& image) {
-  if (image.width <= 0 || image.height <= 0 || image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3) {
-    throw InvalidInput("encode_png: image size and pixel buffer disagree");
-  }
-  return core::encode_png(image.width, image.height, image.rgb);
-}
-
-void write_png(const std::string& path, const Image& image) { core::write_file_atomic(path, encode_png(image)); }
 
 }  // namespace emoface::facemesh

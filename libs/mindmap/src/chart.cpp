@@ -5,7 +5,7 @@
 #include <string>
 
 #include "emoface/core/errors.hpp"
-#include "emoface/core/font.hpp"
+#include "emoface/core/image.hpp"
 
 namespace emoface::mindmap {
 
@@ -22,52 +22,29 @@ std::uint32_t emotion_colour(std::size_t i) noexcept {
 
 namespace {
 
-struct Canvas {
-  Raster r;
-  void set(int x, int y, std::uint32_t c) {
-    if (x < 0 || y < 0 || x >= r.width || y >= r.height) return;
-    std::uint8_t* p = &r.rgb[(static_cast<std::size_t>(y) * r.width + x) * 3];
-    p[0] = static_cast<std::uint8_t>(c >> 16);
-    p[1] = static_cast<std::uint8_t>(c >> 8);
-    p[2] = static_cast<std::uint8_t>(c);
-  }
-  void rect(int x0, int y0, int x1, int y1, std::uint32_t c) {
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) set(x, y, c);
-  }
-  // Thick line by stamping a 2×2 block along the segment.
-  void line(double x0, double y0, double x1, double y1, std::uint32_t c) {
-    const int steps = static_cast<int>(std::ceil(std::max(std::fabs(x1 - x0), std::fabs(y1 - y0)))) + 1;
-    for (int s = 0; s <= steps; ++s) {
-      const double t = static_cast<double>(s) / steps;
-      const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0)));
-      const int y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
-      rect(x, y, x + 1, y + 1, c);
-    }
-  }
-};
+// A filled rectangle between two corners, both inclusive.
+void rect(core::Image& image, int x0, int y0, int x1, int y1, std::uint32_t colour) {
+  core::fill_rect(image, x0, y0, x1 - x0 + 1, y1 - y0 + 1, core::rgb_from_hex(colour));
+}
 
 }  // namespace
 
 // Issue 19 item 4: a title (the character), a legend with the emotion names, tick values on both
 // axes and axis labels, all with core::draw_text (the one bitmap font). Charts smaller than 200 ×
 // 100 pixels keep only the swatches, lines and ticks.
-Raster mood_chart(const SimulationResult& result, const MindMap& map, std::size_t c,
-                  const ChartOptions& options) {
+core::Image mood_chart(const SimulationResult& result, const MindMap& map, std::size_t c,
+                       const ChartOptions& options) {
   options.validate();
   const std::size_t n = map.emotion_count();
   if (c >= result.mood.size() || result.mood[c].size() != result.times.size() * n)
     throw InvalidInput("mood_chart: character index or emotion count does not match the result");
-  Canvas cv;
-  cv.r.width = options.width;
-  cv.r.height = options.height;
-  cv.r.rgb.assign(static_cast<std::size_t>(options.width) * options.height * 3, 255);
+  core::Image cv(options.width, options.height);
   const bool text = options.width >= 200 && options.height >= 100;
   const int sc = options.width >= 400 && options.height >= 200 ? 2 : 1;  // font scale
   const int lh = core::text_height(sc) + 4;                              // line height
   const core::Rgb ink{40, 40, 40};
   auto label = [&](int x, int y, const std::string& t, core::Rgb colour) {
-    core::draw_text(cv.r.rgb, cv.r.width, cv.r.height, x, y, t, colour, sc);
+    core::draw_text(cv, x, y, t, colour, sc);
   };
   int left = 8, top = 8 + 10, legend_y = 4;
   if (text) {
@@ -93,23 +70,24 @@ Raster mood_chart(const SimulationResult& result, const MindMap& map, std::size_
     int x = 8, y = legend_y;
     for (std::size_t e = 0; e < n; ++e) {
       if (!text) {
-        cv.rect(left + static_cast<int>(e) * 18, 4, left + static_cast<int>(e) * 18 + 12, 12,
-                emotion_colour(e));
+        rect(cv, left + static_cast<int>(e) * 18, 4, left + static_cast<int>(e) * 18 + 12, 12,
+             emotion_colour(e));
         continue;
       }
       const int w = 12 + 4 + core::text_width(map.emotions[e], sc) + 10;
       if (x + w > options.width - 8 && x > 8) x = 8, y += lh;
-      cv.rect(x, y + sc, x + 12, y + core::text_height(sc) - sc, emotion_colour(e));
+      rect(cv, x, y + sc, x + 12, y + core::text_height(sc) - sc, emotion_colour(e));
       label(x + 16, y, map.emotions[e], ink);
       x += w;
     }
   }
   const double step = duration > 300 ? 30.0 : duration > 30 ? 5.0 : 1.0;
   for (double t = 0.0; t <= duration + 1e-9; t += step)
-    cv.rect(static_cast<int>(std::lround(px(t))), top, static_cast<int>(std::lround(px(t))), bottom, 0xe0e0e0);
+    rect(cv, static_cast<int>(std::lround(px(t))), top, static_cast<int>(std::lround(px(t))),
+         bottom, 0xe0e0e0);
   for (int q = 0; q <= 4; ++q) {
     const int y = static_cast<int>(std::lround(py(q / 4.0)));
-    cv.rect(left, y, right, y, q == 0 || q == 4 ? 0x808080 : 0xe0e0e0);
+    rect(cv, left, y, right, y, q == 0 || q == 4 ? 0x808080 : 0xe0e0e0);
   }
   if (text) {
     label(std::max(0, (options.width - core::text_width(map.character + ": mood", sc)) / 2), 3,
@@ -120,8 +98,8 @@ Raster mood_chart(const SimulationResult& result, const MindMap& map, std::size_
       label(left - 4 - core::text_width(t, sc),
             std::clamp(y - core::text_height(sc) / 2, top, bottom), t, ink);
     }
-    core::draw_text_vertical(cv.r.rgb, cv.r.width, cv.r.height, 3,
-                             (top + bottom + core::text_width("mood", sc)) / 2, "mood", ink, sc);
+    core::draw_text_vertical(cv, 3, (top + bottom + core::text_width("mood", sc)) / 2, "mood", ink,
+                             sc);
     // x tick values under the action ticks, every k-th grid line so that labels do not touch
     const int tick_y = bottom + ticks + 6;
     auto fmt = [](double t) { return std::to_string(static_cast<long long>(std::lround(t))); };
@@ -142,16 +120,16 @@ Raster mood_chart(const SimulationResult& result, const MindMap& map, std::size_
   const auto& mood = result.mood[c];
   for (std::size_t e = 0; e < n; ++e)
     for (std::size_t k = 1; k < result.times.size(); ++k)
-      cv.line(px(result.times[k - 1]), py(mood[(k - 1) * n + e]), px(result.times[k]),
-              py(mood[k * n + e]), emotion_colour(e));
+      core::draw_line(cv, px(result.times[k - 1]), py(mood[(k - 1) * n + e]), px(result.times[k]),
+                      py(mood[k * n + e]), core::rgb_from_hex(emotion_colour(e)), 2);
   for (const auto& a : result.actions) {
     if (a.character != map.character || a.time > duration) continue;
     const auto e = map.find_emotion(a.emotion);
     const int x = static_cast<int>(std::lround(px(a.time)));
     const int h = a.cause == Cause::Stimulus ? ticks - 2 : a.cause == Cause::Chain ? ticks * 2 / 3 : ticks / 3;
-    cv.rect(x - 1, bottom + 4, x + 1, bottom + 3 + h, e ? emotion_colour(*e) : 0x000000);
+    rect(cv, x - 1, bottom + 4, x + 1, bottom + 3 + h, e ? emotion_colour(*e) : 0x000000);
   }
-  return std::move(cv.r);
+  return cv;
 }
 
 }  // namespace emoface::mindmap

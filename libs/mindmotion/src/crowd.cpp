@@ -260,8 +260,8 @@ Crowd animate_crowd(std::vector<mindmap::MindMap> maps, std::vector<mindmap::Eve
   return crowd;
 }
 
-fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::uint32_t>& colours,
-                     int width, int height, const std::vector<std::string>& labels) {
+core::Image mood_strip(const std::vector<double>& values, const std::vector<std::uint32_t>& colours,
+                       int width, int height, const std::vector<std::string>& labels) {
   if (values.size() != colours.size()) throw InvalidInput("mood_strip: one colour per value is needed");
   if (!labels.empty() && labels.size() != values.size())
     throw InvalidInput("mood_strip: one label per value is needed (or none)");
@@ -270,14 +270,7 @@ fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::u
   const int n = static_cast<int>(values.size());
   if (n > 0 && width / n < 4)
     throw InvalidInput("mood_strip: " + std::to_string(n) + " bars do not fit in " + std::to_string(width) + " pixels");
-  fm::Image img;
-  img.width = width;
-  img.height = height;
-  img.rgb.assign(static_cast<std::size_t>(width) * height * 3, 255);
-  auto set = [&](int x, int y, std::uint32_t c) {
-    std::uint8_t* p = &img.rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-    p[0] = static_cast<std::uint8_t>(c >> 16), p[1] = static_cast<std::uint8_t>(c >> 8), p[2] = static_cast<std::uint8_t>(c);
-  };
+  core::Image img(width, height);
   if (n == 0) return img;
   const int slot = width / n, left = (width - slot * n) / 2;
   const int pad = std::max(1, slot / 6);
@@ -286,26 +279,28 @@ fm::Image mood_strip(const std::vector<double>& values, const std::vector<std::u
   const int bars_height = text ? height - 8 : height;
   const int top = std::max(1, bars_height / 10),
             bottom = bars_height - 1 - std::max(1, bars_height / 10);  // frame rows
-  constexpr std::uint32_t kFrame = 0xc8c8c8;
+  constexpr core::Rgb kFrame{0xc8, 0xc8, 0xc8};
   for (int i = 0; i < n; ++i) {
     const double v = values[static_cast<std::size_t>(i)];
     if (std::isnan(v)) continue;  // the character lacks this emotion node
     const int x0 = left + i * slot + pad, x1 = left + (i + 1) * slot - pad - 1;  // frame columns (inclusive)
-    for (int x = x0; x <= x1; ++x) set(x, top, kFrame), set(x, bottom, kFrame);
-    for (int y = top; y <= bottom; ++y) set(x0, y, kFrame), set(x1, y, kFrame);
+    core::fill_rect(img, x0, top, x1 - x0 + 1, 1, kFrame);
+    core::fill_rect(img, x0, bottom, x1 - x0 + 1, 1, kFrame);
+    core::fill_rect(img, x0, top, 1, bottom - top + 1, kFrame);
+    core::fill_rect(img, x1, top, 1, bottom - top + 1, kFrame);
     const int inner = bottom - top - 1;  // rows strictly inside the frame
     const int mid = top + 1 + inner / 2;
-    for (int x = x0 + 1; x <= std::min(x1 - 1, x0 + 2); ++x) set(x, mid, kFrame);  // 0.5 tick
-    for (int x = std::max(x0 + 1, x1 - 2); x <= x1 - 1; ++x) set(x, mid, kFrame);
+    core::fill_rect(img, x0 + 1, mid, std::min(x1 - 1, x0 + 2) - x0, 1, kFrame);  // 0.5 tick
+    core::fill_rect(img, std::max(x0 + 1, x1 - 2), mid, x1 - std::max(x0 + 1, x1 - 2), 1, kFrame);
     const double clamped = std::clamp(v, 0.0, 1.0);
     const int bar = static_cast<int>(std::lround(clamped * inner));
-    for (int y = bottom - bar; y < bottom; ++y)
-      for (int x = x0 + 1; x <= x1 - 1; ++x) set(x, y, colours[static_cast<std::size_t>(i)]);
+    core::fill_rect(img, x0 + 1, bottom - bar, x1 - x0 - 1, bar,
+                    core::rgb_from_hex(colours[static_cast<std::size_t>(i)]));
     if (text) {
       const std::size_t fit = static_cast<std::size_t>(std::max(0, (x1 - x0 + 2) / 4));
       const std::string t = labels[static_cast<std::size_t>(i)].substr(0, fit);
-      core::draw_text(img.rgb, width, height, (x0 + x1 + 1 - core::text_width(t, 1)) / 2 + 1,
-                      height - 7, t, {60, 60, 60}, 1);
+      core::draw_text(img, (x0 + x1 + 1 - core::text_width(t, 1)) / 2 + 1, height - 7, t,
+                      {60, 60, 60}, 1);
     }
   }
   return img;
@@ -346,12 +341,6 @@ fm::RenderOptions framing(const fm::Mesh& neutral, const Eigen::MatrixXd& landma
   return o;
 }
 
-void blit(fm::Image& dst, const fm::Image& src, int x0, int y0) {
-  for (int y = 0; y < src.height; ++y)
-    std::memcpy(&dst.rgb[(static_cast<std::size_t>(y0 + y) * dst.width + x0) * 3],
-                &src.rgb[static_cast<std::size_t>(y) * src.width * 3], static_cast<std::size_t>(src.width) * 3);
-}
-
 }  // namespace
 
 CrowdRenderer::CrowdRenderer(const Crowd& crowd, const std::vector<CrowdRig>& rigs, CrowdRenderOptions options)
@@ -380,34 +369,30 @@ CrowdRenderer::CrowdRenderer(const Crowd& crowd, const std::vector<CrowdRig>& ri
   }
 }
 
-fm::Image CrowdRenderer::cell(std::size_t c, std::size_t k) const {
+core::Image CrowdRenderer::cell(std::size_t c, std::size_t k) const {
   if (c >= crowd_.characters.size() || k >= crowd_.frame_count()) throw InvalidInput("CrowdRenderer: character or frame out of range");
   const CrowdCharacter& ch = crowd_.characters[c];
   const muscles::FaceSolver& solver = *rigs_[ch.rig].solver;
   const muscles::Deformation d = solver.deform(ch.tracks[k].values);
-  const fm::Image face = fm::render(fm::Mesh{d.vertices, solver.neutral().faces}, colours_[ch.rig],
-                                    d.crease, render_options_[ch.rig], fm::paint_for(solver.rig()));
-  const fm::Image strip = mood_strip(crowd_.strip_values(c, k), slot_colours_, options_.face_width,
-                                     options_.strip_height, crowd_.emotions);
-  fm::Image out;
-  out.width = cell_width();
-  out.height = cell_height();
-  out.rgb.resize(static_cast<std::size_t>(out.width) * out.height * 3);
-  blit(out, face, 0, 0);
-  blit(out, strip, 0, face_height_);
+  const core::Image face =
+      fm::render(fm::Mesh{d.vertices, solver.neutral().faces}, colours_[ch.rig], d.crease,
+                 render_options_[ch.rig], fm::paint_for(solver.rig()));
+  const core::Image strip = mood_strip(crowd_.strip_values(c, k), slot_colours_,
+                                       options_.face_width, options_.strip_height, crowd_.emotions);
+  core::Image out(cell_width(), cell_height());
+  core::blit(out, face, 0, 0);
+  core::blit(out, strip, 0, face_height_);
   if (options_.face_width >= 64) {  // the character's name on a white label (issue 19)
     const int sc = options_.face_width >= 160 ? 2 : 1;
     const int w = std::min(out.width, 4 + core::text_width(ch.name, sc));
     const int h = std::min(face_height_, 4 + core::text_height(sc) + 2);
-    for (int y = 0; y < h; ++y)
-      std::memset(&out.rgb[static_cast<std::size_t>(y) * out.width * 3], 255,
-                  static_cast<std::size_t>(w) * 3);
-    core::draw_text(out.rgb, out.width, out.height, 3, 3, ch.name, {40, 40, 40}, sc);
+    core::fill_rect(out, 0, 0, w, h, {255, 255, 255});
+    core::draw_text(out, 3, 3, ch.name, {40, 40, 40}, sc);
   }
   return out;
 }
 
-fm::Image CrowdRenderer::compose(const std::vector<std::size_t>& frames) const {
+core::Image CrowdRenderer::compose(const std::vector<std::size_t>& frames) const {
   const std::size_t n = crowd_.characters.size();
   if (frames.size() != n) throw InvalidInput("CrowdRenderer::compose: one frame per character is needed");
   for (std::size_t c = 0; c < n; ++c)
@@ -416,7 +401,7 @@ fm::Image CrowdRenderer::compose(const std::vector<std::size_t>& frames) const {
   std::size_t workers = options_.threads > 0 ? static_cast<std::size_t>(options_.threads)
                                              : std::max(1u, std::thread::hardware_concurrency());
   workers = std::min(workers, n);
-  std::vector<fm::Image> cells(n);
+  std::vector<core::Image> cells(n);
   std::vector<std::exception_ptr> errors(workers);
   auto work = [&](std::size_t t) {
     try {
@@ -431,42 +416,36 @@ fm::Image CrowdRenderer::compose(const std::vector<std::size_t>& frames) const {
   for (auto& th : pool) th.join();
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
-  fm::Image out;
-  out.width = width();
-  out.height = height();
-  out.rgb.assign(static_cast<std::size_t>(out.width) * out.height * 3, 255);
+  core::Image out(width(), height());
   for (std::size_t c = 0; c < n; ++c) {
     const int col = static_cast<int>(c) % columns_, row = static_cast<int>(c) / columns_;
-    blit(out, cells[c], options_.gap + col * (cell_width() + options_.gap),
-         options_.gap + row * (cell_height() + options_.gap));
+    core::blit(out, cells[c], options_.gap + col * (cell_width() + options_.gap),
+               options_.gap + row * (cell_height() + options_.gap));
   }
   return out;
 }
 
-fm::Image CrowdRenderer::frame(std::size_t k) const {
+core::Image CrowdRenderer::frame(std::size_t k) const {
   return compose(std::vector<std::size_t>(crowd_.characters.size(), k));
 }
 
-fm::Image CrowdRenderer::key_moment_sheet() const {
+core::Image CrowdRenderer::key_moment_sheet() const {
   if (crowd_.key_moments.empty()) throw InvalidInput("CrowdRenderer: no key moments (no stimulus inside the frames)");
   constexpr int kRule = 2;  // grey rule between moments
   const int header = width() >= 200 ? 16 : 0;  // "<time> s: <stimuli>" above each moment (issue 19)
-  fm::Image out;
-  out.width = width();
-  out.height = static_cast<int>(crowd_.key_moments.size()) * (header + height() + kRule) - kRule;
-  out.rgb.assign(static_cast<std::size_t>(out.width) * out.height * 3, 160);
+  core::Image out(width(),
+                  static_cast<int>(crowd_.key_moments.size()) * (header + height() + kRule) - kRule,
+                  {160, 160, 160});
   int y = 0;
   for (const auto& km : crowd_.key_moments) {
     if (header > 0) {
-      std::fill(out.rgb.begin() + static_cast<std::ptrdiff_t>(y) * out.width * 3,
-                out.rgb.begin() + static_cast<std::ptrdiff_t>(y + header) * out.width * 3, 255);
+      core::fill_rect(out, 0, y, out.width, header, {255, 255, 255});
       std::ostringstream t;
       t << std::fixed << std::setprecision(1) << km.time << " s:";
       for (std::size_t i = 0; i < km.stimuli.size(); ++i) t << (i ? ", " : " ") << km.stimuli[i];
-      core::draw_text(out.rgb, out.width, out.height, options_.gap + 2, y + 4, t.str(),
-                      {40, 40, 40}, 2);
+      core::draw_text(out, options_.gap + 2, y + 4, t.str(), {40, 40, 40}, 2);
     }
-    blit(out, compose(km.frames), 0, y + header);
+    core::blit(out, compose(km.frames), 0, y + header);
     y += header + height() + kRule;
   }
   return out;

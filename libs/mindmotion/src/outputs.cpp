@@ -8,12 +8,13 @@
 #include <sstream>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/image.hpp"
 #include "emoface/core/video.hpp"
 #include "emoface/faceweights/tracks.hpp"
+#include "emoface/mindmap/chart.hpp"
 #include "emoface/mindmap/io.hpp"
 #include "emoface/mindmotion/muscle_tracks.hpp"
 #include "emoface/motiongraph/io.hpp"
-#include "emoface/motiongraph/render.hpp"
 
 namespace emoface::mindmotion {
 
@@ -31,10 +32,7 @@ double cpu_since(std::clock_t c0) {
 
 std::string chart_png(const mindmap::SimulationResult& r, const mindmap::MindMap& map,
                       std::size_t c, const mindmap::ChartOptions& options) {
-  const mindmap::Raster chart = mindmap::mood_chart(r, map, c, options);
-  motiongraph::Image img(chart.width, chart.height);
-  img.rgb = chart.rgb;
-  return motiongraph::encode_png(img);
+  return core::encode_png(mindmap::mood_chart(r, map, c, options));
 }
 
 }  // namespace
@@ -121,9 +119,9 @@ CrowdOutputReport stage_crowd_outputs(core::OutputBundle& bundle, const std::str
   bundle.add(dir + "/key_moments.csv", key_moments_csv(crowd));
   auto t0 = Clock::now();
   std::clock_t c0 = std::clock();
-  const facemesh::Image sheet = renderer.key_moment_sheet();
+  const core::Image sheet = renderer.key_moment_sheet();
   for (const auto& km : crowd.key_moments) rep.rendered += km.frames.size();
-  bundle.add(dir + "/key_moments.png", facemesh::encode_png(sheet));
+  bundle.add(dir + "/key_moments.png", core::encode_png(sheet));
   rep.render_seconds = since(t0);
   rep.render_cpu = cpu_since(c0);
   if (o.video) {
@@ -135,7 +133,7 @@ CrowdOutputReport stage_crowd_outputs(core::OutputBundle& bundle, const std::str
     c0 = std::clock();
     core::VideoWriter writer(bundle.stage_path(dir + "/crowd.mp4"), vo);
     for (std::size_t k = 0; k < crowd.frame_count(); ++k) {
-      writer.add_frame(renderer.frame(k).rgb);
+      writer.add_frame(renderer.frame(k));
       if (o.progress) o.progress(k + 1, crowd.frame_count());
     }
     writer.finish();

@@ -293,18 +293,18 @@ void stage_animation_pictures(core::OutputBundle& bundle, const MotionGraph& g,
     const auto every = static_cast<std::size_t>(a.every);
     for (std::size_t f = 0; f < all.size(); f += every) shown.push_back(all[f]);
     if ((all.size() - 1) % every != 0) shown.push_back(all.back());
-    bundle.add(a.sheet, encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
-                                                 a.cell_width * 7 / 8, contours)));
+    bundle.add(a.sheet, core::encode_png(contact_sheet(shown, groups, a.columns, a.cell_width,
+                                                       a.cell_width * 7 / 8, contours)));
   }
-  if (!a.plot.empty()) bundle.add(a.plot, encode_png(plot_trajectories(all, groups)));
+  if (!a.plot.empty()) bundle.add(a.plot, core::encode_png(plot_trajectories(all, groups)));
   if (!a.frames_dir.empty()) {
     const View view = fit_view(all, 640, 490);
     for (std::size_t f = 0; f < all.size(); ++f) {
-      Image img(640, 490);
+      core::Image img(640, 490);
       draw_pose(img, all[f], groups, view);
       char name[32];
       std::snprintf(name, sizeof name, "/frame_%05zu.png", f);
-      bundle.add(a.frames_dir + name, encode_png(img));
+      bundle.add(a.frames_dir + name, core::encode_png(img));
     }
   }
   if (!a.video.empty()) {
@@ -315,10 +315,10 @@ void stage_animation_pictures(core::OutputBundle& bundle, const MotionGraph& g,
     core::VideoWriter video(bundle.stage_path(a.video), vo);  // renamed into place on commit
     const View view = fit_view(all, vo.width, vo.height);
     for (const Pose& pose : all) {
-      Image img(vo.width, vo.height);
+      core::Image img(vo.width, vo.height);
       draw_contours(img, pose, contours, view);
       draw_pose(img, pose, groups, view, std::max(1.5, vo.width / 256.0));
-      video.add_frame(img.rgb);
+      video.add_frame(img);
     }
     video.finish();
   }

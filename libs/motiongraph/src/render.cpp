@@ -6,7 +6,6 @@
 
 
 #include "emoface/core/errors.hpp"
-#include "emoface/core/png.hpp"
 
 namespace emoface::motiongraph {
 
@@ -15,39 +14,11 @@ const std::uint32_t kPalette[] = {0x1f77b4, 0xd62728, 0x2ca02c, 0x9467bd, 0xff7f
                                   0x8c564b, 0xe377c2, 0x17becf, 0x7f7f7f, 0xbcbd22};
 std::uint32_t palette(int i) { return kPalette[static_cast<std::size_t>(std::abs(i)) % 10]; }
 
-void disc(Image& img, double cx, double cy, double r, std::uint32_t colour) {
-  for (int y = static_cast<int>(std::floor(cy - r)); y <= static_cast<int>(std::ceil(cy + r)); ++y)
-    for (int x = static_cast<int>(std::floor(cx - r)); x <= static_cast<int>(std::ceil(cx + r)); ++x)
-      if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) img.set(x, y, colour);
-}
-
-void line(Image& img, double x0, double y0, double x1, double y1, std::uint32_t colour) {
-  const int steps = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
-  if (steps > 100000) return;
-  for (int i = 0; i <= steps; ++i) {
-    const double t = static_cast<double>(i) / steps;
-    const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0)));
-    const int y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
-    img.set(x, y, colour);
-    img.set(x + 1, y, colour);
-    img.set(x, y + 1, colour);
-  }
+// Lines 2 pixels thick (core::draw_line), dots as filled discs (core::fill_circle).
+void line(core::Image& img, double x0, double y0, double x1, double y1, std::uint32_t colour) {
+  core::draw_line(img, x0, y0, x1, y1, core::rgb_from_hex(colour), 2);
 }
 }  // namespace
-
-Image::Image(int w, int h, std::uint8_t grey) : width(w), height(h) {
-  if (w < 1 || h < 1 || static_cast<long long>(w) * h > (1LL << 26))
-    throw InvalidInput("image: size must be >= 1 x 1 and at most 2^26 pixels");
-  rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, grey);
-}
-
-void Image::set(int x, int y, std::uint32_t c) {
-  if (x < 0 || y < 0 || x >= width || y >= height) return;
-  const std::size_t o = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
-  rgb[o] = static_cast<std::uint8_t>(c >> 16);
-  rgb[o + 1] = static_cast<std::uint8_t>(c >> 8);
-  rgb[o + 2] = static_cast<std::uint8_t>(c);
-}
 
 View fit_view(const std::vector<Pose>& frames, int width, int height, double margin) {
   if (frames.empty() || width < 2 || height < 2 || !(margin >= 0.0 && margin < 0.5))
@@ -72,15 +43,15 @@ View fit_view(const std::vector<Pose>& frames, int width, int height, double mar
   return v;
 }
 
-void draw_pose(Image& image, const Pose& pose, const std::vector<int>& groups, const View& view,
-               double dot_radius) {
+void draw_pose(core::Image& image, const Pose& pose, const std::vector<int>& groups,
+               const View& view, double dot_radius) {
   if (pose.cols() < 2) throw InvalidInput("draw_pose: poses need at least 2 columns");
   if (!(dot_radius > 0.0 && dot_radius < 100.0)) throw InvalidInput("draw_pose: dot_radius must be in (0, 100)");
   for (Eigen::Index i = 0; i < pose.rows(); ++i) {
     const int g = static_cast<std::size_t>(i) < groups.size() ? groups[static_cast<std::size_t>(i)] : 0;
     const double x = view.offset_x + view.scale * pose(i, 0), y = view.offset_y + view.scale * pose(i, 1);
     if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e6 || std::abs(y) > 1e6) continue;
-    disc(image, x, y, dot_radius, palette(g));
+    core::fill_circle(image, x, y, dot_radius, core::rgb_from_hex(palette(g)));
   }
 }
 
@@ -115,7 +86,8 @@ std::vector<std::vector<int>> contours_for(const std::vector<int>& landmark_ids)
   return out;
 }
 
-void draw_contours(Image& image, const Pose& pose, const std::vector<std::vector<int>>& contours, const View& view,
+void draw_contours(core::Image& image, const Pose& pose,
+                   const std::vector<std::vector<int>>& contours, const View& view,
                    std::uint32_t colour) {
   if (pose.cols() < 2) throw InvalidInput("draw_contours: poses need at least 2 columns");
   auto px = [&](int r, double& x, double& y) {
@@ -132,21 +104,22 @@ void draw_contours(Image& image, const Pose& pose, const std::vector<std::vector
     }
 }
 
-Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& groups, int columns,
-                    int cell_width, int cell_height, const std::vector<std::vector<int>>& contours) {
+core::Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& groups,
+                          int columns, int cell_width, int cell_height,
+                          const std::vector<std::vector<int>>& contours) {
   if (frames.empty() || columns < 1 || cell_width < 8 || cell_height < 8 || cell_width > 4096 ||
       cell_height > 4096)
     throw InvalidInput("contact sheet: need frames, columns >= 1 and cells of 8..4096 pixels");
   const int cols = std::min<int>(columns, static_cast<int>(frames.size()));
   const int rows = static_cast<int>((frames.size() + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
-  Image img(cols * cell_width, rows * cell_height);
+  core::Image img(cols * cell_width, rows * cell_height);
   const View base = fit_view(frames, cell_width, cell_height);
   const double radius = std::max(1.0, 0.012 * std::min(cell_width, cell_height));
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const int cx = static_cast<int>(f % static_cast<std::size_t>(cols)) * cell_width;
     const int cy = static_cast<int>(f / static_cast<std::size_t>(cols)) * cell_height;
-    for (int x = cx; x < cx + cell_width; ++x) img.set(x, cy, 0xcccccc);
-    for (int y = cy; y < cy + cell_height; ++y) img.set(cx, y, 0xcccccc);
+    core::fill_rect(img, cx, cy, cell_width, 1, {0xcc, 0xcc, 0xcc});
+    core::fill_rect(img, cx, cy, 1, cell_height, {0xcc, 0xcc, 0xcc});
     View v = base;
     v.offset_x += cx;
     v.offset_y += cy;
@@ -156,18 +129,19 @@ Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& gro
   return img;
 }
 
-Image plot_series(const std::vector<std::vector<double>>& series, int width, int height, double min_range) {
-  Image img(width, height);
+core::Image plot_series(const std::vector<std::vector<double>>& series, int width, int height,
+                        double min_range) {
+  core::Image img(width, height);
   std::size_t n = 0;
   for (const auto& s : series) n = std::max(n, s.size());
   const int m = 10;
-  for (int x = m; x < width - m; ++x) img.set(x, height - m, 0x000000);
-  for (int y = m; y <= height - m; ++y) img.set(m, y, 0x000000);
+  core::fill_rect(img, m, height - m, width - 2 * m, 1, {0, 0, 0});
+  core::fill_rect(img, m, m, 1, height - 2 * m + 1, {0, 0, 0});
   if (n < 2 || series.empty()) return img;
   const double band = (height - 2.0 * m) / static_cast<double>(series.size());
   auto px = [&](std::size_t i) { return m + (width - 2.0 * m) * static_cast<double>(i) / static_cast<double>(n - 1); };
   for (std::size_t i = 0; i < n; ++i)
-    for (int k = 0; k < 4; ++k) img.set(static_cast<int>(px(i)), height - m + k, 0x000000);
+    core::fill_rect(img, static_cast<int>(px(i)), height - m, 1, 4, {0, 0, 0});
   for (std::size_t k = 0; k < series.size(); ++k) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (double v : series[k])
@@ -175,7 +149,8 @@ Image plot_series(const std::vector<std::vector<double>>& series, int width, int
     if (!(hi >= lo)) continue;
     const double mid = 0.5 * (lo + hi), range = std::max(hi - lo, min_range);
     const double top = m + band * static_cast<double>(k);
-    for (int x = m; x < width - m; x += 4) img.set(x, static_cast<int>(top + band), 0xdddddd);
+    for (int x = m; x < width - m; x += 4)
+      img.set(x, static_cast<int>(top + band), {0xdd, 0xdd, 0xdd});
     auto py = [&](double v) { return top + band * (0.5 - 0.85 * (v - mid) / range); };
     for (std::size_t i = 1; i < series[k].size(); ++i)
       line(img, px(i - 1), py(series[k][i - 1]), px(i), py(series[k][i]), palette(static_cast<int>(k)));
@@ -183,8 +158,8 @@ Image plot_series(const std::vector<std::vector<double>>& series, int width, int
   return img;
 }
 
-Image plot_trajectories(const std::vector<Pose>& frames, const std::vector<int>& groups, int coordinate,
-                        int width, int height) {
+core::Image plot_trajectories(const std::vector<Pose>& frames, const std::vector<int>& groups,
+                              int coordinate, int width, int height) {
   if (frames.empty() || coordinate < 0 || coordinate >= frames[0].cols())
     throw InvalidInput("plot_trajectories: no frames or bad coordinate");
   const Eigen::Index n = frames[0].rows();
@@ -210,13 +185,6 @@ Image plot_trajectories(const std::vector<Pose>& frames, const std::vector<int>&
     for (const Pose& p : frames) series.back().push_back(coordinate == 1 ? -p(i, 1) : p(i, coordinate));
   }
   return plot_series(series, width, height);
-}
-
-std::string encode_png(const Image& image) {
-  if (image.width < 1 || image.height < 1 ||
-      image.rgb.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3)
-    throw InvalidInput("encode_png: inconsistent image");
-  return core::encode_png(image.width, image.height, image.rgb);  // with the tEXt "Software" stamp
 }
 
 }  // namespace emoface::motiongraph

@@ -75,9 +75,9 @@ void stage_outputs(core::OutputBundle& bundle, const std::string& out_dir, ObieR
                               gopt);
     });
   timed("charts + key moments", [&] {
-    bundle.add(file("charts.png"), parlee::encode_png(emotion_chart(r)));
+    bundle.add(file("charts.png"), core::encode_png(emotion_chart(r)));
     if (!r.key_frames.empty())
-      bundle.add(file("key_moments.png"), parlee::encode_png(key_moment_sheet(r)));
+      bundle.add(file("key_moments.png"), core::encode_png(key_moment_sheet(r)));
   });
   bundle.add(file("summary.json"), format_summary(r, match));
 }

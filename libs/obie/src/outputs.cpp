@@ -1,9 +1,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-
 #include <nlohmann/json.hpp>
 
+#include "emoface/core/image.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/obie/pipeline.hpp"
 #include "emoface/parlee/io.hpp"
@@ -23,7 +23,7 @@ double round6(double x) { return std::round(x * 1e6) / 1e6; }
 
 }  // namespace
 
-parlee::RgbImage emotion_chart(const ObieResult& result) {
+core::Image emotion_chart(const ObieResult& result) {
   parlee::ChartOptions options;
   options.panel_height = 120;
   double x_max = 10;
@@ -39,29 +39,24 @@ parlee::RgbImage emotion_chart(const ObieResult& result) {
   return parlee::draw_chart(parlee::emotion_panels(result.agent_name, result.timeline), options);
 }
 
-parlee::RgbImage key_moment_sheet(const ObieResult& result) {
+core::Image key_moment_sheet(const ObieResult& result) {
   if (result.key_frames.empty()) throw InvalidInput("key_moment_sheet: the match has no key moments");
   const int w = result.key_frames.front().image.width, h = result.key_frames.front().image.height;
   const int caption = 44, gap = 6;
   const int n = static_cast<int>(result.key_frames.size());
   const int columns = std::min(n, 4), rows = (n + columns - 1) / columns;
-  parlee::RgbImage sheet;
-  sheet.width = columns * w + (columns + 1) * gap;
-  sheet.height = rows * (h + caption) + (rows + 1) * gap;
-  sheet.rgb.assign(static_cast<std::size_t>(sheet.width) * sheet.height * 3, 255);
+  core::Image sheet(columns * w + (columns + 1) * gap, rows * (h + caption) + (rows + 1) * gap);
   for (int i = 0; i < n; ++i) {
     const auto& kf = result.key_frames[static_cast<std::size_t>(i)];
     if (kf.image.width != w || kf.image.height != h) throw InvalidInput("key_moment_sheet: frames differ in size");
     const int x0 = gap + (i % columns) * (w + gap), y0 = gap + (i / columns) * (h + caption + gap);
-    for (int y = 0; y < h; ++y)
-      std::copy_n(&kf.image.rgb[static_cast<std::size_t>(y) * w * 3], static_cast<std::size_t>(w) * 3,
-                  &sheet.rgb[(static_cast<std::size_t>(y0 + y) * sheet.width + x0) * 3]);
+    core::blit(sheet, kf.image, x0, y0);
     const std::string line2 = "shows: " + expression_text(kf.shown);
     std::string line1 = minute_text(kf.moment.minute) + " " + kf.moment.label;
     const int max_chars = std::max(1, (w - 8) / 8);
     if (static_cast<int>(line1.size()) > max_chars) line1.resize(static_cast<std::size_t>(max_chars));
-    parlee::draw_text(sheet, x0 + 4, y0 + h + 6, line1, {30, 30, 30}, 2);
-    parlee::draw_text(sheet, x0 + 4, y0 + h + 24, line2, {120, 40, 40}, 2);
+    core::draw_text(sheet, x0 + 4, y0 + h + 6, line1, {30, 30, 30}, 2);
+    core::draw_text(sheet, x0 + 4, y0 + h + 24, line2, {120, 40, 40}, 2);
   }
   return sheet;
 }

@@ -284,9 +284,9 @@ void VideoSink::begin(const ObieResult& result, int width, int height, double fp
   impl_->writer = std::make_unique<core::VideoWriter>(video_path_, vo);
 }
 
-void VideoSink::frame(const facemesh::Image& image) {
+void VideoSink::frame(const core::Image& image) {
   if (!impl_->writer) throw Error("VideoSink: frame() before begin()");
-  impl_->writer->add_frame(image.rgb);
+  impl_->writer->add_frame(image);
 }
 
 void VideoSink::finish() {
@@ -411,10 +411,10 @@ ObieResult run_obie(const MatchScript& match, const parlee::AgentConfig& agent, 
     w.mesh.faces = face.mesh.faces;
   }
   const std::size_t batch = std::max<std::size_t>(threads * 4, 8);
-  std::vector<facemesh::Image> images(batch);
+  std::vector<core::Image> images(batch);
   std::vector<facemesh::Vertices> verts(batch);
   std::vector<char> done(batch);
-  std::map<std::size_t, facemesh::Image> key_images;
+  std::map<std::size_t, core::Image> key_images;
   auto process = [&](Work& w, std::size_t f, std::size_t slot) {
     const bool need_render = render_all || want_key[f];
     const bool need_mesh = need_render || want_gltf[f];

@@ -5,38 +5,14 @@
 #include <cmath>
 
 #include "emoface/core/errors.hpp"
-#include "emoface/core/png.hpp"
-#include "emoface/core/font.hpp"
+#include "emoface/core/image.hpp"
 
 namespace emoface::parlee {
 namespace {
 
-void put(RgbImage& im, int x, int y, std::array<std::uint8_t, 3> c) {
-  if (x < 0 || y < 0 || x >= im.width || y >= im.height) return;
-  const auto i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(im.width) + static_cast<std::size_t>(x)) * 3;
-  im.rgb[i] = c[0];
-  im.rgb[i + 1] = c[1];
-  im.rgb[i + 2] = c[2];
-}
-
-void line(RgbImage& im, int x0, int y0, int x1, int y1, std::array<std::uint8_t, 3> c, int thick = 1) {
-  const int dx = std::abs(x1 - x0), dy = -std::abs(y1 - y0);
-  const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
-  int err = dx + dy;
-  for (;;) {
-    for (int a = 0; a < thick; ++a)
-      for (int b = 0; b < thick; ++b) put(im, x0 + a, y0 + b, c);
-    if (x0 == x1 && y0 == y1) break;
-    const int e2 = 2 * err;
-    if (e2 >= dy) {
-      err += dy;
-      x0 += sx;
-    }
-    if (e2 <= dx) {
-      err += dx;
-      y0 += sy;
-    }
-  }
+// Integer end points in, the one line routine of core (2 pixels thick for the series).
+void line(core::Image& im, int x0, int y0, int x1, int y1, core::Rgb c, int thick = 1) {
+  core::draw_line(im, x0, y0, x1, y1, c, thick);
 }
 
 }  // namespace
@@ -47,12 +23,6 @@ void ChartOptions::validate() const {
   if (!(x_max >= 0) || !std::isfinite(x_max)) throw InvalidInput("chart: x_max must be finite and >= 0");
   for (const auto& m : markers)
     if (!std::isfinite(m.x)) throw InvalidInput("chart: marker positions must be finite");
-}
-
-int text_width(std::string_view text, int scale) noexcept { return core::text_width(text, scale); }
-
-void draw_text(RgbImage& image, int x, int y, std::string_view text, std::array<std::uint8_t, 3> rgb, int scale) {
-  core::draw_text(image.rgb, image.width, image.height, x, y, text, rgb, scale);
 }
 
 namespace {
@@ -85,7 +55,7 @@ ChartLayout chart_layout(const std::vector<ChartPanel>& panels, const ChartOptio
   return l;
 }
 
-RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options) {
+core::Image draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options) {
   options.validate();
   if (panels.empty()) throw InvalidInput("chart: no panels");
   double x_max = options.x_max;
@@ -103,7 +73,7 @@ RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& o
   const int panel_height = options.panel_height;
   const int width = options.width;
   const int height = l.height;
-  RgbImage cv{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 3, 255)};
+  core::Image cv(width, height);
   const std::array<std::uint8_t, 3> grid{225, 225, 225}, frame{120, 120, 120}, ink{40, 40, 40};
   const int pw = l.plot_width;
   auto X = [&](double x) { return left + static_cast<int>(std::lround(std::clamp(x / x_max, 0.0, 1.0) * pw)); };
@@ -127,31 +97,33 @@ RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& o
     for (double f : {0.0, 0.5, 1.0}) {
       const std::string t = tick_text(f * panel.y_max);
       const int ty = std::clamp(Y(f * panel.y_max) - 5, y0, y0 + panel_height - 10);
-      draw_text(cv, left - 6 - text_width(t), ty, t, ink);
+      core::draw_text(cv, left - 6 - core::text_width(t), ty, t, ink);
       line(cv, left - 4, Y(f * panel.y_max), left - 1, Y(f * panel.y_max), frame);
     }
     for (const auto& s : panel.series)
       for (std::size_t i = 1; i < s.x.size() && i < s.y.size(); ++i)
         line(cv, X(s.x[i - 1]), Y(s.y[i - 1]), X(s.x[i]), Y(s.y[i]), s.rgb, 2);
-    draw_text(cv, left + 6, y0 + 4, panel.title, ink);
+    core::draw_text(cv, left + 6, y0 + 4, panel.title, ink);
   }
   if (!options.y_label.empty())  // vertical, centred on the panels
-    core::draw_text_vertical(cv.rgb, width, height, 4,
-                             top + (plot_bottom - top + text_width(options.y_label)) / 2,
+    core::draw_text_vertical(cv, 4,
+                             top + (plot_bottom - top + core::text_width(options.y_label)) / 2,
                              options.y_label, ink, 2);
   for (double gx = 0; gx <= x_max + 1e-9; gx += 10) {
     const std::string label = std::to_string(static_cast<int>(gx));
     line(cv, X(gx), plot_bottom + 1, X(gx), plot_bottom + 4, frame);
-    draw_text(cv, X(gx) - 4 * static_cast<int>(label.size()), plot_bottom + 8, label, ink);
+    core::draw_text(cv, X(gx) - 4 * static_cast<int>(label.size()), plot_bottom + 8, label, ink);
   }
   int below = plot_bottom + 26;
   for (const auto& m : options.markers)
-    draw_text(cv, X(m.x) - text_width(m.label) / 2, below, m.label, m.rgb);
+    core::draw_text(cv, X(m.x) - core::text_width(m.label) / 2, below, m.label, m.rgb);
   if (!options.markers.empty()) below += 16;
   if (!options.x_label.empty())
-    draw_text(cv, left + (pw - text_width(options.x_label)) / 2, below, options.x_label, ink);
+    core::draw_text(cv, left + (pw - core::text_width(options.x_label)) / 2, below, options.x_label,
+                    ink);
   if (!options.title.empty())
-    draw_text(cv, left + (pw - text_width(options.title)) / 2, l.title_y, options.title, ink);
+    core::draw_text(cv, left + (pw - core::text_width(options.title)) / 2, l.title_y, options.title,
+                    ink);
   // legend: every distinct (name, colour) of the named series, in order, one row
   std::vector<std::pair<std::string, std::array<std::uint8_t, 3>>> entries;
   for (const auto& p : panels)
@@ -163,21 +135,14 @@ RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& o
   for (const auto& [name, rgb] : entries) {
     for (int dy = 0; dy < 4; ++dy)
       line(cv, lx, l.legend_y + 3 + dy, lx + 18, l.legend_y + 3 + dy, rgb);
-    draw_text(cv, lx + 24, l.legend_y, name, ink);
-    lx += 24 + text_width(name) + 20;
+    core::draw_text(cv, lx + 24, l.legend_y, name, ink);
+    lx += 24 + core::text_width(name) + 20;
   }
   return cv;
 }
 
-std::string encode_png(const RgbImage& image) {
-  if (image.width < 1 || image.height < 1 ||
-      image.rgb.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3)
-    throw InvalidInput("encode_png: image size does not match its pixels");
-  return core::encode_png(image.width, image.height, image.rgb);  // with the tEXt "Software" stamp
-}
-
 std::string render_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options) {
-  return encode_png(draw_chart(panels, options));
+  return core::encode_png(draw_chart(panels, options));
 }
 
 const std::vector<ChartEmotion>& chart_emotions() {

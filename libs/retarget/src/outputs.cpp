@@ -27,9 +27,9 @@ std::string printf_string(const char* format, ...) {
 }
 }  // namespace
 
-fm::Image expression_sheet(const fm::Face& face,
-                           const std::vector<std::map<std::string, double>>& expressions,
-                           int tile) {
+core::Image expression_sheet(const fm::Face& face,
+                             const std::vector<std::map<std::string, double>>& expressions,
+                             int tile) {
   fm::RenderOptions ro;
   ro.width = tile;
   ro.height = tile * 19 / 16;
@@ -37,17 +37,17 @@ fm::Image expression_sheet(const fm::Face& face,
   const muscles::FaceSolver solver(face.mesh, face.rig);
   std::vector<muscles::Deformation> shapes;
   for (const auto& named : expressions) shapes.push_back(solver.deform(named));
-  std::vector<fm::Image> tiles;
+  std::vector<core::Image> tiles;
   for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
     ro.view = view;
     for (const auto& d : shapes)
       tiles.push_back(fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, ro));
   }
-  return fm::contact_sheet(tiles, static_cast<int>(expressions.size()));
+  return core::tile(tiles, static_cast<int>(expressions.size()));
 }
 
 void write_transfer_outputs(const fm::MeshDocument& doc, TransferResult& r, const std::string& dir,
-                            const fm::Image* sheet) {
+                            const core::Image* sheet) {
   const fm::MeshFormat format = doc.format();
   const bool gltf = format == fm::MeshFormat::Gltf || format == fm::MeshFormat::Glb;
   const std::string mesh_name = "face." + (gltf ? std::string("glb") : fm::to_string(format));
@@ -71,7 +71,7 @@ void write_transfer_outputs(const fm::MeshDocument& doc, TransferResult& r, cons
   outputs.add("report.json", format_transfer_report(r));
   if (sheet)
     outputs.add_writer("emotions.png",
-                       [&](const std::string& path) { fm::write_png(path, *sheet); });
+                       [&](const std::string& path) { core::write_png(path, *sheet); });
   outputs.commit();
 }
 
@@ -90,7 +90,7 @@ std::string transfer_summary(const TransferResult& r, const std::string& dir) {
 }
 
 void write_deform_source_outputs(const RetargetResult& r, const std::string& dir, bool pictures,
-                                 int tile, const fm::Image* emotions) {
+                                 int tile, const core::Image* emotions) {
   fm::Face face = r.face;
   face.rig.mesh_file = "face.obj";
   OutputSet outputs(dir);
@@ -106,21 +106,21 @@ void write_deform_source_outputs(const RetargetResult& r, const std::string& dir
     ro.width = tile;
     ro.height = tile * 19 / 16;
     const auto colors = fm::material_colors(face.rig);
-    std::vector<fm::Image> overlay;
+    std::vector<core::Image> overlay;
     for (auto view : {fm::View::Front, fm::View::ThreeQuarter}) {
       ro.view = view;
       overlay.push_back(fm::render(r.aligned_target, {}, {}, ro));
       overlay.push_back(fm::render(face.mesh, colors, {}, ro));
     }
-    const fm::Image sheet = fm::contact_sheet(overlay, 2);
+    const core::Image sheet = core::tile(overlay, 2);
     outputs.add_writer("overlay.png",
-                       [sheet](const std::string& path) { fm::write_png(path, sheet); });
-    const fm::Image curve = plot_series({r.ga.error_curve});
+                       [sheet](const std::string& path) { core::write_png(path, sheet); });
+    const core::Image curve = plot_series({r.ga.error_curve});
     outputs.add_writer("error_curve.png",
-                       [curve](const std::string& path) { fm::write_png(path, curve); });
+                       [curve](const std::string& path) { core::write_png(path, curve); });
     if (emotions)
       outputs.add_writer("emotions.png",
-                         [emotions](const std::string& path) { fm::write_png(path, *emotions); });
+                         [emotions](const std::string& path) { core::write_png(path, *emotions); });
   }
   outputs.commit();
 }

@@ -10,6 +10,8 @@
 
 namespace emoface::core {
 
+struct Image;  // image.hpp
+
 struct VideoOptions {
   int width = 0;              ///< frame width, pixels, 1 … 16384
   int height = 0;             ///< frame height, pixels, 1 … 16384
@@ -39,7 +41,9 @@ class VideoWriter {
 
   void add_frame(const std::uint8_t* rgb);           ///< throws IoError if ffmpeg died (message has its stderr)
   void add_frame(const std::vector<std::uint8_t>& rgb);  ///< also checks the size (InvalidInput)
-  /// Closes the stream, waits for ffmpeg, and renames the temporary file to the target. Needs ≥ 1 frame.
+  void add_frame(const Image& frame);  ///< also checks that frame is width × height (InvalidInput)
+  /// Closes the stream, waits for ffmpeg, and renames the temporary file to the target. Needs ≥ 1
+  /// frame.
   void finish();
 
   std::size_t frames() const noexcept { return frames_; }

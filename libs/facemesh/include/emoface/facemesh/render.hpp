@@ -1,13 +1,14 @@
 #pragma once
-// A small software rasteriser (z-buffer, per-pixel Phong shading of interpolated normals) for looking
-// at faces headlessly, plus contact sheets and PNG output (libpng, private).
+// A small software rasteriser (z-buffer, per-pixel Phong shading of interpolated normals) for
+// looking at faces headlessly. It renders into core::Image (emoface/core/image.hpp), which also
+// makes contact sheets (core::tile), PNG files (core::write_png) and video frames.
+#include <Eigen/Core>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include <Eigen/Core>
-
+#include "emoface/core/image.hpp"
 #include "emoface/facemesh/mesh.hpp"
 #include "emoface/facemesh/rig.hpp"
 
@@ -16,12 +17,6 @@ namespace emoface::facemesh {
 enum class View { Front, ThreeQuarter };
 std::string to_string(View view);
 View view_from_string(std::string_view name);
-
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgb;  ///< width*height*3, row 0 at the top
-};
 
 struct RenderOptions {
   View view = View::Front;
@@ -68,9 +63,9 @@ struct Paint {
 /// marks vertices shaded with their face normal instead of the averaged normal — the thesis' fix for the
 /// "unrepresentative vertex normal" at wrinkle feet (§2.4.1). Back faces are shaded dark (mouth inside).
 /// `paint` (optional, not owned) is blended over the vertex colours by its alpha.
-Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
-             const std::vector<std::uint8_t>& crease, const RenderOptions& options,
-             const Paint* paint = nullptr);
+core::Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
+                   const std::vector<std::uint8_t>& crease, const RenderOptions& options,
+                   const Paint* paint = nullptr);
 
 /// Fits the camera to `vertices` (#V by 3, any frame and units, +y up): target = bounding-box centre,
 /// distance such that the projected vertices span about `fill` ∈ (0, 1] of the image (from the
@@ -83,14 +78,5 @@ double visible_fraction(const Vertices& vertices, const RenderOptions& options);
 /// middle half of the image and its projected height in [min_fill, 2] image heights (a face in the
 /// thesis frame keeps the usual framing); otherwise fit_camera. Throws like fit_camera.
 RenderOptions frame_camera(const Vertices& vertices, const RenderOptions& options, double min_fill = 0.3);
-
-/// Tiles equally sized images into `columns` columns (white gaps of `gap` px). Throws InvalidInput
-/// for no images, mismatched sizes or columns < 1.
-Image contact_sheet(const std::vector<Image>& images, int columns, int gap = 4);
-
-/// Writes an 8-bit RGB PNG atomically. Throws IoError.
-void write_png(const std::string& path, const Image& image);
-/// Encodes PNG bytes in memory.
-std::string encode_png(const Image& image);
 
 }  // namespace emoface::facemesh

@@ -1,14 +1,15 @@
 #pragma once
-// Mood charts: one character's mood over time as an RGB raster (encode it with any PNG writer, e.g.
-// motiongraph::encode_png). Each emotion node is a coloured line (palette order = emotion order,
-// listed in docs/mindmap.md); triggered actions are ticks under the plot (tall = stimulus, middle =
-// chain, short = decay hint) in the colour of the emotion that chose them. Grid: mood 0, 0.25, …, 1
-// and one vertical line per second (per 5 s past 30 s, per 30 s past 300 s). Charts of at least
-// 200 × 100 pixels carry text (issue 19, core::draw_text): the title "<character>: mood", a legend
-// naming the emotion nodes, tick values (mood 0, 0.5, 1; seconds) and axis labels.
+// Mood charts: one character's mood over time as a core::Image (core::encode_png makes the PNG).
+// Each emotion node is a coloured line (palette order = emotion order, listed in docs/mindmap.md);
+// triggered actions are ticks under the plot (tall = stimulus, middle = chain, short = decay hint)
+// in the colour of the emotion that chose them. Grid: mood 0, 0.25, …, 1 and one vertical line per
+// second (per 5 s past 30 s, per 30 s past 300 s). Charts of at least 200 × 100 pixels carry text
+// (issue 19, core::draw_text): the title "<character>: mood", a legend naming the emotion nodes,
+// tick values (mood 0, 0.5, 1; seconds) and axis labels.
 #include <cstdint>
 #include <vector>
 
+#include "emoface/core/image.hpp"
 #include "emoface/mindmap/mind_map.hpp"
 #include "emoface/mindmap/simulation.hpp"
 
@@ -20,16 +21,11 @@ struct ChartOptions {
   void validate() const;
 };
 
-struct Raster {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;  ///< row-major, 3 bytes per pixel, top row first
-};
-
 /// The palette colour (0xRRGGBB) of emotion node i.
 std::uint32_t emotion_colour(std::size_t i) noexcept;
 
 /// Chart of character `c` of `result` (whose map is `map`).
-Raster mood_chart(const SimulationResult& result, const MindMap& map, std::size_t c,
-                  const ChartOptions& options = {});
+core::Image mood_chart(const SimulationResult& result, const MindMap& map, std::size_t c,
+                       const ChartOptions& options = {});
 
 }  // namespace emoface::mindmap

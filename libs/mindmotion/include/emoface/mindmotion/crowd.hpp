@@ -1,15 +1,16 @@
 #pragma once
-// A crowd (issue #9 §2; paper §6.1, Fig. 1 and Fig. 4): several characters, each driven by its own mind
-// map, receive the same stimuli; every character's triggered actions become motion-graph landmark motion
-// (synthesize_behaviour), the motion becomes muscle tracks through the bridge (fit_muscle_tracks), and a
-// compositor deforms each character's face (muscles::FaceSolver) and renders the faces side by side
-// (facemesh::render; a grid past four characters), each with a mood strip under it: one bar per emotion
-// node, its height the character's current mood value, in the emotion's colour (docs/mindmotion.md).
+// A crowd (issue #9 §2; paper §6.1, Fig. 1 and Fig. 4): several characters, each driven by its own
+// mind map, receive the same stimuli; every character's triggered actions become motion-graph
+// landmark motion (synthesize_behaviour), the motion becomes muscle tracks through the bridge
+// (fit_muscle_tracks), and a compositor deforms each character's face (muscles::FaceSolver) and
+// renders the faces side by side (facemesh::render; a grid past four characters), each with a mood
+// strip under it: one bar per emotion node, its height the character's current mood value, in the
+// emotion's colour (docs/mindmotion.md).
 //
 //   Crowd crowd = animate_crowd(maps, events, graph, {{&solver, &fitter}}, options);
 //   CrowdRenderer renderer(crowd, {{&solver, &fitter}});
 //   for (std::size_t k = 0; k < crowd.frame_count(); ++k) video.add_frame(renderer.frame(k).rgb);
-//   facemesh::Image sheet = renderer.key_moment_sheet();   // one row per stimulus (Fig. 4 style)
+//   core::Image sheet = renderer.key_moment_sheet();   // one row per stimulus (Fig. 4 style)
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "emoface/bridge/landmark_fit.hpp"
+#include "emoface/core/image.hpp"
 #include "emoface/facemesh/render.hpp"
 #include "emoface/mindmap/mind_map.hpp"
 #include "emoface/mindmap/simulation.hpp"
@@ -168,9 +170,8 @@ struct CrowdRenderOptions {
 /// [8, 8192]. With `labels` (one per value, or empty) and a strip of at least 24 pixels, the bottom
 /// 8 rows carry each slot's label (core::draw_text at scale 1, cut to the slot's width) and the
 /// bars keep the rows above; smaller strips draw no text.
-facemesh::Image mood_strip(const std::vector<double>& values,
-                           const std::vector<std::uint32_t>& colours, int width, int height,
-                           const std::vector<std::string>& labels = {});
+core::Image mood_strip(const std::vector<double>& values, const std::vector<std::uint32_t>& colours,
+                       int width, int height, const std::vector<std::string>& labels = {});
 
 /// Deforms and renders a Crowd: one cell per character (face over mood strip) in a grid.
 class CrowdRenderer {
@@ -190,16 +191,16 @@ class CrowdRenderer {
   /// Character c at frame k: the deformed face rendered over its mood strip (cell_width ×
   /// cell_height). Faces at least 64 pixels wide carry the character's name in the top-left corner,
   /// strips of at least 24 pixels the emotion names under their bars (issue 19).
-  facemesh::Image cell(std::size_t c, std::size_t k) const;
+  core::Image cell(std::size_t c, std::size_t k) const;
   /// Every character at frame k, in grid order (row-major, character order); cells render in parallel.
-  facemesh::Image frame(std::size_t k) const;
+  core::Image frame(std::size_t k) const;
   /// Character c at frames[c] (a frame of mixed times, e.g. key moments); frames.size() = characters.
-  facemesh::Image compose(const std::vector<std::size_t>& frames) const;
+  core::Image compose(const std::vector<std::size_t>& frames) const;
   /// The key moments stacked top to bottom, one composed row of all characters per stimulus (a
   /// crowd of more than 4 keeps its grid per moment). Sheets at least 200 pixels wide give each
   /// moment a 16-pixel header "<time> s: <stimuli>" (issue 19). Throws InvalidInput when there is
   /// no key moment.
-  facemesh::Image key_moment_sheet() const;
+  core::Image key_moment_sheet() const;
 
  private:
   const Crowd& crowd_;

@@ -1,21 +1,15 @@
 #pragma once
-// Pictures of landmark motion for docs and the mgraph CLI: poses drawn as dots (coloured by region),
-// contact sheets of frames, trajectory plots, encoded as PNG (zlib). No text rendering.
+// Pictures of landmark motion for docs and the mgraph CLI: poses drawn as dots (coloured by
+// region), contact sheets of frames, trajectory plots, as core::Image (core::encode_png makes the
+// PNG). No text rendering.
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "emoface/core/image.hpp"
 #include "emoface/motiongraph/database.hpp"
 
 namespace emoface::motiongraph {
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;  ///< row-major, 3 bytes per pixel
-  Image() = default;
-  Image(int w, int h, std::uint8_t grey = 255);  ///< at most 2^26 pixels, else InvalidInput
-  void set(int x, int y, std::uint32_t colour);  ///< 0xRRGGBB; outside pixels are ignored
-};
 
 /// Maps landmark coordinates to pixels: pixel = offset + scale · coordinate.
 struct View {
@@ -28,8 +22,8 @@ struct View {
 View fit_view(const std::vector<Pose>& frames, int width, int height, double margin = 0.08);
 
 /// Draws one pose as dots; `groups[i]` picks the colour of landmark i (empty = one colour).
-void draw_pose(Image& image, const Pose& pose, const std::vector<int>& groups, const View& view,
-               double dot_radius = 2.5);
+void draw_pose(core::Image& image, const Pose& pose, const std::vector<int>& groups,
+               const View& view, double dot_radius = 2.5);
 
 /// The iBUG-68 face outline as polylines of landmark ids: jaw 0–16, brows 17–21 and 22–26, nose bridge
 /// 27–30, nose base 31–35, eyes 36–41 and 42–47 and lips 48–59 and 60–67 (closed: the first id is
@@ -42,27 +36,25 @@ const std::vector<std::vector<int>>& ibug68_contours();
 std::vector<std::vector<int>> contours_for(const std::vector<int>& landmark_ids);
 
 /// Draws polylines through pose rows (`contours` as from contours_for) in `colour` (0xRRGGBB).
-void draw_contours(Image& image, const Pose& pose, const std::vector<std::vector<int>>& contours,
-                   const View& view, std::uint32_t colour = 0xb0b0b0);
+void draw_contours(core::Image& image, const Pose& pose,
+                   const std::vector<std::vector<int>>& contours, const View& view,
+                   std::uint32_t colour = 0xb0b0b0);
 
 /// Frames tiled left-to-right, top-to-bottom in cells of cell_width × cell_height pixels, all with
 /// the same view (so motion is visible across cells); `contours` (pose rows, contours_for) are drawn
 /// as light lines under the dots (issue 19: sheets with contour lines).
-Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& groups, int columns,
-                    int cell_width = 160, int cell_height = 140,
-                    const std::vector<std::vector<int>>& contours = {});
+core::Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int>& groups,
+                          int columns, int cell_width = 160, int cell_height = 140,
+                          const std::vector<std::vector<int>>& contours = {});
 
 /// Line plot of several series over frames: each series in its own horizontal band, scaled to its
 /// own range (at least `min_range`), with a frame tick per sample. No text.
-Image plot_series(const std::vector<std::vector<double>>& series, int width = 640, int height = 320,
-                  double min_range = 2.0);
+core::Image plot_series(const std::vector<std::vector<double>>& series, int width = 640,
+                        int height = 320, double min_range = 2.0);
 
 /// Trajectories of a landmark sequence: for each group, the landmark with the largest range of
 /// `coordinate` (0 = x, 1 = y) is plotted over the frames, one colour per group.
-Image plot_trajectories(const std::vector<Pose>& frames, const std::vector<int>& groups, int coordinate = 1,
-                        int width = 640, int height = 320);
-
-/// PNG file bytes (8-bit RGB, zlib).
-std::string encode_png(const Image& image);
+core::Image plot_trajectories(const std::vector<Pose>& frames, const std::vector<int>& groups,
+                              int coordinate = 1, int width = 640, int height = 320);
 
 }  // namespace emoface::motiongraph

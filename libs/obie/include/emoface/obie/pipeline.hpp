@@ -26,6 +26,7 @@
 #include "emoface/channels/script.hpp"
 #include "emoface/channels/speech.hpp"
 #include "emoface/channels/talking_head.hpp"
+#include "emoface/core/image.hpp"
 #include "emoface/facemesh/io.hpp"
 #include "emoface/facemesh/render.hpp"
 #include "emoface/muscles/solver.hpp"
@@ -119,7 +120,7 @@ struct KeyMomentFrame {
   std::size_t frame = 0;          ///< frame index: round(time·fps), clamped to the last frame
   std::array<double, 6> esv{};    ///< felt: basic emotions of the last step at or before the moment
   std::array<double, 6> shown{};  ///< displayed: intensities of the emotion display active at `time`
-  facemesh::Image image;          ///< rendered at options.width × height
+  core::Image image;              ///< rendered at options.width × height
 };
 
 struct ObieResult {
@@ -146,7 +147,7 @@ class FrameSink {
  public:
   virtual ~FrameSink() = default;
   virtual void begin(const ObieResult& result, int width, int height, double fps) = 0;
-  virtual void frame(const facemesh::Image& image) = 0;
+  virtual void frame(const core::Image& image) = 0;
   virtual void finish() = 0;
 };
 
@@ -158,7 +159,7 @@ class VideoSink : public FrameSink {
   VideoSink(std::string video_path, std::string wav_path, std::string ffmpeg = "ffmpeg");
   ~VideoSink() override;
   void begin(const ObieResult& result, int width, int height, double fps) override;
-  void frame(const facemesh::Image& image) override;
+  void frame(const core::Image& image) override;
   void finish() override;
 
  private:
@@ -206,9 +207,9 @@ ObieResult run_obie(const MatchScript& match, const parlee::AgentConfig& agent, 
 
 /// The emotion chart of the run (fear, happiness, surprise, sadness over match minutes, Figs.
 /// 7.4–7.8) with the goals marked.
-parlee::RgbImage emotion_chart(const ObieResult& result);
+core::Image emotion_chart(const ObieResult& result);
 /// The key-moment frames side by side, each captioned with its minute, label and strongest emotion.
-parlee::RgbImage key_moment_sheet(const ObieResult& result);
+core::Image key_moment_sheet(const ObieResult& result);
 /// Timeline NDJSON: parlee's timeline line of every record plus "agent" and "anim_time" (seconds).
 std::string format_timeline(const ObieResult& result);
 /// `emoface.obie.summary` 1.0 JSON: match, agent, goals, peaks, utterances, key moments, frames,

@@ -2,8 +2,8 @@
 // Emotion charts (thesis Figs. 7.4–7.11): stacked line-chart panels sharing the x axis (match
 // minutes), a grid every 10 x-units with tick values, y tick values (0, y_max/2, y_max), optional
 // vertical markers, a title, axis labels and a legend of the named series (issue 19: text with
-// core::draw_text, the one bitmap font), encoded as PNG with a tEXt "Software" chunk carrying
-// emoface::kGenerator.
+// core::draw_text, the one bitmap font), drawn into a core::Image; render_chart encodes it as PNG
+// with a tEXt "Software" chunk carrying emoface::kGenerator.
 // Used by `parlee run --plot` and by the obie pipeline (libs/obie), so both draw the same charts.
 #include <array>
 #include <cstddef>
@@ -12,16 +12,10 @@
 #include <string_view>
 #include <vector>
 
+#include "emoface/core/image.hpp"
 #include "emoface/parlee/agent.hpp"
 
 namespace emoface::parlee {
-
-/// 8-bit RGB pixels, row 0 at the top: rgb.size() == width·height·3.
-struct RgbImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgb;
-};
 
 struct ChartSeries {
   std::vector<double> x, y;  ///< same length; x in chart units (e.g. match minutes)
@@ -60,20 +54,11 @@ struct ChartLayout {
 };
 ChartLayout chart_layout(const std::vector<ChartPanel>& panels, const ChartOptions& options);
 
-/// Draws the panels. Throws InvalidInput for no panels or bad options.
-RgbImage draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options);
-/// PNG bytes (with the tEXt "Software" stamp). Throws InvalidInput for a malformed image, Error if
-/// libpng fails.
-std::string encode_png(const RgbImage& image);
-/// draw_chart + encode_png.
+/// Draws the panels (lines with core::draw_line, text with core::draw_text). Throws InvalidInput
+/// for no panels or bad options.
+core::Image draw_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options);
+/// draw_chart + core::encode_png (PNG bytes with the tEXt "Software" stamp).
 std::string render_chart(const std::vector<ChartPanel>& panels, const ChartOptions& options);
-
-/// core::draw_text on an RgbImage: the 3×5 pixel font scaled by `scale` (≥ 1), top-left corner at
-/// (x, y); characters the font lacks are skipped, pixels outside the image clipped.
-void draw_text(RgbImage& image, int x, int y, std::string_view text, std::array<std::uint8_t, 3> rgb,
-               int scale = 2);
-/// Width in pixels of draw_text(text, scale).
-int text_width(std::string_view text, int scale = 2) noexcept;
 
 /// The four emotions of the thesis' charts, with their basic-emotion index (ESV order) and colour:
 /// fear, happiness, surprise, sadness (Figs. 7.4, 7.5, 7.7, 7.8).
