@@ -44,6 +44,9 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // fear: AU5 (m16, Table 6.7 gives fear m16 in two blends) and AU7 (m17) only slight
       // and the jaw (m19) opened slightly, as the text says fear opens it (VerySmall = 0 here)
       {Emotion::Fear, {{16, "vs s m b vb"}, {17, "vs vs s s s"}, {19, "- vs s s s"}}},
+      // anger: no m4 (risorius = AU20, fear's lip stretcher; anger presses the lips, AU23/24) and
+      // m10 (frontalis lateralis = AU2, not in anger's AUs 4+5+7+23/24) only up to Medium
+      {Emotion::Anger, {{4, "- - - - -"}, {10, "vs s s m m"}}},
   };
   return t;
 }
