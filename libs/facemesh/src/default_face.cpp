@@ -874,7 +874,7 @@ Face make_generic_face() {
        0.40,
        0.8,
        1.35,
-       0.0072,  // issue 14 round 4: 4.5 -> 7.2 mm, AU4 lowers the inner brow visibly
+       0.0045,
        {R::RightMiddleFace, R::RightUpperFace},
        false,
        0,
