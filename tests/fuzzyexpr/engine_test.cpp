@@ -43,7 +43,17 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
   static const std::map<Emotion, std::map<int, std::string>> t = {
       // fear: AU5 (m16, Table 6.7 gives fear m16 in two blends) and AU7 (m17) only slight
       // and the jaw (m19) opened slightly, as the text says fear opens it (VerySmall = 0 here)
-      {Emotion::Fear, {{16, "vs s m b vb"}, {17, "vs vs s s s"}, {19, "- vs s s s"}}},
+      // and no m3 (triangularis = AU15, sadness's lip corner depressor) or m12 (levator labii
+      // superioris = AU10, disgust's upper-lip raiser): fear's mouth is AU20+25/26 (round 4)
+      {Emotion::Fear,
+       {{16, "vs s m b vb"},
+        {17, "vs vs s s s"},
+        {19, "- vs s s s"},
+        {3, "- - - - -"},
+        {12, "- - - - -"}}},
+      // anger: no m4 (risorius = AU20, fear's lip stretcher; anger presses the lips, AU23/24) and
+      // m10 (frontalis lateralis = AU2, not in anger's AUs 4+5+7+23/24) only up to Medium
+      {Emotion::Anger, {{4, "- - - - -"}, {10, "vs s s m m"}}},
   };
   return t;
 }

@@ -2,8 +2,8 @@
 // (the procedural generic face and the default MakeHuman head rigged by transfer), against the FACS
 // action units Ekman & Friesen (1975) give for the expression (the basis of thesis ch. 6; AU list
 // in thesis Appendix A): happiness AU6+12, fear AU1+2+4+5+20(+26), surprise AU1+2+5+26, disgust
-// AU9+10. Each emotion at 0.9 through the default rule base (fuzzyexpr) and the solver, compared
-// with neutral.
+// AU9+10, anger AU4+5+7+23/24. Each emotion at 0.9 through the default rule base (fuzzyexpr) and
+// the solver, compared with neutral.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -73,8 +73,14 @@ class ExpressionGeometry : public ::testing::TestWithParam<int> {
     return 0.5 *
            (ibug(X, 21).y() - ibug(neutral(), 21).y() + ibug(X, 22).y() - ibug(neutral(), 22).y());
   }
-  double inner_brow_gap(const fm::Vertices& X) const {
-    return std::abs(ibug(X, 22).x() - ibug(X, 21).x());
+  // the lateral brows (iBUG 18, 25; 17 and 26 lie below the brow tail on the default head)
+  double outer_brow_rise(const fm::Vertices& X) const {
+    return 0.5 *
+           (ibug(X, 18).y() - ibug(neutral(), 18).y() + ibug(X, 25).y() - ibug(neutral(), 25).y());
+  }
+  double inner_brow_gap(const fm::Vertices& X) const { return brow_gap(X, 21, 22); }
+  double brow_gap(const fm::Vertices& X, int right, int left) const {
+    return std::abs(ibug(X, left).x() - ibug(X, right).x());
   }
   double aperture(const fm::Vertices& X) const {
     return 0.5 * (eye_aperture(face().rig, X, 0) + eye_aperture(face().rig, X, 1));
@@ -101,16 +107,18 @@ class ExpressionGeometry : public ::testing::TestWithParam<int> {
   double mouth_width(const fm::Vertices& X) const {
     return (at(X, "mouth_corner_l") - at(X, "mouth_corner_r")).norm();
   }
+  double widening(const fm::Vertices& X) const { return mouth_width(X) - mouth_width(neutral()); }
+  double lid_ratio(const fm::Vertices& X) const { return aperture(X) / aperture(neutral()); }
 };
 
 constexpr double mm = 1e-3;
 
 TEST_P(ExpressionGeometry, Happiness) {
   const auto X = deform(fx::Emotion::Happiness, 0.9);
-  const double rise = corner_rise(X), widen = mouth_width(X) - mouth_width(neutral());
+  const double rise = corner_rise(X), widen = widening(X);
   const double cheek = 0.5 * (at(X, infraorbital(0)).y() - at(neutral(), infraorbital(0)).y() +
                               at(X, infraorbital(1)).y() - at(neutral(), infraorbital(1)).y());
-  const double lids = aperture(X) / aperture(neutral());
+  const double lids = lid_ratio(X);
   std::printf(
       "%s happiness 0.9: corners up %.1f mm, mouth wider by %.1f mm, cheeks up %.1f mm, "
       "aperture %.2f of neutral\n",
@@ -125,7 +133,7 @@ TEST_P(ExpressionGeometry, Surprise) {
   const auto X = deform(fx::Emotion::Surprise, 0.9);
   const double brow = brow_rise(X), inner = inner_brow_rise(X);
   const double gap = inner_brow_gap(X) - inner_brow_gap(neutral());
-  const double lids = aperture(X) / aperture(neutral());
+  const double lids = lid_ratio(X);
   std::printf(
       "%s surprise 0.9: brows up %.1f mm (inner %.1f), inner-brow gap %+.1f mm, "
       "aperture %.2f of neutral\n",
@@ -134,20 +142,44 @@ TEST_P(ExpressionGeometry, Surprise) {
   EXPECT_GT(inner, 5.0 * mm);
   EXPECT_GT(gap, -1.0 * mm);  // no AU4: the brows are not drawn together
   EXPECT_GT(lids, 1.15);      // AU5
+  // AU1+2 together: the brows are raised along their whole length, arched, the lateral brows
+  // almost as high as the inner ends (frontalis lateralis k 15.4 / 16.8 mm since round 4: 14.1
+  // against 17.8 mm on the default head; before, 9.9 against 17.2 mm, a slanted, sad brow)
+  const double outer = outer_brow_rise(X);
+  std::printf("%s surprise 0.9: lateral brows up %.1f mm\n", face_name(), outer / mm);
+  EXPECT_GT(outer, 0.7 * inner);
+}
+
+TEST_P(ExpressionGeometry, Anger) {
+  const auto X = deform(fx::Emotion::Anger, 0.9);
+  const double inner = inner_brow_rise(X), outer = outer_brow_rise(X), lids = lid_ratio(X);
+  const double widen = widening(X);
+  std::printf(
+      "%s anger 0.9: inner brows %+.1f mm, lateral brows %+.1f mm, aperture %.2f of neutral, "
+      "mouth wider by %+.1f mm\n",
+      face_name(), inner / mm, outer / mm, lids, widen / mm);
+  EXPECT_LT(inner, -1.0 * mm);         // AU4: the inner brow ends lowered ...
+  EXPECT_GT(outer - inner, 3.0 * mm);  // ... below the outer ends (the oblique, frowning brow)
+  EXPECT_LT(lids, 0.85);               // AU7: narrowed ...
+  EXPECT_GT(lids, 0.30);               // ... never shut
+  EXPECT_LT(widen, 1.0 * mm);          // AU23/24 without AU20 (fear's lip stretcher): not wider
 }
 
 TEST_P(ExpressionGeometry, Fear) {
   const auto X = deform(fx::Emotion::Fear, 0.9);
   const double inner = inner_brow_rise(X);
-  const double gap = inner_brow_gap(X) - inner_brow_gap(neutral());
-  const double lids = aperture(X) / aperture(neutral());
-  const double widen = mouth_width(X) - mouth_width(neutral());
+  // AU4 draws the brows together where the corrugator inserts, the medial halves (iBUG 20, 23);
+  // the inner ends (21, 22) stay in place on the default head since round 4 (frontalis lateralis
+  // k × 1.4 pulls them up and out as much as the corrugator pulls them in)
+  const double gap = brow_gap(X, 20, 23) - brow_gap(neutral(), 20, 23);
+  const double lids = lid_ratio(X);
+  const double widen = widening(X);
   std::printf(
-      "%s fear 0.9: inner brows up %.1f mm, inner-brow gap %+.1f mm, aperture %.2f of "
+      "%s fear 0.9: inner brows up %.1f mm, medial-half brow gap %+.1f mm, aperture %.2f of "
       "neutral, mouth wider by %.1f mm\n",
       face_name(), inner / mm, gap / mm, lids, widen / mm);
   EXPECT_GT(inner, 2.0 * mm);  // AU1
-  EXPECT_LT(gap, -0.2 * mm);   // AU4: drawn together (weakly on the default head: 0.3 mm)
+  EXPECT_LT(gap, -2.0 * mm);   // AU4: drawn together (6.3 / 3.9 mm default / generic)
   EXPECT_GT(lids, 1.0);        // AU5 wins over AU7: the eyes open, never narrow
   EXPECT_GT(widen, 2.0 * mm);  // AU20: lips stretched sideways
 }

@@ -826,7 +826,7 @@ Face make_generic_face() {
        0.40,
        0.75,
        1.2,
-       0.0110,
+       0.0154,  // issue 14 round 4: 11 -> 15.4 mm, the outer brow rises with the inner (AU2)
        {R::RightUpperFace, R::RightUpperEyelid, R::RightMiddleFace},
        false,
        3,
@@ -838,7 +838,7 @@ Face make_generic_face() {
        0.40,
        0.75,
        1.2,
-       0.0120,
+       0.0168,  // 12 -> 16.8 mm (as _0: × 1.4)
        {R::RightUpperFace, R::RightUpperEyelid, R::RightMiddleFace},
        false,
        3,
