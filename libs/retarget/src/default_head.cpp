@@ -1,5 +1,5 @@
-// emoface's default face: the MakeHuman head rigged by transfer from the generic face, plus eyeballs,
-// teeth, tongue, lashes, a lash line, short hair and a closed neck end (default_head.hpp,
+// emoface's default face: the MakeHuman head rigged by transfer from the generic face, plus
+// eyeballs, teeth, tongue, lashes, a lash line, short hair and a closed neck end (default_head.hpp,
 // docs/facemesh.md "The default face").
 #include "emoface/retarget/default_head.hpp"
 
