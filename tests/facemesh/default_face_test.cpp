@@ -2,14 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <set>
 #include <unordered_set>
 
-#include <Eigen/Geometry>
-
+#include "emoface/core/errors.hpp"
 #include "emoface/facemesh/io.hpp"
 
 namespace emoface::facemesh {
@@ -106,6 +107,33 @@ TEST(DefaultFace, DeterministicAndMatchesCheckedInData) {
   EXPECT_EQ(format_rig(disk.rig), format_rig(face().rig)) << "regenerate with: retarget --make-default-face data/face";
   EXPECT_EQ(disk.mesh.faces, face().mesh.faces);
   EXPECT_TRUE(disk.mesh.vertices.isApprox(face().mesh.vertices, 1e-7));
+}
+
+// The default head's hairline, against hand-computed values of its knots (Hairline with axis
+// z = 0, eyes at y = 0, scale 1: heights in mm above the eye centres, smoothstep between knots).
+TEST(DefaultHairline, HeightAtTheKnotsAndBetween) {
+  const Hairline h;  // axis_z 0, eye_y 0, scale 1
+  auto at = [&](double deg) {
+    const double r = deg * M_PI / 180.0;
+    return 1000.0 * hairline_height(h, Eigen::Vector3d(std::sin(r), 5.0, std::cos(r)));
+  };
+  EXPECT_NEAR(at(0), 71.0, 1e-9);     // the forehead
+  EXPECT_NEAR(at(38), 76.0, 1e-9);    // the temples' recession
+  EXPECT_NEAR(at(-38), 76.0, 1e-9);   // symmetric
+  EXPECT_NEAR(at(74), 2.0, 1e-9);     // the sideburns' end
+  EXPECT_NEAR(at(180), -45.0, 1e-9);  // the nape
+  // between 84° (28 mm) and 100° (30 mm): t = 6/16, smoothstep = t²(3 − 2t) = 0.31640625
+  EXPECT_NEAR(at(90), 28.0 + 2.0 * 0.31640625, 1e-9);
+  Hairline s;
+  s.eye_y = 0.01, s.scale = 2.0, s.axis_z = 0.05;
+  EXPECT_NEAR(hairline_height(s, Eigen::Vector3d(0.0, 0.0, 0.06)), 0.01 + 2.0 * 0.071, 1e-12);
+  EXPECT_NEAR(hair_cover(h, Eigen::Vector3d(0.0, 0.071, 1.0), 0.001), 0.5, 1e-12);
+  EXPECT_EQ(hair_cover(h, Eigen::Vector3d(0.0, 0.0725, 1.0), 0.001), 1.0);
+  EXPECT_EQ(hair_cover(h, Eigen::Vector3d(0.0, 0.0695, 1.0), 0.001), 0.0);
+  EXPECT_EQ(hair_cover(h, Eigen::Vector3d(0.0, 0.0711, 1.0), 0.0), 1.0);
+  // the rig must name the ears
+  Rig rig;
+  EXPECT_THROW(default_hairline(rig, Vertices::Zero(3, 3)), InvalidInput);
 }
 
 }  // namespace

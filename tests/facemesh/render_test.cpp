@@ -187,6 +187,34 @@ TEST(Render, DefaultFacePaint) {
   EXPECT_LT(at(0.0, 0.110).x(), 0.3f);  // hair
 }
 
+// project_point: the target lands in the image centre at depth = distance; a point 1 cm above it
+// (same depth) lands focal·0.01/distance pixels higher, focal = (h/2)/tan(fov/2); the three-quarter
+// view turns the camera 35° about the target.
+TEST(Render, ProjectPoint) {
+  RenderOptions o;
+  o.width = 200;
+  o.height = 100;
+  const Eigen::Vector3d c = project_point(o, o.target);
+  EXPECT_NEAR(c.x(), 100.0, 1e-9);
+  EXPECT_NEAR(c.y(), 50.0, 1e-9);
+  EXPECT_NEAR(c.z(), o.distance, 1e-12);
+  const double focal = 50.0 / std::tan(0.5 * o.field_of_view);
+  const Eigen::Vector3d up = project_point(o, o.target + Eigen::Vector3d(0.0, 0.01, 0.0));
+  EXPECT_NEAR(up.y(), 50.0 - focal * 0.01 / o.distance, 1e-9);
+  const Eigen::Vector3d left = project_point(o, o.target + Eigen::Vector3d(0.01, 0.0, 0.0));
+  EXPECT_NEAR(left.x(), 100.0 + focal * 0.01 / o.distance,
+              1e-9);  // +x = the subject's left = image right
+  o.view = View::ThreeQuarter;
+  const double a = 35.0 * M_PI / 180.0;
+  // a point on the camera's axis (from the target towards the eye) projects to the centre
+  const Eigen::Vector3d on_axis =
+      project_point(o, o.target + 0.1 * Eigen::Vector3d(-std::sin(a), 0.0, std::cos(a)));
+  EXPECT_NEAR(on_axis.x(), 100.0, 1e-9);
+  EXPECT_NEAR(on_axis.z(), o.distance - 0.1, 1e-12);
+  o.width = 0;
+  EXPECT_THROW(project_point(o, Eigen::Vector3d::Zero()), InvalidInput);
+}
+
 }  // namespace
 }  // namespace emoface::facemesh
 

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -255,6 +257,104 @@ TEST(DefaultFace, TheOpenedMouthIsDarkInside) {
   std::printf("rays into the opened mouth: %d, meeting skin: %d\n", rays, deep_skin);
   EXPECT_GT(rays, 20) << "the mouth did not open";
   EXPECT_EQ(deep_skin, 0) << "the opened mouth shows skin inside the head";
+}
+
+namespace {
+
+int landmark(const fm::Rig& rig, const std::string& name) {
+  for (const auto& l : rig.retarget_landmarks)
+    if (l.name == name) return l.vertex;
+  throw std::runtime_error("no landmark " + name);
+}
+
+double luminance(const fm::Image& im, int x, int y) {
+  const std::size_t i = (static_cast<std::size_t>(y) * im.width + x) * 3;
+  return 0.299 * im.rgb[i] + 0.587 * im.rgb[i + 1] + 0.114 * im.rgb[i + 2];
+}
+
+}  // namespace
+
+// Short dark hair (issue 14): the head's skin above the hairline is hair, nothing below it is (the
+// face's landmarks, the brows, the ears); the forehead hairline sits 35–60 mm above the brows
+// (adult proportions). Rendered (480×560, paint on), neutral and with the brows raised by full
+// frontalis, in the columns through the brow landmarks and the midline: skin from above the brow up
+// to the highest skin vertex of the column, hair from the lowest hair vertex up.
+TEST(DefaultFace, HairAboveTheHairlineOnly) {
+  const fm::Face face = fm::make_default_face();
+  const auto& X = face.mesh.vertices;
+  const auto& mat = face.rig.materials;
+  const fm::Hairline hl = fm::default_hairline(face.rig, X);
+  int above = 0, above_hair = 0, below_hair = 0;
+  for (int v : part(face.rig, "head").vertices) {
+    const fm::Material m = mat[static_cast<std::size_t>(v)];
+    if (m != fm::Material::Skin && m != fm::Material::Hair) continue;
+    const double d = X(v, 1) - fm::hairline_height(hl, X.row(v).transpose());
+    if (d > 0.003) above_hair += (++above, m == fm::Material::Hair);
+    if (d < -0.003 && m == fm::Material::Hair) ++below_hair;
+  }
+  EXPECT_GT(above, 200);  // 233 measured
+  EXPECT_EQ(above_hair, above) << "skin above the hairline";
+  EXPECT_EQ(below_hair, 0) << "hair below the hairline";
+  for (const char* n : {"top_of_head", "back_of_head"})
+    EXPECT_EQ(mat[static_cast<std::size_t>(landmark(face.rig, n))], fm::Material::Hair) << n;
+  for (const char* n : {"forehead_centre", "brow_centre_r", "brow_centre_l", "ear_r", "ear_l",
+                        "nose_root", "cheek_r", "cheek_l", "chin", "jaw_r", "jaw_l"})
+    EXPECT_NE(mat[static_cast<std::size_t>(landmark(face.rig, n))], fm::Material::Hair) << n;
+  for (int v : face.rig.ibug68) EXPECT_NE(mat[static_cast<std::size_t>(v)], fm::Material::Hair);
+  const int br = landmark(face.rig, "brow_centre_r"), bl = landmark(face.rig, "brow_centre_l");
+  const double above_brows =
+      fm::hairline_height(hl, Eigen::Vector3d(0.0, 0.0, 1.0)) - 0.5 * (X(br, 1) + X(bl, 1));
+  EXPECT_GT(above_brows, 0.035);
+  EXPECT_LT(above_brows, 0.060);
+
+  const mu::FaceSolver solver(face.mesh, face.rig);
+  const fm::RenderOptions o;
+  const auto colors = fm::material_colors(face.rig, face.mesh);
+  const std::map<std::string, double> raise{{"frontalis_medialis_l", 1.0},
+                                            {"frontalis_medialis_r", 1.0},
+                                            {"frontalis_lateralis_l", 1.0},
+                                            {"frontalis_lateralis_r", 1.0}};
+  for (const bool raised : {false, true}) {
+    const mu::Deformation d = solver.deform(raised ? raise : std::map<std::string, double>{});
+    const fm::Image im = fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, o,
+                                    fm::paint_for(face.rig));
+    auto px = [&](int v) { return fm::project_point(o, d.vertices.row(v).transpose()); };
+    for (const int column : {br, bl, -1}) {
+      // the column's brow row (the midline has none: the brow landmarks' mean height)
+      const double cx = column >= 0 ? X(column, 0) : 0.0;
+      const double brow_row = column >= 0 ? px(column).y() : 0.5 * (px(br).y() + px(bl).y());
+      const int x = static_cast<int>(
+          std::lround(column >= 0 ? px(column).x() : 0.5 * (px(br).x() + px(bl).x())));
+      int top_skin = -1, low_hair = -1;  // the column's highest skin and lowest hair vertex (front)
+      for (int v : part(face.rig, "head").vertices) {
+        if (std::abs(X(v, 0) - cx) > 0.004 || X(v, 2) < 0.06 || X(v, 1) < X(br, 1)) continue;
+        const fm::Material m = mat[static_cast<std::size_t>(v)];
+        if (m == fm::Material::Skin && (top_skin < 0 || X(v, 1) > X(top_skin, 1))) top_skin = v;
+        if (m == fm::Material::Hair && (low_hair < 0 || X(v, 1) < X(low_hair, 1))) low_hair = v;
+      }
+      ASSERT_GE(top_skin, 0);
+      ASSERT_GE(low_hair, 0);
+      const double mm = (px(br).y() - fm::project_point(o, d.vertices.row(br).transpose() +
+                                                               Eigen::Vector3d(0.0, 0.001, 0.0))
+                                          .y());  // pixels per mm
+      const int skin_from = static_cast<int>(brow_row - 6.0 * mm),
+                skin_to = static_cast<int>(px(top_skin).y());
+      const int hair_from = static_cast<int>(px(low_hair).y()),
+                hair_to = hair_from - static_cast<int>(8.0 * mm);
+      ASSERT_LT(skin_to, skin_from - 10);
+      double darkest_skin = 255.0, lightest_hair = 0.0;
+      for (int y = skin_to; y <= skin_from; ++y)
+        darkest_skin = std::min(darkest_skin, luminance(im, x, y));
+      for (int y = hair_to; y <= hair_from; ++y)
+        lightest_hair = std::max(lightest_hair, luminance(im, x, y));
+      std::printf(
+          "%s column %d: forehead rows %d..%d darkest %.0f, hair rows %d..%d lightest %.0f\n",
+          raised ? "frontalis 1" : "neutral", x, skin_to, skin_from, darkest_skin, hair_to,
+          hair_from, lightest_hair);
+      EXPECT_GT(darkest_skin, 110.0) << "hair or brow colour on the forehead, column " << x;
+      EXPECT_LT(lightest_hair, 90.0) << "no hair above the hairline, column " << x;
+    }
+  }
 }
 
 TEST(DefaultFace, BadInputWritesNothing) {

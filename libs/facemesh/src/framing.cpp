@@ -45,6 +45,11 @@ void bounds(const Vertices& v, Eigen::Vector3d& lo, Eigen::Vector3d& hi, const c
 
 }  // namespace
 
+Eigen::Vector3d project_point(const RenderOptions& options, const Eigen::Vector3d& p) {
+  options.validate();
+  return Camera(options).project(p, options);
+}
+
 RenderOptions fit_camera(const Vertices& vertices, RenderOptions options, double fill) {
   options.validate();
   if (!(fill > 0.0 && fill <= 1.0)) throw InvalidInput("fit_camera: fill must be in (0, 1]");

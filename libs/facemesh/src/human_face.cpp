@@ -47,6 +47,9 @@ double smooth(double e0, double e1, double x) {
 constexpr double kX0 = -0.095, kX1 = 0.095, kY0 = -0.120, kY1 = 0.100, kTexel = 0.00025;
 const Eigen::Vector3f kSkin(0.87f, 0.69f, 0.58f);  // = material_colors' skin (no edge to unpainted)
 const Eigen::Vector3f kBrow(0.17f, 0.115f, 0.085f);
+const Eigen::Vector3f kHair(0.28f, 0.19f,
+                            0.13f);   // = material_colors' hair (the scalp off the paint)
+constexpr double kHairSoft = 0.0015;  // the hairline's soft edge: ±1.5 mm (fine hairs thin out)
 
 // Brows: the generic face's brow curve (default_face.cpp) around each of this head's eye centres,
 // x scaled by the eye's distance from the midline over the generic's (32 mm): from 11 to 50 mm
@@ -66,9 +69,62 @@ double brow_cover(const Rig& rig, double x, double y, double soft, double* tail)
   return ends * (1.0 - smooth(half - 2 * soft, half + soft, std::abs(y - centre)));
 }
 
+// Depth (largest z) of the head's surface on a 1 mm grid over the paint frame, by rasterising the
+// head part's triangles at the cell centres; −inf where the head does not cover a cell.
+struct DepthGrid {
+  double step = 0.001;
+  int w = 0, h = 0;
+  std::vector<double> z;
+  double at(double x, double y) const {
+    const int i = static_cast<int>(std::lround((x - kX0) / step)),
+              j = static_cast<int>(std::lround((y - kY0) / step));
+    if (i < 0 || j < 0 || i >= w || j >= h) return -std::numeric_limits<double>::infinity();
+    return z[static_cast<std::size_t>(j) * w + i];
+  }
+};
+
+DepthGrid head_depth(const Face& face) {
+  DepthGrid g;
+  g.w = static_cast<int>(std::lround((kX1 - kX0) / g.step)) + 1;
+  g.h = static_cast<int>(std::lround((kY1 - kY0) / g.step)) + 1;
+  g.z.assign(static_cast<std::size_t>(g.w) * g.h, -std::numeric_limits<double>::infinity());
+  std::vector<char> head(face.mesh.vertex_count(), 0);
+  for (const Part& p : face.rig.parts)
+    if (p.kind == PartKind::Head)
+      for (int v : p.vertices) head[static_cast<std::size_t>(v)] = 1;
+  const auto& X = face.mesh.vertices;
+  for (long f = 0; f < face.mesh.faces.rows(); ++f) {
+    const int a = face.mesh.faces(f, 0), b = face.mesh.faces(f, 1), c = face.mesh.faces(f, 2);
+    if (!head[static_cast<std::size_t>(a)] || !head[static_cast<std::size_t>(b)] ||
+        !head[static_cast<std::size_t>(c)])
+      continue;
+    const Eigen::Vector2d pa(X(a, 0), X(a, 1)), pb(X(b, 0), X(b, 1)), pc(X(c, 0), X(c, 1));
+    const double area = (pb - pa).x() * (pc - pa).y() - (pb - pa).y() * (pc - pa).x();
+    if (std::abs(area) < 1e-14) continue;
+    const Eigen::Vector2d lo = pa.cwiseMin(pb).cwiseMin(pc), hi = pa.cwiseMax(pb).cwiseMax(pc);
+    const int i0 = std::max(0, static_cast<int>(std::ceil((lo.x() - kX0) / g.step))),
+              i1 = std::min(g.w - 1, static_cast<int>(std::floor((hi.x() - kX0) / g.step)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil((lo.y() - kY0) / g.step))),
+              j1 = std::min(g.h - 1, static_cast<int>(std::floor((hi.y() - kY0) / g.step)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Eigen::Vector2d q(kX0 + i * g.step, kY0 + j * g.step);
+        const double wb = ((q - pa).x() * (pc - pa).y() - (q - pa).y() * (pc - pa).x()) / area;
+        const double wc = ((pb - pa).x() * (q - pa).y() - (pb - pa).y() * (q - pa).x()) / area;
+        const double wa = 1.0 - wb - wc;
+        if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+        double& z = g.z[static_cast<std::size_t>(j) * g.w + i];
+        z = std::max(z, wa * X(a, 2) + wb * X(b, 2) + wc * X(c, 2));
+      }
+  }
+  return g;
+}
+
 Paint build_default_face_paint() {
   const Face& face = default_face_cached();
   const auto& rig = face.rig;
+  const Hairline hairline = default_hairline(rig, face.mesh.vertices);
+  const DepthGrid depth = head_depth(face);
   Paint paint;
   paint.width = static_cast<int>(std::lround((kX1 - kX0) / kTexel));
   paint.height = static_cast<int>(std::lround((kY1 - kY0) / kTexel));
@@ -82,17 +138,23 @@ Paint build_default_face_paint() {
       double t = 0.0;
       const double brow = brow_cover(rig, x, y, soft, &t);
       if (brow > 0.0) c += static_cast<float>(brow * (0.85 - 0.3 * t)) * (kBrow - c);
+      const double z = depth.at(x, y);
+      if (std::isfinite(z)) {
+        const double hair = hair_cover(hairline, Eigen::Vector3d(x, y, z), kHairSoft);
+        if (hair > 0.0) c += static_cast<float>(hair) * (kHair - c);
+      }
       paint.texels[static_cast<std::size_t>(j) * paint.width + i] = {c.x(), c.y(), c.z(), 1.0f};
     }
   }
-  // Coordinates for the skin vertices of the face that face forward, inside the paint frame; lips,
-  // mouth, eyes, lashes and the rest of the head keep their vertex colours.
+  // Coordinates for the skin and hair vertices of the head that face forward, inside the paint
+  // frame; lips, mouth, eyes, lashes and the rest of the head keep their vertex colours.
   const auto& X = face.mesh.vertices;
   const Vertices n = vertex_normals(X, face.mesh.faces);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   paint.uv.assign(static_cast<std::size_t>(X.rows()), Eigen::Vector2f(nan, nan));
   for (long v = 0; v < X.rows(); ++v) {
-    if (rig.materials[static_cast<std::size_t>(v)] != Material::Skin) continue;
+    const Material m = rig.materials[static_cast<std::size_t>(v)];
+    if (m != Material::Skin && m != Material::Hair) continue;
     if (n(v, 2) < 0.2 || X(v, 0) <= kX0 || X(v, 0) >= kX1 || X(v, 1) <= kY0 || X(v, 1) >= kY1)
       continue;
     paint.uv[static_cast<std::size_t>(v)] = {static_cast<float>((X(v, 0) - kX0) / (kX1 - kX0)),
@@ -109,6 +171,51 @@ Face make_default_face() { return default_face_cached(); }
 Face load_face_or_builtin(const std::string& rig) {
   if (rig.empty()) return make_default_face();
   return rig == "generic" ? make_generic_face() : load_face(rig);
+}
+
+Hairline default_hairline(const Rig& rig, const Vertices& rest) {
+  int ears[2] = {-1, -1};
+  for (const auto& l : rig.retarget_landmarks) {
+    if (l.name == "ear_r") ears[0] = l.vertex;
+    if (l.name == "ear_l") ears[1] = l.vertex;
+  }
+  for (int e : ears)
+    if (e < 0 || e >= rest.rows())
+      throw InvalidInput(
+          "default_hairline: the rig needs the ear_r and ear_l landmarks on the mesh");
+  Hairline h;
+  h.axis_z = 0.5 * (rest(ears[0], 2) + rest(ears[1], 2));
+  h.eye_y = 0.5 * (rig.eyes[0].centre.y() + rig.eyes[1].centre.y());
+  h.scale = std::abs(rig.eyes[1].centre.x() - rig.eyes[0].centre.x()) / 0.064;
+  if (!(h.scale > 0.0) || !std::isfinite(h.axis_z) || !std::isfinite(h.eye_y))
+    throw InvalidInput("default_hairline: degenerate eye centres or ear landmarks");
+  return h;
+}
+
+double hairline_height(const Hairline& h, const Eigen::Vector3d& p) {
+  // Knots: |azimuth| in degrees (0 = front, 90 = the ears) → hairline height above the eye centres,
+  // mm. Adult proportions (the face's upper third, hairline to brow ≈ the brow-to-nose third;
+  // Farkas, Anthropometry of the Head and Face, 1994): the forehead hairline ≈ 45 mm above the
+  // brows, a slight recession at the temples, the temple line falling to sideburns that end at the
+  // eye centres' height in front of the ear, an arc ≈ 10 mm over the ear's top (the head's ear
+  // rises ≈ 20 mm above the eye centres), the nape hairline below the ear lobes. Between knots:
+  // smoothstep.
+  static constexpr double kDeg[] = {0, 22, 38, 50, 60, 68, 74, 79, 84, 100, 110, 122, 135, 180};
+  static constexpr double kMm[] = {71, 72, 76, 71, 55, 30, 2, 4, 28, 30, 20, -25, -45, -45};
+  constexpr int n = sizeof(kDeg) / sizeof(kDeg[0]);
+  const double deg = std::abs(std::atan2(p.x(), p.z() - h.axis_z)) * 180.0 / M_PI;
+  double mm = kMm[n - 1];
+  for (int k = 0; k + 1 < n; ++k)
+    if (deg <= kDeg[k + 1]) {
+      mm = kMm[k] + (kMm[k + 1] - kMm[k]) * smooth(kDeg[k], kDeg[k + 1], deg);
+      break;
+    }
+  return h.eye_y + h.scale * 0.001 * mm;
+}
+
+double hair_cover(const Hairline& h, const Eigen::Vector3d& p, double soft) {
+  const double d = p.y() - hairline_height(h, p);
+  return soft > 0.0 ? smooth(-soft, soft, d) : (d > 0.0 ? 1.0 : 0.0);
 }
 
 const Paint& default_face_paint() {

@@ -1,5 +1,6 @@
-// emoface's default face: the MakeHuman head rigged by transfer from the generic face, plus eyeballs,
-// teeth, tongue, lashes and a closed neck end (default_head.hpp, docs/facemesh.md "The default face").
+// emoface's default face: the MakeHuman head rigged by transfer from the generic face, plus
+// eyeballs, teeth, tongue, lashes, a lash line, short hair and a closed neck end (default_head.hpp,
+// docs/facemesh.md "The default face").
 #include "emoface/retarget/default_head.hpp"
 
 #include <Eigen/Geometry>
@@ -402,6 +403,25 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
   const auto upper = copy_component(generic, upper_src, mouth_map, b);
   const auto lower = copy_component(generic, lower_src, mouth_map, b);
   rep.upper_teeth = upper.size(), rep.lower_teeth = lower.size();
+  // The similarity leaves the upper incisors' edges 2 mm above this head's lip contact line, so
+  // lips parted a little (a smile: AU12 + AU25) showed a dark gap and no upper teeth. In a person
+  // at rest the upper incisors' edges reach the line where the lips meet (the closed lower lip
+  // covers their edge; Proffit, Contemporary Orthodontics, ch. 1: overbite 2–3 mm, the upper
+  // incisors showing 1–3 mm below the relaxed upper lip). The upper row is moved straight down
+  // until its edge lies 0.5 mm below the contact line (row 4 of the lip grid, mean of the upper and
+  // lower lips' middle columns). Not moved forward: the muscles pull the lips back through rigid
+  // teeth (no collision), and teeth 2–5 mm further forward showed in front of the upper lip in
+  // fear.
+  {
+    const auto& cps = rig.lips.control_points;
+    constexpr int kA = fm::LipGrid::kAround;
+    const double contact_y = 0.5 * (cps[static_cast<std::size_t>(4 * kA + kA / 4)].y() +
+                                    cps[static_cast<std::size_t>(4 * kA + 3 * kA / 4)].y());
+    double edge = 1e9;
+    for (int v : upper) edge = std::min(edge, b.v[static_cast<std::size_t>(v)].y());
+    rep.upper_teeth_lowered = edge - (contact_y - 0.0005);
+    for (int v : upper) b.v[static_cast<std::size_t>(v)].y() -= rep.upper_teeth_lowered;
+  }
 
   // ---- Tongue: behind the lower teeth, on the floor of the mouth.
   Vec3 lo_min = Vec3::Constant(1e9), lo_max = Vec3::Constant(-1e9);
@@ -522,6 +542,14 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
       const double up = lid == 0 ? 1.0 : -1.0;
       const int first = static_cast<int>(b.v.size());
       const int n = static_cast<int>(margin.size());
+      // the upper lid's margin itself is lash-coloured: the lash line (the roots of the lashes and
+      // the lid's grey line) that outlines the upper eyelid at a distance; the skin next to it
+      // shades from it to skin colour over one ring of triangles
+      if (lid == 0)
+        for (const auto& [x, v] : margin) {
+          (void)x;
+          b.mat[static_cast<std::size_t>(v)] = fm::Material::Lash;
+        }
       for (int k = 0; k < n; ++k) {
         const Vec3 m = b.v[static_cast<std::size_t>(margin[k].second)];
         const double along = n > 1 ? static_cast<double>(k) / (n - 1) : 0.5;
@@ -559,6 +587,22 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
       p.side = e;
       for (int v = first; v < static_cast<int>(b.v.size()); ++v) p.vertices.push_back(v);
       rig.parts.push_back(p);
+    }
+  }
+
+  // ---- Hair (short, dark): the head's skin vertices above the hairline
+  // (facemesh::default_hairline: forehead, temples, sideburns, over the ears, nape) are `hair`, so
+  // the hair is bound to the vertices and moves with the scalp; the paint draws the same hairline
+  // with a soft edge where it covers the face (default_face_paint).
+  {
+    const fm::Hairline hairline = fm::default_hairline(rig, t.mesh.vertices);
+    for (int v = 0; v < nh; ++v) {
+      auto& m = b.mat[static_cast<std::size_t>(v)];
+      if (m == fm::Material::Skin &&
+          fm::hair_cover(hairline, b.v[static_cast<std::size_t>(v)], 0.0) > 0.5) {
+        m = fm::Material::Hair;
+        ++rep.hair_vertices;
+      }
     }
   }
 

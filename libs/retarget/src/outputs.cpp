@@ -153,11 +153,12 @@ std::string fit_result_line(const RetargetResult& r, const std::string& dir) {
 std::string default_face_summary(const DefaultHeadReport& rep, const std::string& dir) {
   return printf_string(
       "retarget: default face: %zu head vertices, eyeballs %zu + %zu (sockets %zu + %zu), "
-      "mouth cavity %zu (backdrop %zu), teeth %zu + %zu, tongue %zu, lashes %zu, neck caps %zu; "
+      "mouth cavity %zu (backdrop %zu), teeth %zu + %zu, tongue %zu, lashes %zu, hair %zu, "
+      "neck caps %zu; "
       "wrote %s\n",
       rep.head_vertices, rep.eyeball_vertices[0], rep.eyeball_vertices[1], rep.socket_vertices[0],
       rep.socket_vertices[1], rep.mouth_cavity_vertices, rep.mouth_backdrop, rep.upper_teeth,
-      rep.lower_teeth, rep.tongue, rep.lashes, rep.neck_cap, dir.c_str());
+      rep.lower_teeth, rep.tongue, rep.lashes, rep.hair_vertices, rep.neck_cap, dir.c_str());
 }
 
 }  // namespace emoface::retarget

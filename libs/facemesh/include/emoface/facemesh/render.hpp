@@ -72,6 +72,9 @@ core::Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
 /// bounding sphere, then two rounds of rescaling; never inside the sphere). View, yaw and field of
 /// view as in `options`. Throws InvalidInput for no vertices, non-finite coordinates or a zero extent.
 RenderOptions fit_camera(const Vertices& vertices, RenderOptions options, double fill = 0.9);
+/// Where render() draws the point p: (x, y) in pixels (origin top left, y down) and its depth along
+/// the view direction (z, > 0 in front of the camera). Throws InvalidInput for invalid options.
+Eigen::Vector3d project_point(const RenderOptions& options, const Eigen::Vector3d& p);
 /// Fraction of `vertices` that project inside the image, in front of the camera (0: nothing visible).
 double visible_fraction(const Vertices& vertices, const RenderOptions& options);
 /// `options` unchanged when the bounding box of `vertices` is in front of its camera, its centre in the

@@ -29,6 +29,9 @@ struct DefaultHeadReport {
   std::array<std::size_t, 2> socket_vertices{};   ///< head vertices pulled behind each eyeball
   std::size_t mouth_cavity_vertices = 0;  ///< bag vertices moved behind the teeth (the cavity)
   std::size_t mouth_backdrop = 0;         ///< vertices of the dark sheet closing the mouth's back
+  std::size_t hair_vertices = 0;          ///< head vertices above the hairline (material hair)
+  double upper_teeth_lowered =
+      0.0;  ///< m the upper teeth were moved down (edge to the lips' contact)
   std::size_t upper_teeth = 0, lower_teeth = 0, tongue = 0, lashes = 0, neck_cap = 0;
 };
 
