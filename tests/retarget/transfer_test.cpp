@@ -289,6 +289,10 @@ TEST(Transfer, MakeHumanLidsCloseWithoutCrossing) {
       rt::transfer_rig(fixtures().source, fm::read_mesh(kMakeHuman), {}, quick_options());
   for (int e = 0; e < 2; ++e)  // the lids were rebuilt from the socket's crease
     EXPECT_EQ(r.report.lid_method[static_cast<std::size_t>(e)], "crease");
+  // a face shaped unlike the built-in one: the refinement on the face would turn the frame by
+  // 7.7° (measured) and is not applied (RetargetOptions::refine_max_degrees, 2°)
+  EXPECT_FALSE(r.fit.alignment.report.refined);
+  EXPECT_GT(r.fit.alignment.report.refine_angle_deg, 2.0);
   // Measured 116 turned-over triangles (blink 23: small fold triangles at the margin; sadness 39
   // and happiness 37 on the lower lid, where the region cut-off moves the cheek and not the lid;
   // docs/retarget.md). Before the lids were rebuilt the margins tore open (picture).
@@ -298,6 +302,11 @@ TEST(Transfer, MakeHumanLidsCloseWithoutCrossing) {
 TEST(Transfer, BadInputGivesClearErrors) {
   const auto& f = fixtures();
   const auto o = quick_options();
+  for (double bad : {-0.1, 30.5, std::nan("")}) {
+    auto b = o;
+    b.fit.refine_max_degrees = bad;
+    EXPECT_THROW(rt::transfer_rig(f.source, f.remeshed, {}, b), emoface::InvalidInput) << bad;
+  }
   fm::Mesh empty;
   empty.vertices = f.source.mesh.vertices;
   empty.faces.resize(0, 3);
