@@ -237,6 +237,47 @@ TEST(RetargetApp, TransferOfGltfWritesGlb) {
   EXPECT_LT(worst, 1e-6);  // glTF stores float32
 }
 
+// A glTF whose image is a file of its own ("uri": "tex/skin.png"): the transfer copies it with the
+// output, and as part of the all-or-nothing set: when writing fails late (here report.json cannot
+// be renamed into place, a directory of that name is in the way), the image goes too (the glTF
+// writer used to copy it itself, outside the set, and left it behind).
+TEST(RetargetApp, TransferOfGltfCopiesItsImageFilesAllOrNothing) {
+  TempDir t;
+  const auto face = emoface::facemesh::make_generic_face();
+  const auto in = t.path / "in";
+  fs::create_directories(in / "tex");
+  const auto written = t.path / "plain.gltf";
+  emoface::facemesh::write_animated_gltf(written.string(), face.mesh, {face.mesh.vertices}, {0.0});
+  std::string json = slurp(written);
+  ASSERT_EQ(json.front(), '{');
+  json.insert(1, "\"images\":[{\"uri\":\"tex/skin.png\"}],");
+  std::ofstream(in / "head.gltf", std::ios::binary) << json;
+  const std::string png = "\x89PNG\r\n\x1a\nnot decoded";
+  std::ofstream(in / "tex" / "skin.png", std::ios::binary) << png;
+  const std::string args = " --generations 2 --population 6 --quiet --no-png";
+  const auto out = t.path / "out";
+  ASSERT_EQ(run("--target " + (in / "head.gltf").string() + " --out " + out.string() + args), 0);
+  EXPECT_EQ(slurp(out / "tex" / "skin.png"), png);
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                           const unsigned char*, int, void*) { return true; },
+                        nullptr);
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, (out / "face.glb").string())) << err;
+  ASSERT_EQ(m.images.size(), 1u);
+  EXPECT_EQ(m.images[0].uri, "tex/skin.png");
+  // a late failure leaves nothing of the set behind (and keeps what was there)
+  const auto failed = t.path / "failed";
+  fs::create_directories(failed / "report.json");
+  EXPECT_NE(run("--target " + (in / "head.gltf").string() + " --out " + failed.string() + args), 0);
+  EXPECT_FALSE(fs::exists(failed / "tex" / "skin.png"));
+  EXPECT_FALSE(fs::exists(failed / "tex"));
+  EXPECT_FALSE(fs::exists(failed / "face.glb"));
+  EXPECT_FALSE(fs::exists(failed / "face.rig"));
+  EXPECT_TRUE(fs::is_directory(failed / "report.json"));
+}
+
 // A user's glTF whose own morph target is a sparse accessor (as engines export them, glTF 2.0
 // §3.6.2.3): the transfer reads it and writes it back — still sparse, the same deltas.
 TEST(RetargetApp, TransferKeepsSparseMorphTargets) {

@@ -33,9 +33,12 @@ TEST(Transfer, RotatedDecimetreCopyKeepsItsFrameAndMoves) {
             .norm(),
         1e-9);
   }
-  // the recovered rotation is the inverse of the applied one (within a degree)
+  // the recovered rotation is the inverse of the applied one (the alignment alone: ≈ 0.5° off;
+  // refined on the face (RetargetOptions::refine_alignment): measured 0.005°)
   const Eigen::AngleAxisd residual(fr.rotation * rot);
-  EXPECT_LT(std::abs(residual.angle()), 3.14159265358979323846 / 180.0);
+  std::printf("  rotated copy: frame %.4f deg off, scale %.5f of the true\n",
+              residual.angle() * 180.0 / 3.14159265358979323846, fr.scale * scale);
+  EXPECT_LT(std::abs(residual.angle()), 0.05 * 3.14159265358979323846 / 180.0);
   std::size_t worst_over = 0;
   for (const auto& e : compare(f.source, f.remeshed, r, rot, scale)) {
     if (e.over > 30) std::printf("    %-34s over 3 %%: %zu\n", e.name.c_str(), e.over);
@@ -43,9 +46,52 @@ TEST(Transfer, RotatedDecimetreCopyKeepsItsFrameAndMoves) {
   }
   std::printf("  rotated copy: worst %zu of %ld vertices beyond 3 %%\n", worst_over,
               static_cast<long>(input.vertices.rows()));
-  // Measured 345 of 3014 with this short GA (the auto alignment is ~0.5° off and the decimetre copy
-  // is fitted independently); the unrotated copy above is the strict check.
-  EXPECT_LE(worst_over, static_cast<std::size_t>(input.vertices.rows() / 6));
+  // Measured 9 of 3,150 (masseter; as on the unrotated copy in transfer_test.cpp: the built-in
+  // face's own mouth-rim seam); 365 before the frame was refined on the face: the alignment's
+  // ≈ 0.5° tilt moved the §3.2.1 detected landmarks (highest y, highest z, extreme x), this short
+  // GA (6 generations) did not recover, and the registration does not undo a tangential
+  // misplacement. Bound: the unrotated copy's (transfer_test.cpp), 0.5 % of the vertices.
+  EXPECT_LE(worst_over, static_cast<std::size_t>(input.vertices.rows() / 200));
+}
+
+// A tilt small enough for the alignment to snap it away (AlignOptions::snap_degrees 1.5: the
+// axis-aligned frame, 0.6° off; the pitch search on E then takes back a part in 0.5° steps; 0.21°
+// are left): the refinement on the face (TransferOptions::refine_frame, RetargetOptions::
+// refine_alignment) recovers it; without it the rig keeps what the alignment left.
+TEST(Transfer, RefinedFrameRecoversASmallTilt) {
+  const auto& f = fixtures();
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(0.6 * 3.14159265358979323846 / 180.0,
+                                                 Eigen::Vector3d(1.0, 0.3, 0.2).normalized())
+                                   .toRotationMatrix();
+  fm::Mesh input = f.remeshed;
+  for (Eigen::Index v = 0; v < input.vertices.rows(); ++v)
+    input.vertices.row(v) = (tilt * Eigen::Vector3d(f.remeshed.vertices.row(v))).transpose();
+  auto degrees = [](const Eigen::Matrix3d& m) {
+    return Eigen::AngleAxisd(m).angle() * 180.0 / 3.14159265358979323846;
+  };
+  rt::TransferOptions plain = quick_options();
+  plain.refine_frame = false;
+  const auto a = rt::transfer_rig(f.source, input, {}, plain);
+  const auto b = rt::transfer_rig(f.source, input, {}, quick_options());
+  const double before = degrees(a.face.rig.frame.rotation * tilt);
+  const double after = degrees(b.face.rig.frame.rotation * tilt);
+  const auto& ar = b.fit.alignment.report;
+  std::printf(
+      "  frame error: %.3f deg aligned, %.4f deg refined (refinement %.3f deg, scale %.5f, "
+      "%zu points)\n",
+      before, after, ar.refine_angle_deg, ar.refine_scale, ar.refine_points);
+  EXPECT_FALSE(a.fit.alignment.report.refined);
+  EXPECT_TRUE(ar.refined);
+  EXPECT_GT(before, 0.15);  // measured 0.213°
+  EXPECT_LT(after, 0.02);   // measured 0.0019°
+  // measured 1.0013: the decimated copy's chords lie inside the built-in surface
+  EXPECT_NEAR(b.face.rig.frame.scale, 1.0, 0.005);
+  // the mesh in the rig frame is the input through the refined frame
+  for (Eigen::Index v = 0; v < input.vertices.rows(); ++v)
+    EXPECT_LT((b.face.rig.frame.to_rig(input.vertices.row(v).transpose()) -
+               b.face.mesh.vertices.row(v).transpose())
+                  .norm(),
+              1e-12);
 }
 
 TEST(Transfer, LandsTheInnerIbugLandmarksOnAFinerRemesh) {
@@ -114,13 +160,13 @@ TEST(Transfer, UserLandmarksAreUsedAndReported) {
     EXPECT_EQ(l.source, k % 2 == 0 ? "user" : "fit");
     if (k % 2 == 0) {
       EXPECT_EQ(l.confidence, 1.0);
-      // the user's point snapped to the nearest vertex of the head component
+      // the user's point snapped to the nearest vertex of the head component (input frame)
       double best = 1e300;
       for (int v : r.face.rig.parts.front().vertices)
         best = std::min(best, (f.remeshed.vertices.row(v).transpose() -
                                lm.points[static_cast<std::size_t>(k)].point)
                                   .squaredNorm());
-      EXPECT_LT((r.face.mesh.vertices.row(l.vertex).transpose() -
+      EXPECT_LT((f.remeshed.vertices.row(l.vertex).transpose() -
                  lm.points[static_cast<std::size_t>(k)].point)
                     .norm(),
                 std::sqrt(best) + 1e-9);
@@ -132,8 +178,8 @@ TEST(Transfer, UserLandmarksAreUsedAndReported) {
 // AU7, anger, fear at 0.9) and of the mouth (neutral, fear), front and three-quarter, are written
 // there (docs/retarget.md, scripts/transfer_pictures.sh).
 TEST(Transfer, MakeHumanCloseUps) {
-  const char* mh = EMOFACE_SOURCE_DIR "/../shared/meshes/makehuman_head.obj";
-  if (!std::filesystem::exists(mh)) GTEST_SKIP() << "../shared/meshes absent";
+  const char* mh = EMOFACE_SOURCE_DIR "/data/face/makehuman_head.obj";  // as ../shared/meshes
+  if (!std::filesystem::exists(mh)) GTEST_SKIP() << "data/face/makehuman_head.obj absent";
   const auto r = rt::transfer_rig(fixtures().source, fm::read_mesh(mh));
   const LidCheck c = check_lids(r, six_emotions());
   for (int e = 0; e < 2; ++e) {

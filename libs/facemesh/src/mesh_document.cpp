@@ -20,6 +20,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "document_companions.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/facemesh/mesh_io.hpp"
@@ -1064,6 +1065,42 @@ tinygltf::Model updated_model(const MeshDocument::Impl& doc, const Vertices& pos
   return std::move(copy_view.model);
 }
 
+}  // namespace
+
+namespace detail {
+// The image files a copy of a glTF document needs (MeshDocument::companion_files): every image with
+// a file uri (not a data URI, not a buffer view) at the same path relative to the copy, when that
+// path stays inside the document's directory; one leaving it (absolute, `..`) or missing is a
+// warning and not copied (the copy names it as the input did; nothing lands outside the output).
+Companions gltf_image_companions(const MeshDocument::Impl& doc) {
+  Companions out;
+  const fs::path from_dir = fs::path(doc.path).parent_path();
+  std::set<std::string> taken;
+  for (const auto& image : doc.model.images) {
+    if (image.uri.empty() || image.uri.rfind("data:", 0) == 0) continue;
+    const fs::path rel(image.uri);
+    const fs::path n = rel.lexically_normal();
+    if (rel.is_absolute() || rel.has_root_name() || rel.has_root_directory() || n.empty() ||
+        *n.begin() == ".." || !n.has_filename()) {
+      out.warnings.push_back(
+          "image '" + image.uri +
+          "' lies outside the mesh's directory: not copied (the copy names it as the input did)");
+      continue;
+    }
+    const fs::path src = from_dir / rel;
+    if (!fs::is_regular_file(src)) {
+      out.warnings.push_back("image '" + image.uri + "' not found: not copied");
+      continue;
+    }
+    if (!taken.insert(n.generic_string()).second) continue;  // named by two images
+    out.files.push_back({n.generic_string(), core::read_file(src.string())});
+  }
+  return out;
+}
+}  // namespace detail
+
+namespace {
+
 std::string base64(const std::vector<unsigned char>& bytes) {
   static const char* const kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
@@ -1079,20 +1116,21 @@ std::string base64(const std::vector<unsigned char>& bytes) {
   return out;
 }
 
-void save_gltf(const MeshDocument::Impl& doc, tinygltf::Model& model, const std::string& path) {
+void save_gltf(const MeshDocument::Impl& doc, tinygltf::Model& model, const std::string& path,
+               bool copy_images = true) {
   MeshFormat out = mesh_format_from_path(path);
   if (out != MeshFormat::Gltf && out != MeshFormat::Glb) throw InvalidInput("'" + path + "': a glTF document is written as .gltf or .glb");
   const bool binary = out == MeshFormat::Glb;
-  // images with a file uri stay files: copied beside the output (data URIs and buffer views travel along)
+  // images with a file uri stay files: copied beside the output (data URIs and buffer views travel
+  // along), only those inside the document's directory (detail::gltf_image_companions)
   const fs::path from_dir = fs::path(doc.path).parent_path(), to_dir = fs::path(path).parent_path();
   std::error_code ec;
   const bool same_dir = fs::equivalent(from_dir.empty() ? "." : from_dir, to_dir.empty() ? "." : to_dir, ec);
-  for (const auto& image : model.images) {
-    if (image.uri.empty() || image.uri.rfind("data:", 0) == 0 || same_dir) continue;
-    const fs::path src = from_dir / image.uri;
-    if (!fs::is_regular_file(src)) continue;
-    fs::create_directories((to_dir / image.uri).parent_path(), ec);
-    core::write_file_atomic((to_dir / image.uri).string(), core::read_file(src.string()));
+  if (copy_images && !same_dir) {
+    for (const auto& file : detail::gltf_image_companions(doc).files) {
+      fs::create_directories((to_dir / file.path).parent_path(), ec);
+      core::write_file_atomic((to_dir / file.path).string(), file.bytes);
+    }
   }
   // buffers always embedded (data URI in .gltf, the BIN chunk in .glb): the output stands alone
   for (auto& b : model.buffers) b.uri.clear();
@@ -1168,7 +1206,7 @@ void MeshDocument::write(const std::string& path, const Vertices& positions, boo
     case MeshFormat::Gltf:
     case MeshFormat::Glb: {
       tinygltf::Model model = updated_model(doc, positions, recompute_normals);
-      save_gltf(doc, model, path);
+      save_gltf(doc, model, path, copy_materials);
       return;
     }
   }

@@ -1,5 +1,6 @@
-// The files that go with a copy of an OBJ document (mesh_document.hpp,
-// MeshDocument::companion_files): its material libraries and every texture they reference.
+// The files that go with a copy of a document (mesh_document.hpp, MeshDocument::companion_files):
+// an OBJ's material libraries and every texture they reference; a glTF's image files
+// (detail::gltf_image_companions, mesh_document.cpp).
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -8,6 +9,7 @@
 #include <set>
 #include <string_view>
 
+#include "document_companions.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/facemesh/mesh_document.hpp"
@@ -101,6 +103,8 @@ TextureRef texture_name(const std::string& line) {
 }  // namespace
 
 Companions MeshDocument::companion_files() const {
+  if (format() == MeshFormat::Gltf || format() == MeshFormat::Glb)
+    return detail::gltf_image_companions(*impl_);
   Companions out;
   if (format() != MeshFormat::Obj) return out;
   const fs::path obj_dir = fs::path(path()).parent_path();

@@ -40,6 +40,10 @@ nlohmann::ordered_json report_json(const RetargetResult& r, bool include_time) {
   a["hints_used"] = ar.hints_used;
   a["snapped"] = ar.snapped;
   a["pitch_correction_deg"] = ar.pitch_correction_deg;
+  a["refined"] = ar.refined;  // 1.4
+  a["refine_points"] = ar.refine_points;
+  a["refine_angle_deg"] = ar.refine_angle_deg;
+  a["refine_scale"] = ar.refine_scale;
   a["message"] = ar.message;
   doc["length_scale"] = r.length_scale;
   auto& lm = doc["landmarks"];

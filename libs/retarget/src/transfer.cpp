@@ -493,7 +493,9 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       head_mesh.faces(static_cast<Eigen::Index>(k), j) =
           local[static_cast<std::size_t>(target.faces(head.faces[k], j))];
   auto t0 = Clock::now();
-  out.fit = retarget_face(source, head_mesh, options.fit, progress);
+  RetargetOptions fit_options = options.fit;
+  fit_options.refine_alignment = fit_options.refine_alignment || options.refine_frame;
+  out.fit = retarget_face(source, head_mesh, fit_options, progress);
   RetargetResult& fit = out.fit;
   const Alignment& al = fit.alignment;
   const fm::Vertices T = al.apply(target.vertices);  // the whole target in the rig frame
@@ -1493,11 +1495,11 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
           const auto i = static_cast<std::size_t>(v);
           if (!lid_area[i] || fixed[i]) continue;
           double su = pu[i], sl = pl[i];
-          int c = 1;
+          int count = 1;
           for (int w : adjacency[i])
             if (lid_area[static_cast<std::size_t>(w)] && !excluded[static_cast<std::size_t>(w)])
-              su += pu[static_cast<std::size_t>(w)], sl += pl[static_cast<std::size_t>(w)], ++c;
-          wu[i] = su / c, wl[i] = sl / c;
+              su += pu[static_cast<std::size_t>(w)], sl += pl[static_cast<std::size_t>(w)], ++count;
+          wu[i] = su / count, wl[i] = sl / count;
         }
       }
       for (int v : head.vertices) {

@@ -101,8 +101,10 @@ class MeshDocument {
   /// to the copy as to the original. Nothing lands outside the copy's directory: a texture with an
   /// absolute path or one leaving the mesh's directory (`..`) is copied in beside its .mtl under
   /// its base name (made unique) and the .mtl line rewritten to name it; a material library outside
-  /// it is not copied. Missing files are warnings, not errors. Empty for other formats. Reads the
-  /// files; throws IoError when an existing one cannot be read.
+  /// it is not copied. Missing files are warnings, not errors. glTF/GLB: every image with a file
+  /// uri (not a data URI or buffer view) at its uri relative to the copy; one leaving the
+  /// document's directory (absolute, `..`) or missing is a warning, not copied. Empty for other
+  /// formats. Reads the files; throws IoError when an existing one cannot be read.
   Companions companion_files() const;
   /// glTF: the first mesh's own morph targets (dense or sparse accessors), in file order: name from
   /// mesh.extras.targetNames ("target_<k>" when unnamed), POSITION deltas per vertex of triangles()
@@ -119,8 +121,9 @@ class MeshDocument {
   /// be .gltf (buffers embedded) or .glb; PLY to .ply: only the x/y/z numbers (tokens or bytes) of
   /// moved vertices change, nx/ny/nz recomputed around them with `recompute_normals`, every other
   /// property kept). `positions` equal to triangles().vertices reproduces the input file byte for
-  /// byte for OBJ and PLY. Copies the OBJ's material libraries and their textures (companion_files)
-  /// next to `path` when `copy_materials` and the target directory differs. Atomic (temporary file
+  /// byte for OBJ and PLY. Copies the OBJ's material libraries and their textures, or the glTF's
+  /// image files (companion_files), next to `path` when `copy_materials` and the target directory
+  /// differs. Atomic (temporary file
   /// + rename); throws InvalidInput on a size mismatch or non-finite positions, IoError on failure.
   void write(const std::string& path, const Vertices& positions, bool recompute_normals = true,
              bool copy_materials = true) const;

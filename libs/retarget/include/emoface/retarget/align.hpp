@@ -96,6 +96,14 @@ struct AlignReport {
   /// Pitch (rotation about the thesis x axis, degrees) added by retarget_face's search on the initial
   /// error (RetargetOptions::pitch_search_degrees); 0 when not searched.
   double pitch_correction_deg = 0.0;
+  /// RetargetOptions::refine_alignment: the frame was refined on the face (similarity ICP of the
+  /// source's stable face onto the target), with this many point pairs in the last iteration, by a
+  /// rotation of this many degrees and this scale factor (angle and scale also when not applied:
+  /// more than RetargetOptions::refine_max_degrees).
+  bool refined = false;
+  std::size_t refine_points = 0;
+  double refine_angle_deg = 0.0;
+  double refine_scale = 1.0;
   /// min(symmetry_margin, 2·orientation_margin) clamped to [0, 1], halved for each failed cue.
   double confidence = 1.0;
   std::string message;        ///< one line: which cues decided

@@ -13,7 +13,7 @@ namespace emoface::retarget {
 inline constexpr int kReportFormatMajor = 1;
 /// 1.1: alignment report (method, axis/angle, confidence, cues); 1.2: "transfer" section (mode transfer:
 /// frame, registration, residuals per region, landmark confidence per iBUG point, parts, timings).
-inline constexpr int kReportFormatMinor = 3;  // 1.3: transfer.lids
+inline constexpr int kReportFormatMinor = 4;  // 1.3: transfer.lids; 1.4: alignment.refined/refine_*
 
 /// Deterministic JSON (ends with a newline). `include_time` = false drops GaReport::seconds so that two
 /// runs with the same seed give byte-identical files.

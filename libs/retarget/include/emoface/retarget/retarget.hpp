@@ -69,6 +69,18 @@ struct RetargetOptions {
   /// align_to_frame finds the left-right axis and up/front reliably, but its pitch follows the overall
   /// head shape (a neck, a long jaw); E measures what the fit needs. [0, 60]; 0 = off.
   double pitch_search_degrees = 30.0;
+  /// Beyond the thesis (issue 13): after the alignment (and the pitch search), refine the frame on
+  /// the face itself: a similarity ICP (Umeyama 1991 on closest-point pairs) of the source's stable
+  /// face (skin of the upper and middle face regions, no jaw or lid weight) onto the target. The
+  /// detected landmarks (§3.2.1: highest y, highest z, extreme x) move with a tilt of the frame, so
+  /// a frame 0.5° off cost the fit and everything transferred from it. Off by default (the
+  /// thesis' export, `--mode deform-source`); TransferOptions::refine_frame turns it on.
+  bool refine_alignment = false;
+  /// The refinement is applied only when it turns the frame by at most this many degrees: it
+  /// corrects an alignment that is nearly right (a copy of the source 0.5° off); on a face shaped
+  /// unlike the source (MakeHuman: 7.7°) the ICP's pose is a compromise between shapes and the
+  /// alignment's pitch (chosen on E) fits better (its mouth landmarks were misplaced). [0, 30].
+  double refine_max_degrees = 2.0;
   /// Beyond the thesis, experimental: ErrorOptions::band_samples between the source's chin and nose tip
   /// heights when error.band_samples is 0, so that E samples the lips more densely. Off by default: on the
   /// MakeHuman head 12 band samples moved the mouth further down (docs/retarget.md). [0, 1000].

@@ -64,6 +64,10 @@ struct TransferOptions {
   /// Sphere fit accepted as an eyeball when the RMS residual is below this fraction of the radius
   /// and the radius within [0.5, 2] × the source eye radius (scaled); (0, 1].
   double eyeball_tolerance = 0.12;
+  /// The rig frame refined on the face before the fit (RetargetOptions::refine_alignment, turned
+  /// on here: the fit's landmarks and so every attribute depend on it); false =
+  /// fit.refine_alignment.
+  bool refine_frame = true;
   void validate() const;
 };
 
