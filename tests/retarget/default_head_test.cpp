@@ -267,7 +267,7 @@ int landmark(const fm::Rig& rig, const std::string& name) {
   throw std::runtime_error("no landmark " + name);
 }
 
-double luminance(const fm::Image& im, int x, int y) {
+double luminance(const core::Image& im, int x, int y) {
   const std::size_t i = (static_cast<std::size_t>(y) * im.width + x) * 3;
   return 0.299 * im.rgb[i] + 0.587 * im.rgb[i + 1] + 0.114 * im.rgb[i + 2];
 }
@@ -316,8 +316,8 @@ TEST(DefaultFace, HairAboveTheHairlineOnly) {
                                             {"frontalis_lateralis_r", 1.0}};
   for (const bool raised : {false, true}) {
     const mu::Deformation d = solver.deform(raised ? raise : std::map<std::string, double>{});
-    const fm::Image im = fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, o,
-                                    fm::paint_for(face.rig));
+    const core::Image im = fm::render(fm::Mesh{d.vertices, face.mesh.faces}, colors, d.crease, o,
+                                      fm::paint_for(face.rig));
     auto px = [&](int v) { return fm::project_point(o, d.vertices.row(v).transpose()); };
     for (const int column : {br, bl, -1}) {
       // the column's brow row (the midline has none: the brow landmarks' mean height)
