@@ -293,10 +293,11 @@ TEST(Transfer, MakeHumanLidsCloseWithoutCrossing) {
   // 7.7° (measured) and is not applied (RetargetOptions::refine_max_degrees, 2°)
   EXPECT_FALSE(r.fit.alignment.report.refined);
   EXPECT_GT(r.fit.alignment.report.refine_angle_deg, 2.0);
-  // Measured 116 turned-over triangles (blink 23: small fold triangles at the margin; sadness 39
-  // and happiness 37 on the lower lid, where the region cut-off moves the cheek and not the lid;
-  // docs/retarget.md). Before the lids were rebuilt the margins tore open (picture).
-  expect_lids_close(r, "MakeHuman", true, 120);
+  // Measured 126 turned-over triangles with round 4's expressions (blink 23: small fold triangles
+  // at the margin; sadness 39 and happiness 37 on the lower lid, where the region cut-off moves the
+  // cheek and not the lid; anger 12, surprise 13; 116 before round 4; docs/retarget.md). Before the
+  // lids were rebuilt the margins tore open (picture).
+  expect_lids_close(r, "MakeHuman", true, 135);
 }
 
 TEST(Transfer, BadInputGivesClearErrors) {
