@@ -70,9 +70,7 @@ int main(int argc, char** argv) {
     }
     if (params.empty() || (out_dir.empty() && gltf.empty())) throw emoface::InvalidInput("give --params FILE and --out DIR and/or --gltf FILE");
     const auto shard = shard_text.empty() ? emoface::cli::Shard{} : emoface::cli::parse_shard(shard_text);
-    fm::Face face = rig_path.empty()          ? fm::make_default_face()
-                    : rig_path == "generic" ? fm::make_generic_face()
-                                            : fm::load_face(rig_path);
+    fm::Face face = fm::load_face_or_builtin(rig_path);
     if (format.empty()) format = fm::frame_format(face);
     mu::SolverOptions options;
     options.delta_c = delta_c;
