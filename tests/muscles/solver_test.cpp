@@ -396,8 +396,18 @@ TEST(FaceSolver, WrinklesAlongNormalsOnlyInTheBand) {
   const double diff = (with.vertices - without.vertices).rowwise().norm().maxCoeff();
   EXPECT_GT(diff, 0.0003);
   EXPECT_LE(diff, 0.0016 + 1e-12);  // never more than the wrinkle height a
-  EXPECT_TRUE(std::any_of(with.crease.begin(), with.crease.end(), [](auto c) { return c != 0; }));
-  EXPECT_TRUE(std::none_of(without.crease.begin(), without.crease.end(), [](auto c) { return c != 0; }));
+  // The generic face's forehead edges (≈ 5 mm) are coarser than 0.3·b (b ≈ 9 mm): no crease by
+  // default; with a looser resolution the feet are flagged (and only with wrinkles on).
+  const auto any = [](const Deformation& d) {
+    return std::any_of(d.crease.begin(), d.crease.end(), [](auto c) { return c != 0; });
+  };
+  EXPECT_FALSE(any(with));
+  SolverOptions loose;
+  loose.crease_resolution = 1.0;
+  EXPECT_TRUE(any(FaceSolver(face().mesh, face().rig, loose).deform(named)));
+  loose.wrinkles = false;
+  EXPECT_FALSE(any(FaceSolver(face().mesh, face().rig, loose).deform(named)));
+  EXPECT_FALSE(any(without));
   // wrinkles on the forehead (upper face); the frontalis also lifts the upper lids' skin (issue 14:
   // its zone would otherwise end in a fold at the region border), where the band's lower edge
   // leaves at most a faint ridge (< 0.5 mm, at the lid fold)
@@ -522,6 +532,16 @@ TEST(FaceSolver, FastPathMatchesReference) {
       EXPECT_LT((fast.lip_control_points[i] - reference.lip_control_points[i]).norm(), 1e-6 * head_height) << i;
     }
     EXPECT_GT((fast.vertices - f.mesh.vertices).cwiseAbs().maxCoeff(), 5e-3);  // it did move
+  }
+  {  // wrinkle feet flagged alike (a resolution at which the generic face has feet)
+    SolverOptions o;
+    o.crease_resolution = 1.0;
+    const FaceSolver s(f.mesh, f.rig, o);
+    const std::vector<double> v(kParameterCount, 1.0);
+    s.deform(v, fast, ws);
+    s.deform_reference(v, reference);
+    EXPECT_EQ(fast.crease, reference.crease);
+    EXPECT_GT(std::count(fast.crease.begin(), fast.crease.end(), 1), 0);
   }
   EXPECT_LT(worst, 1e-6 * head_height);
   // also other step sizes and the plain (non-parallel) combination

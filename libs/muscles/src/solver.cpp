@@ -24,6 +24,26 @@ inline Eigen::Vector3d rotate_x(const Eigen::Vector3d& p, const Eigen::Vector3d&
   return pivot + Eigen::Vector3d(q.x(), q.y() * c - q.z() * s, q.y() * s + q.z() * c);
 }
 
+// Per vertex: the mean length of the edges it shares with its triangles (an interior edge counts
+// once per triangle); 0 for a vertex in no triangle. The mesh resolution for wrinkle_foot().
+std::vector<double> mean_edge_lengths(const facemesh::Mesh& mesh) {
+  const auto nv = static_cast<std::size_t>(mesh.vertices.rows());
+  std::vector<double> sum(nv, 0.0);
+  std::vector<int> count(nv, 0);
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
+      const double l = (mesh.vertices.row(a) - mesh.vertices.row(b)).norm();
+      for (int v : {a, b}) {
+        sum[static_cast<std::size_t>(v)] += l;
+        ++count[static_cast<std::size_t>(v)];
+      }
+    }
+  for (std::size_t v = 0; v < nv; ++v)
+    if (count[v] > 0) sum[v] /= count[v];
+  return sum;
+}
+
 }  // namespace
 
 // Distance from p to a muscle's zone of influence (0 inside): the vector muscle's zone is the cone of
@@ -78,6 +98,8 @@ void SolverOptions::validate() const {
   check(lid_tighten_upper + lid_tighten_lower <= 0.8,
         "lid_tighten_upper + lid_tighten_lower must be <= 0.8 (the tightener never shuts the eye)");
   check(funnel_extrusion >= 0.0 && funnel_extrusion <= 0.05, "funnel_extrusion must be in [0, 0.05]");
+  check(crease_resolution >= 0.0 && crease_resolution <= 1e6,
+        "crease_resolution must be in [0, 1e6]");
 }
 
 FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions options)
@@ -377,6 +399,7 @@ void FaceSolver::build_fast_path() {
   // Wrinkles (thesis §2.4.1): the amplitude A·f(l) of a vertex depends only on its original position
   // in the band, so it is tabulated once per muscle (exact cos/acos); deform() scales it by the level.
   wrinkles_.assign(muscles_.size(), {});
+  const std::vector<double> edge = mean_edge_lengths(mesh_);
   std::vector<int> slot(nv, -1);
   std::vector<std::vector<std::pair<int, WrinkleEntry>>> raw(muscles_.size());
   for (std::size_t i = 0; i < muscles_.size(); ++i) {
@@ -384,7 +407,6 @@ void FaceSolver::build_fast_path() {
     if (m.kind != facemesh::MuscleKind::Vector || m.wrinkle_count <= 0 || m.wrinkle_height <= 0.0) continue;
     const double length = wrinkle_band_length(m.geometry);
     if (!(length > 0.0)) continue;
-    const double b = length / (2.0 * m.wrinkle_count);
     for (int v : m.vertices) {
       const Eigen::Vector3d p0 = mesh_.vertices.row(v).transpose();
       const double l = wrinkle_coordinate(m.geometry, p0);
@@ -395,8 +417,8 @@ void FaceSolver::build_fast_path() {
       const double cos_alpha = std::min(1.0, std::max(-1.0, to_p.dot(m.axis) / d));
       if (cos_alpha <= std::cos(m.geometry.omega)) continue;
       const double a = angular_factor(std::acos(cos_alpha), m.geometry.omega);
-      const double u = l - 2.0 * b * std::floor(l / (2.0 * b));
-      const bool crease = (u < 0.15 * b || u > 1.85 * b) && l > b && l < length - b;
+      const bool crease = wrinkle_foot(l, length, m.wrinkle_count,
+                                       edge[static_cast<std::size_t>(v)], options_.crease_resolution);
       raw[i].push_back({v, WrinkleEntry{0, a * wrinkle_function(l, length, m.wrinkle_count, m.wrinkle_height), crease}});
       slot[static_cast<std::size_t>(v)] = 0;
     }
@@ -820,12 +842,12 @@ void FaceSolver::deform_reference(const std::vector<double>& values, Deformation
   // Bulges and wrinkles (thesis §2.4.1), straight from the band geometry of waters.hpp.
   if (options_.wrinkles) {
     std::vector<double> amp(static_cast<std::size_t>(nv), 0.0);
+    const std::vector<double> edge = mean_edge_lengths(mesh_);
     for (std::size_t i = 0; i < muscles_.size(); ++i) {
       const Muscle& m = muscles_[i];
       if (m.kind != facemesh::MuscleKind::Vector || m.wrinkle_count <= 0 || m.wrinkle_height <= 0.0 || level[i] <= 0.0) continue;
       const double length = wrinkle_band_length(m.geometry);
       if (!(length > 0.0)) continue;
-      const double b = length / (2.0 * m.wrinkle_count);
       for (auto region : rig_.muscles[i].regions) {
         for (int v : regions[static_cast<std::size_t>(region)]) {
           const Eigen::Vector3d p0 = mesh_.vertices.row(v).transpose();
@@ -837,8 +859,9 @@ void FaceSolver::deform_reference(const std::vector<double>& values, Deformation
           if (a <= 0.0) continue;
           const double h = level[i] * a * wrinkle_function(l, length, m.wrinkle_count, m.wrinkle_height);
           amp[static_cast<std::size_t>(v)] = std::max(amp[static_cast<std::size_t>(v)], h);
-          const double u = l - 2.0 * b * std::floor(l / (2.0 * b));
-          if ((u < 0.15 * b || u > 1.85 * b) && l > b && l < length - b) out.crease[static_cast<std::size_t>(v)] = 1;
+          if (wrinkle_foot(l, length, m.wrinkle_count, edge[static_cast<std::size_t>(v)],
+                           options_.crease_resolution))
+            out.crease[static_cast<std::size_t>(v)] = 1;
         }
       }
     }

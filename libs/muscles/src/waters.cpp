@@ -52,6 +52,13 @@ double wrinkle_function(double l, double length, int count, double height) {
   return height * (1.0 - (u - b) * (u - b) / (b * b));
 }
 
+bool wrinkle_foot(double l, double length, int count, double mean_edge, double resolution) {
+  if (!(length > 0.0) || count < 1) return false;
+  const double b = length / (2.0 * count);
+  const double u = l - 2.0 * b * std::floor(l / (2.0 * b));
+  return (u < 0.15 * b || u > 1.85 * b) && l > b && l < length - b && mean_edge <= resolution * b;
+}
+
 double wrinkle_band_length(const VectorMuscle& m) { return 0.75 * m.rf * std::cos(m.omega); }
 
 double wrinkle_coordinate(const VectorMuscle& m, const Eigen::Vector3d& p) {
