@@ -123,24 +123,33 @@ int main(int argc, char** argv) {
   }
 
   // forehead close-up: frontalis (medialis + lateralis, both sides) at 0, 0.5, 0.75 and 1 (issue
-  // 14)
+  // 14), on the generic face and on the default face (the MakeHuman head users see)
   {
-    std::vector<core::Image> tiles;
-    for (double level : {0.0, 0.5, 0.75, 1.0}) {
-      Named n;
-      for (const char* p : {"frontalis_medialis_l", "frontalis_medialis_r", "frontalis_lateralis_l",
-                            "frontalis_lateralis_r"})
-        n[p] = level;
-      fm::RenderOptions o;
-      o.width = 360;
-      o.height = 260;
-      o.target = Eigen::Vector3d(0, 0.035, 0);
-      o.distance = 0.40;
-      const auto a = solver.deform(n);
-      tiles.push_back(fm::render(fm::Mesh{a.vertices, face().mesh.faces}, colors, a.crease, o,
-                                 fm::paint_for(face().rig)));
-    }
-    core::write_png((out / "muscles/forehead_closeup.png").string(), core::tile(tiles, 2));
+    const fm::Face head = fm::make_default_face();
+    const mu::FaceSolver head_solver(head.mesh, head.rig);
+    const auto head_colors = fm::material_colors(head.rig, head.mesh);
+    const auto closeup = [](const fm::Face& f, const mu::FaceSolver& s,
+                            const std::vector<Eigen::Vector3f>& c, const char* file,
+                            const std::filesystem::path& dir) {
+      std::vector<core::Image> tiles;
+      for (double level : {0.0, 0.5, 0.75, 1.0}) {
+        Named n;
+        for (const char* p : {"frontalis_medialis_l", "frontalis_medialis_r",
+                              "frontalis_lateralis_l", "frontalis_lateralis_r"})
+          n[p] = level;
+        fm::RenderOptions o;
+        o.width = 360;
+        o.height = 260;
+        o.target = Eigen::Vector3d(0, 0.035, 0);
+        o.distance = 0.40;
+        const auto a = s.deform(n);
+        tiles.push_back(
+            fm::render(fm::Mesh{a.vertices, f.mesh.faces}, c, a.crease, o, fm::paint_for(f.rig)));
+      }
+      core::write_png((dir / file).string(), core::tile(tiles, 2));
+    };
+    closeup(face(), solver, colors, "muscles/forehead_closeup.png", out);
+    closeup(head, head_solver, head_colors, "muscles/forehead_closeup_default.png", out);
   }
 
   // eyes, lids, jaw, lips
