@@ -104,17 +104,17 @@ TEST(Wrinkles, ParabolaValues) {
 TEST(Wrinkles, FeetWhereTheMeshResolvesThem) {
   // L = 0.06, Nw = 3 → b = 0.01; valleys (u = 0) at l = 0.02, 0.04; a foot within 0.15·b = 1.5 mm
   // of one, not in the first or last half-period (l in (0.01, 0.05)), edges ≤ resolution·b.
-  EXPECT_TRUE(wrinkle_foot(0.0205, 0.06, 3, 0.002, 0.3));    // u = 0.5 mm, edge 2 mm ≤ 3 mm
-  EXPECT_TRUE(wrinkle_foot(0.0390, 0.06, 3, 0.003, 0.3));    // u = 1.9 mm > 1.85·b: before a valley
+  EXPECT_TRUE(wrinkle_foot(0.0205, 0.06, 3, 0.002, 0.3));  // u = 0.5 mm, edge 2 mm ≤ 3 mm
+  EXPECT_TRUE(wrinkle_foot(0.0390, 0.06, 3, 0.003, 0.3));  // u = 1.9 mm > 1.85·b: before a valley
   EXPECT_FALSE(wrinkle_foot(0.0205, 0.06, 3, 0.0031, 0.3));  // edge 3.1 mm > 0.3·b
   EXPECT_TRUE(wrinkle_foot(0.0205, 0.06, 3, 0.0031, 1.0));
-  EXPECT_TRUE(wrinkle_foot(0.0205, 0.06, 3, 0.0, 0.0));      // a point (edge 0) always resolves
-  EXPECT_FALSE(wrinkle_foot(0.0220, 0.06, 3, 0.001, 0.3));   // u = 2 mm: on the slope
-  EXPECT_FALSE(wrinkle_foot(0.0300, 0.06, 3, 0.001, 0.3));   // u = b: the crest
-  EXPECT_FALSE(wrinkle_foot(0.0005, 0.06, 3, 0.001, 0.3));   // first half-period
-  EXPECT_FALSE(wrinkle_foot(0.0595, 0.06, 3, 0.001, 0.3));   // last half-period
-  EXPECT_FALSE(wrinkle_foot(0.0205, 0.0, 3, 0.001, 0.3));    // no band
-  EXPECT_FALSE(wrinkle_foot(0.0205, 0.06, 0, 0.001, 0.3));   // no wrinkles
+  EXPECT_TRUE(wrinkle_foot(0.0205, 0.06, 3, 0.0, 0.0));     // a point (edge 0) always resolves
+  EXPECT_FALSE(wrinkle_foot(0.0220, 0.06, 3, 0.001, 0.3));  // u = 2 mm: on the slope
+  EXPECT_FALSE(wrinkle_foot(0.0300, 0.06, 3, 0.001, 0.3));  // u = b: the crest
+  EXPECT_FALSE(wrinkle_foot(0.0005, 0.06, 3, 0.001, 0.3));  // first half-period
+  EXPECT_FALSE(wrinkle_foot(0.0595, 0.06, 3, 0.001, 0.3));  // last half-period
+  EXPECT_FALSE(wrinkle_foot(0.0205, 0.0, 3, 0.001, 0.3));   // no band
+  EXPECT_FALSE(wrinkle_foot(0.0205, 0.06, 0, 0.001, 0.3));  // no wrinkles
 }
 
 TEST(Wrinkles, BandGeometry) {

@@ -417,8 +417,9 @@ void FaceSolver::build_fast_path() {
       const double cos_alpha = std::min(1.0, std::max(-1.0, to_p.dot(m.axis) / d));
       if (cos_alpha <= std::cos(m.geometry.omega)) continue;
       const double a = angular_factor(std::acos(cos_alpha), m.geometry.omega);
-      const bool crease = wrinkle_foot(l, length, m.wrinkle_count,
-                                       edge[static_cast<std::size_t>(v)], options_.crease_resolution);
+      const bool crease =
+          wrinkle_foot(l, length, m.wrinkle_count, edge[static_cast<std::size_t>(v)],
+                       options_.crease_resolution);
       raw[i].push_back({v, WrinkleEntry{0, a * wrinkle_function(l, length, m.wrinkle_count, m.wrinkle_height), crease}});
       slot[static_cast<std::size_t>(v)] = 0;
     }

@@ -72,9 +72,9 @@ struct SolverOptions {
   double lid_cheek_raise = 0.15;
   /// A wrinkle foot is flagged in Deformation::crease only where the mesh resolves it: the vertex's
   /// mean edge length ≤ crease_resolution·b (b = the wrinkle's half-period, see wrinkle_foot()),
-  /// [0, 1e6]. Default 0.3, the width of the foot's band (u within 0.15·b of a valley): no creases on
-  /// the generic and default faces (edges 4–7 mm against b ≈ 9 mm), where face-normal shading made
-  /// faceted foreheads (issue 14); 1e6 flags every foot as before; 0 none.
+  /// [0, 1e6]. Default 0.3, the width of the foot's band (u within 0.15·b of a valley): no creases
+  /// on the generic and default faces (edges 4–7 mm against b ≈ 9 mm), where face-normal shading
+  /// made faceted foreheads (issue 14); 1e6 flags every foot as before; 0 none.
   double crease_resolution = 0.3;
   void validate() const;
 };

@@ -36,13 +36,14 @@ Eigen::Vector3d sphincter_displacement(const Eigen::Vector3d& centre, const Eige
 /// f(l) = a·(1 − (u − b)²/b²). Zero outside 0 ≤ l ≤ L. Requires L > 0, Nw ≥ 1.
 double wrinkle_function(double l, double length, int count, double height);
 
-/// Whether a band point is a wrinkle *foot* (a valley of f, thesis §2.4.1: there "the vertex normal is
-/// unrepresentative", so renderers shade it with the face normal): u within 0.15·b of a valley, outside
-/// the band's first and last half-period, and the mesh there fine enough to resolve the valley as a row
-/// of vertices: `mean_edge` (the mean length of the vertex's edges) ≤ `resolution`·b. On a coarser mesh
-/// (the generic and default faces: edges 4–7 mm, b ≈ 9 mm) a foot is a scattered vertex, and its face
-/// normal shades whole triangles flat (faceted, blotchy foreheads); there the vertex normal of the
-/// displaced mesh already shows the wrinkle. Requires L > 0, Nw ≥ 1.
+/// Whether a band point is a wrinkle *foot* (a valley of f, thesis §2.4.1: there "the vertex normal
+/// is unrepresentative", so renderers shade it with the face normal): u within 0.15·b of a valley,
+/// outside the band's first and last half-period, and the mesh there fine enough to resolve the
+/// valley as a row of vertices: `mean_edge` (the mean length of the vertex's edges) ≤
+/// `resolution`·b. On a coarser mesh (the generic and default faces: edges 4–7 mm, b ≈ 9 mm) a foot
+/// is a scattered vertex, and its face normal shades whole triangles flat (faceted, blotchy
+/// foreheads); there the vertex normal of the displaced mesh already shows the wrinkle. False when
+/// L ≤ 0 or Nw < 1.
 bool wrinkle_foot(double l, double length, int count, double mean_edge, double resolution);
 
 /// Wrinkle band of a vector muscle (our reading of the lost Fig. 2.15): the part of the zone of
