@@ -55,6 +55,13 @@ TEST(ParseNumber, IgnoresTheCLocale) {
   std::setlocale(LC_NUMERIC, "C");
 }
 
+TEST(AsciiLower, OnlyAsciiLettersChange) {
+  EXPECT_EQ(ascii_lower("JawOpen_L.GLB"), "jawopen_l.glb");
+  EXPECT_EQ(ascii_lower(""), "");
+  EXPECT_EQ(ascii_lower("@[`{ 09"), "@[`{ 09");    // the bytes next to A–Z and a–z stay
+  EXPECT_EQ(ascii_lower("\xC4\xD6"), "\xC4\xD6");  // not ASCII: unchanged (Latin-1 Ä Ö)
+}
+
 TEST(ParseInteger, RangeAndJunk) {
   EXPECT_EQ(parse_integer("42"), 42);
   EXPECT_EQ(parse_integer(" -7 "), -7);

@@ -11,6 +11,7 @@
 #include "emoface/core/csv.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/rng.hpp"
+#include "emoface/core/text.hpp"
 #include "emoface/core/vocab.hpp"
 
 namespace emoface::channels {
@@ -22,11 +23,6 @@ const std::array<std::string, 6>& emotion_names() {
 
 namespace {
 
-std::string lower(std::string_view s) {
-  std::string o(s);
-  for (char& c : o) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return o;
-}
 
 class Parser {
  public:
@@ -46,7 +42,7 @@ class Parser {
     s.file = file_;
     bool any = false;
     for (pugi::xml_node n : doc.children()) {
-      if (n.type() == pugi::node_element && lower(n.name()) == "script") {
+      if (n.type() == pugi::node_element && core::ascii_lower(n.name()) == "script") {
         check_attrs(n, {});
         for (pugi::xml_node c : n.children()) any |= element(c, s);
       } else {
@@ -91,7 +87,7 @@ class Parser {
   void check_attrs(pugi::xml_node n, const std::set<std::string>& allowed) const {
     std::set<std::string> seen;
     for (pugi::xml_attribute a : n.attributes()) {
-      const std::string k = lower(a.name());
+      const std::string k = core::ascii_lower(a.name());
       if (!allowed.count(k)) fail(n, "unknown attribute \"" + std::string(a.name()) + "\" on <" + n.name() + ">");
       if (!seen.insert(k).second) fail(n, "attribute \"" + std::string(a.name()) + "\" repeated");
     }
@@ -99,7 +95,7 @@ class Parser {
 
   pugi::xml_attribute attr(pugi::xml_node n, const std::string& key) const {
     for (pugi::xml_attribute a : n.attributes())
-      if (lower(a.name()) == key) return a;
+      if (core::ascii_lower(a.name()) == key) return a;
     return {};
   }
 
@@ -178,7 +174,7 @@ class Parser {
         fail(n, "unexpected node");
     }
     if (n.first_child() && n.first_child().type() == pugi::node_element) fail(n, "elements cannot be nested here");
-    const std::string name = lower(n.name());
+    const std::string name = core::ascii_lower(n.name());
     const ScriptLocation where = locate(offset(n));
     if (name == "phoneme") {
       check_attrs(n, {"time", "text"});
@@ -229,7 +225,7 @@ class Parser {
       it.channel = Channel::ConversationalSignal;
       it.movement.timing = timing(n);
       for (pugi::xml_attribute a : n.attributes()) {
-        const std::string k = lower(a.name());
+        const std::string k = core::ascii_lower(a.name());
         if (k == "time" || k == "duration" || k == "onset" || k == "offset") continue;
         const double v = number(n, a);
         std::vector<std::string> params;

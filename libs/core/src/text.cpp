@@ -31,6 +31,13 @@ std::string_view trim(std::string_view s) noexcept {
   return s;
 }
 
+std::string ascii_lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return out;
+}
+
 std::optional<double> parse_number(std::string_view text, bool allow_non_finite) noexcept {
   text = trim(text);
   bool negative = false;

@@ -252,63 +252,45 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
     const int tv = b.view(t.data(), t.size() * 4, 0);
     const int ta = b.accessor(tv, TINYGLTF_COMPONENT_TYPE_FLOAT, t.size(), TINYGLTF_TYPE_SCALAR,
                               {static_cast<double>(t.front())}, {static_cast<double>(t.back())});
+    // One LINEAR sampler over the key times and the channel that plays it on `node`'s `path`.
+    const auto add_channel = [&](const std::vector<float>& values, std::size_t count, int type,
+                                 int node, const char* path) {
+      tinygltf::AnimationSampler s;
+      s.input = ta;
+      s.output = b.accessor(b.view(values.data(), values.size() * 4, 0),
+                            TINYGLTF_COMPONENT_TYPE_FLOAT, count, type);
+      s.interpolation = "LINEAR";
+      anim.samplers.push_back(s);
+      tinygltf::AnimationChannel c;
+      c.sampler = static_cast<int>(anim.samplers.size()) - 1;
+      c.target_node = node;
+      c.target_path = path;
+      anim.channels.push_back(c);
+    };
+    const auto quaternions = [](const std::vector<Eigen::Quaterniond>& rotations) {
+      std::vector<float> q;
+      for (const auto& r : rotations) {
+        const Eigen::Quaterniond n = r.normalized();
+        q.insert(q.end(), {static_cast<float>(n.x()), static_cast<float>(n.y()),
+                           static_cast<float>(n.z()), static_cast<float>(n.w())});
+      }
+      return q;
+    };
     if (!targets.empty()) {
       std::vector<float> w;
       w.reserve(a.times.size() * targets.size());
       for (const auto& key : a.weights) {
         for (double x : key) w.push_back(static_cast<float>(x));
       }
-      const int wv = b.view(w.data(), w.size() * 4, 0);
-      tinygltf::AnimationSampler s;
-      s.input = ta;
-      s.output = b.accessor(wv, TINYGLTF_COMPONENT_TYPE_FLOAT, w.size(), TINYGLTF_TYPE_SCALAR);
-      s.interpolation = "LINEAR";
-      anim.samplers.push_back(s);
-      tinygltf::AnimationChannel c;
-      c.sampler = static_cast<int>(anim.samplers.size()) - 1;
-      c.target_node = 1;
-      c.target_path = "weights";
-      anim.channels.push_back(c);
+      add_channel(w, w.size(), TINYGLTF_TYPE_SCALAR, 1, "weights");
     }
-    if (!a.head_rotations.empty()) {
-      std::vector<float> q;
-      for (const auto& r : a.head_rotations) {
-        const Eigen::Quaterniond n = r.normalized();
-        q.insert(q.end(), {static_cast<float>(n.x()), static_cast<float>(n.y()),
-                           static_cast<float>(n.z()), static_cast<float>(n.w())});
-      }
-      const int qv = b.view(q.data(), q.size() * 4, 0);
-      tinygltf::AnimationSampler s;
-      s.input = ta;
-      s.output = b.accessor(qv, TINYGLTF_COMPONENT_TYPE_FLOAT, a.head_rotations.size(), TINYGLTF_TYPE_VEC4);
-      s.interpolation = "LINEAR";
-      anim.samplers.push_back(s);
-      tinygltf::AnimationChannel c;
-      c.sampler = static_cast<int>(anim.samplers.size()) - 1;
-      c.target_node = 0;
-      c.target_path = "rotation";
-      anim.channels.push_back(c);
-    }
+    if (!a.head_rotations.empty())
+      add_channel(quaternions(a.head_rotations), a.head_rotations.size(), TINYGLTF_TYPE_VEC4, 0,
+                  "rotation");
     for (std::size_t p = 0; p < a.part_rotations.size(); ++p) {
       if (a.part_rotations[p].empty()) continue;
-      std::vector<float> q;
-      for (const auto& r : a.part_rotations[p]) {
-        const Eigen::Quaterniond n = r.normalized();
-        q.insert(q.end(), {static_cast<float>(n.x()), static_cast<float>(n.y()),
-                           static_cast<float>(n.z()), static_cast<float>(n.w())});
-      }
-      const int qv = b.view(q.data(), q.size() * 4, 0);
-      tinygltf::AnimationSampler s;
-      s.input = ta;
-      s.output = b.accessor(qv, TINYGLTF_COMPONENT_TYPE_FLOAT, a.part_rotations[p].size(),
-                            TINYGLTF_TYPE_VEC4);
-      s.interpolation = "LINEAR";
-      anim.samplers.push_back(s);
-      tinygltf::AnimationChannel c;
-      c.sampler = static_cast<int>(anim.samplers.size()) - 1;
-      c.target_node = part_nodes[p];
-      c.target_path = "rotation";
-      anim.channels.push_back(c);
+      add_channel(quaternions(a.part_rotations[p]), a.part_rotations[p].size(), TINYGLTF_TYPE_VEC4,
+                  part_nodes[p], "rotation");
     }
     b.model.animations.push_back(anim);
   }

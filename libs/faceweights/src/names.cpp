@@ -4,15 +4,11 @@
 #include <cctype>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/text.hpp"
 
 namespace emoface::faceweights {
 namespace {
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 bool ends_with(std::string_view s, std::string_view suffix) {
   return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
@@ -52,9 +48,10 @@ std::string live_link_face_name(std::string_view raw) {
 }
 
 std::optional<std::string> arkit_raw_name(std::string_view any) {
-  const std::string key = lower(any);
+  const std::string key = core::ascii_lower(any);
   for (const auto& raw : arkit_names()) {
-    if (lower(raw) == key || lower(arkit_swift_name(raw)) == key) return raw;
+    if (core::ascii_lower(raw) == key || core::ascii_lower(arkit_swift_name(raw)) == key)
+      return raw;
   }
   return std::nullopt;
 }

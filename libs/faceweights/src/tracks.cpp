@@ -16,11 +16,6 @@
 namespace emoface::faceweights {
 namespace {
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 std::string fixed(double v, int precision) {
   char buf[64];
@@ -250,7 +245,7 @@ WeightTrack parse_weight_track(std::string_view text, const WeightSet& set, cons
   bool has_time = false, has_pose = false;
   const std::size_t header_line = line_no;
   for (std::size_t c = 0; c < header.size(); ++c) {
-    const std::string key = lower(header[c]);
+    const std::string key = core::ascii_lower(header[c]);
     if (key == "time" || key == "timecode") {
       if (has_time) fail(header_line, c + 1, "two time columns");
       has_time = true;

@@ -9,6 +9,7 @@
 #include "emoface/core/errors.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/core/json_reader.hpp"
+#include "emoface/core/text.hpp"
 #include "emoface/faceweights/names.hpp"
 
 namespace emoface::faceweights {
@@ -21,11 +22,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 /// "<name>+" / "<name>-" → ("<name>", sign); plain name → (name, 0).
 std::pair<std::string, int> split_input(const std::string& input) {
@@ -71,12 +67,12 @@ WeightSet parse_document(const core::JsonValue& doc) {
 }  // namespace
 
 std::optional<std::size_t> WeightSet::find(std::string_view name) const {
-  std::string key = lower(name);
+  std::string key = core::ascii_lower(name);
   if (naming == "arkit") {
-    if (auto raw = arkit_raw_name(name)) key = lower(*raw);
+    if (auto raw = arkit_raw_name(name)) key = core::ascii_lower(*raw);
   }
   for (std::size_t i = 0; i < targets.size(); ++i) {
-    if (lower(targets[i].name) == key) return i;
+    if (core::ascii_lower(targets[i].name) == key) return i;
   }
   return std::nullopt;
 }
@@ -104,7 +100,8 @@ void WeightSet::validate() const {
   for (const auto& t : targets) {
     const std::string where = "weight set '" + set + "', target '" + t.name + "'";
     if (t.name.empty()) throw InvalidInput("weight set '" + set + "': a target has no name");
-    if (!names.insert(lower(t.name)).second) throw InvalidInput(where + ": repeated name");
+    if (!names.insert(core::ascii_lower(t.name)).second)
+      throw InvalidInput(where + ": repeated name");
     if (naming == "arkit" && !arkit_raw_name(t.name))
       throw InvalidInput(where + ": not an ARKit blend shape name");
     if (t.terms.empty() && t.note.empty())

@@ -45,10 +45,6 @@ int integer(const std::string& file, const SNode& n, const char* what) {
   return static_cast<int>(v);
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 bool is_var(const std::string& s) {
   return (s.size() >= 3 && s.front() == '<' && s.back() == '>') || (s.size() >= 2 && s[0] == '?');
@@ -75,7 +71,8 @@ void parse_outcome(const std::string& file, const SNode& n, OperatorSpec& op) {
   for (; i < n.items.size(); ++i) {
     const SNode& e = n.items[i];
     if (!e.is_list || e.items.empty()) fail(file, e, "expected an effect (pred …) or (del pred …)");
-    const std::string head = e.items[0].is_list ? std::string() : lower(e.items[0].atom);
+    const std::string head =
+        e.items[0].is_list ? std::string() : core::ascii_lower(e.items[0].atom);
     if (head == "del") {
       if (e.items.size() >= 2 && e.items[1].is_list) out.del.push_back(atom_from(file, e.items[1]));
       else out.del.push_back(atom_from(file, e, 1));
@@ -106,7 +103,7 @@ void parse_operator(const std::string& file, const SNode& n, DomainSpec& spec) {
   for (std::size_t i = 2; i < n.items.size(); ++i) {
     const SNode& sec = n.items[i];
     if (!sec.is_list || sec.items.empty()) fail(file, sec, "expected (params …), (preconds …) or (effects …)");
-    const std::string head = lower(sym(file, sec.items[0], "a section name"));
+    const std::string head = core::ascii_lower(sym(file, sec.items[0], "a section name"));
     if (head == "params") {
       for (std::size_t k = 1; k < sec.items.size(); ++k) {
         const SNode& p = sec.items[k];
@@ -119,7 +116,8 @@ void parse_operator(const std::string& file, const SNode& n, DomainSpec& spec) {
     } else if (head == "preconds") {
       for (std::size_t k = 1; k < sec.items.size(); ++k) {
         const SNode& p = sec.items[k];
-        if (p.is_list && p.items.size() == 2 && !p.items[0].is_list && lower(p.items[0].atom) == "not")
+        if (p.is_list && p.items.size() == 2 && !p.items[0].is_list &&
+            core::ascii_lower(p.items[0].atom) == "not")
           op.negative_preconds.push_back(atom_from(file, p.items[1]));
         else
           op.preconds.push_back(atom_from(file, p));
@@ -148,7 +146,7 @@ void parse_goal(const std::string& file, const SNode& n, DomainSpec& spec) {
   for (std::size_t i = 2; i < n.items.size(); ++i) {
     const SNode& sec = n.items[i];
     if (!sec.is_list || sec.items.empty()) fail(file, sec, "expected a goal section");
-    const std::string head = lower(sym(file, sec.items[0], "a section name"));
+    const std::string head = core::ascii_lower(sym(file, sec.items[0], "a section name"));
     auto one = [&]() -> const SNode& {
       if (sec.items.size() != 2) fail(file, sec, "(" + head + " …) takes one value");
       return sec.items[1];
@@ -166,7 +164,8 @@ void parse_goal(const std::string& file, const SNode& n, DomainSpec& spec) {
     } else if (head == "any-of") {
       for (std::size_t k = 1; k < sec.items.size(); ++k) {
         const SNode& f = sec.items[k];
-        if (!f.is_list || f.items.empty() || f.items[0].is_list || lower(f.items[0].atom) != "facts")
+        if (!f.is_list || f.items.empty() || f.items[0].is_list ||
+            core::ascii_lower(f.items[0].atom) != "facts")
           fail(file, f, "any-of takes (facts …) alternatives");
         g.alternatives.push_back(parse_fact_list(file, f, 1));
       }
@@ -179,7 +178,7 @@ void parse_goal(const std::string& file, const SNode& n, DomainSpec& spec) {
 }
 
 void parse_thesis_form(const std::string& file, const SNode& n, DomainSpec& spec) {
-  const std::string head = lower(sym(file, n.items[0], "a form name"));
+  const std::string head = core::ascii_lower(sym(file, n.items[0], "a form name"));
   if (head == "domain") {
     if (n.items.size() != 2) fail(file, n, "(domain NAME)");
     spec.name = sym(file, n.items[1], "a domain name");
@@ -244,7 +243,8 @@ std::vector<std::pair<std::string, std::string>> typed_list(const std::string& f
 }
 
 bool head_is(const SNode& n, const char* h) {
-  return n.is_list && !n.items.empty() && !n.items[0].is_list && lower(n.items[0].atom) == h;
+  return n.is_list && !n.items.empty() && !n.items[0].is_list &&
+         core::ascii_lower(n.items[0].atom) == h;
 }
 
 // Conjunction of literals: (and l…) or a literal.
@@ -304,13 +304,13 @@ void ppddl_effect(const std::string& file, const SNode& n, OperatorSpec& op) {
 void parse_ppddl(const std::string& file, const SNode& n, DomainSpec& spec) {
   if (n.items.size() < 2 || !n.items[1].is_list || n.items[1].items.size() != 2)
     fail(file, n, "expected (define (domain NAME) …) or (define (problem NAME) …)");
-  const std::string kind = lower(sym(file, n.items[1].items[0], "domain or problem"));
+  const std::string kind = core::ascii_lower(sym(file, n.items[1].items[0], "domain or problem"));
   if (kind != "domain" && kind != "problem") fail(file, n.items[1], "expected (domain NAME) or (problem NAME)");
   if (kind == "domain") spec.name = sym(file, n.items[1].items[1], "a name");
   for (std::size_t i = 2; i < n.items.size(); ++i) {
     const SNode& sec = n.items[i];
     if (!sec.is_list || sec.items.empty()) fail(file, sec, "expected a (:section …)");
-    const std::string head = lower(sym(file, sec.items[0], "a section name"));
+    const std::string head = core::ascii_lower(sym(file, sec.items[0], "a section name"));
     if (head == ":requirements" || head == ":domain") {
       continue;
     } else if (head == ":types") {
@@ -347,7 +347,7 @@ void parse_ppddl(const std::string& file, const SNode& n, DomainSpec& spec) {
       op.where = loc(file, sec);
       op.name = sym(file, sec.items[1], "an action name");
       for (std::size_t k = 2; k < sec.items.size(); ++k) {
-        const std::string key = lower(sym(file, sec.items[k], "a keyword"));
+        const std::string key = core::ascii_lower(sym(file, sec.items[k], "a keyword"));
         if (k + 1 >= sec.items.size()) fail(file, sec.items[k], "keyword '" + key + "' without a value");
         const SNode& v = sec.items[++k];
         if (key == ":parameters") {
@@ -391,7 +391,8 @@ void parse_domain_text(const std::string& text, const std::string& file, DomainS
   const auto forms = detail::parse_sexprs(text, file);
   for (const auto& n : forms) {
     if (n.items.empty() || n.items[0].is_list) fail(file, n, "expected a named form");
-    if (lower(n.items[0].atom) == "define") parse_ppddl(file, n, spec);
+    if (core::ascii_lower(n.items[0].atom) == "define")
+      parse_ppddl(file, n, spec);
     else parse_thesis_form(file, n, spec);
   }
 }
@@ -790,7 +791,9 @@ long Domain::find_action(const std::string& text, const std::vector<std::size_t>
   long found = -1;
   for (std::size_t c : candidates) {
     const auto& a = actions_.at(c);
-    if (lower(spec_.operators[a.op].name) != lower(words[0]) || words.size() - 1 > a.args.size()) continue;
+    if (core::ascii_lower(spec_.operators[a.op].name) != core::ascii_lower(words[0]) ||
+        words.size() - 1 > a.args.size())
+      continue;
     bool match = true;
     for (std::size_t k = 1; k < words.size(); ++k)
       if (a.args[k - 1] != words[k]) { match = false; break; }

@@ -1,25 +1,17 @@
 #include "emoface/retarget/clean.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
 #include <vector>
 
-#include <Eigen/Geometry>
-
 #include "emoface/core/errors.hpp"
+#include "union_find.hpp"
 
 namespace emoface::retarget {
-namespace {
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[static_cast<std::size_t>(x)] != x) {
-    parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    x = parent[static_cast<std::size_t>(x)];
-  }
-  return x;
-}
-}  // namespace
+using detail::find_root;
 
 void CleanOptions::validate() const {
   if (!(margin >= 0.0 && margin <= 10.0)) throw InvalidInput("CleanOptions::margin must be in [0, 10]");

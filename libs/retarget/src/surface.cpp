@@ -1,5 +1,6 @@
 #include "emoface/retarget/surface.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -8,9 +9,8 @@
 #include <numeric>
 #include <unordered_map>
 
-#include <Eigen/Geometry>
-
 #include "emoface/core/errors.hpp"
+#include "union_find.hpp"
 
 namespace emoface::retarget {
 namespace {
@@ -21,13 +21,7 @@ std::uint64_t edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[static_cast<std::size_t>(x)] != x) {
-    parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    x = parent[static_cast<std::size_t>(x)];
-  }
-  return x;
-}
+using detail::find_root;
 }  // namespace
 
 struct MeshWalker::Impl {

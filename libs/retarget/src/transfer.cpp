@@ -14,6 +14,7 @@
 #include <string>
 
 #include "emoface/core/errors.hpp"
+#include "emoface/core/text.hpp"
 #include "emoface/facemesh/bspline.hpp"
 #include "kdtree.hpp"
 #include "surface_index.hpp"
@@ -33,15 +34,11 @@ double smoothstep(double e0, double e1, double x) {
   return t * t * (3.0 - 2.0 * t);
 }
 
-std::string lower(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 bool has(const std::string& s, std::string_view w) { return s.find(w) != std::string::npos; }
 
 // Part kind from a group/material/object name; Head when nothing matches.
 fm::PartKind kind_from_name(const std::string& raw) {
-  const std::string s = lower(raw);
+  const std::string s = core::ascii_lower(raw);
   if (has(s, "lash")) return fm::PartKind::Lashes;
   if (has(s, "brow")) return fm::PartKind::Brows;
   if (has(s, "tongue")) return fm::PartKind::Tongue;
@@ -56,7 +53,7 @@ fm::PartKind kind_from_name(const std::string& raw) {
   return fm::PartKind::Head;
 }
 bool is_teeth_name(const std::string& raw) {
-  const std::string s = lower(raw);
+  const std::string s = core::ascii_lower(raw);
   return has(s, "teeth") || has(s, "tooth") || has(s, "gum") || has(s, "dent");
 }
 

@@ -65,6 +65,10 @@ class Lines {
 /// Removes leading and trailing spaces and tabs.
 std::string_view trim(std::string_view s) noexcept;
 
+/// ASCII lower case (A–Z → a–z; every other byte unchanged, whatever the C locale says): names,
+/// keywords and file extensions compared without regard to case.
+std::string ascii_lower(std::string_view s);
+
 /// Locale-free decimal number: optional surrounding spaces/tabs, an optional sign ('+' or '-'),
 /// then what std::from_chars accepts (fixed or scientific; no hex). The whole field must be used.
 /// NaN and infinities ("nan", "inf") are refused unless allow_non_finite; values out of the range
