@@ -126,8 +126,12 @@ void check_rows(const WeightSet& set) {
     const bool left = all_l && n.size() > 2 && n.substr(n.size() - 2) == "_L";
     const bool right = all_r && n.size() > 2 && n.substr(n.size() - 2) == "_R";
     EXPECT_EQ(all_l, n.substr(n.size() - 2) == "_L" && all_l) << n;
-    if (left) EXPECT_GT(m.left, 3.0 * m.right) << t.name << " should move the subject's left (+x)";
-    if (right) EXPECT_GT(m.right, 3.0 * m.left) << t.name << " should move the subject's right (-x)";
+    if (left) {
+      EXPECT_GT(m.left, 3.0 * m.right) << t.name << " should move the subject's left (+x)";
+    }
+    if (right) {
+      EXPECT_GT(m.right, 3.0 * m.left) << t.name << " should move the subject's right (-x)";
+    }
     ++checked;
   }
   EXPECT_GT(checked, 25);

@@ -231,8 +231,9 @@ TEST(MediaPipe, GeneratedPointsReadBackAsTheLandmarks) {
   for (std::size_t i = 0; i < 6; ++i) {
     EXPECT_EQ(back.success[i], take.success[i]);
     EXPECT_NEAR(back.times[i], times[i], 1e-12);
-    if (take.success[i])
+    if (take.success[i]) {
       EXPECT_LT((back.frames[i] - take.frames[i]).cwiseAbs().maxCoeff(), 1e-5) << i;
+    }
   }
 }
 

@@ -42,7 +42,9 @@ TEST(ParametricModel, NeutralAndExpressions) {
   const Eigen::MatrixXd c = m.landmarks(Label::Contempt, 1.0, id);
   EXPECT_GT((c.row(54) - n.row(54)).norm(), 2.0 * (c.row(48) - n.row(48)).norm());
   for (Label l : all_labels())
-    if (l != Label::Neutral) EXPECT_GT(m.field(l).norm(), 0.05) << to_string(l);
+    if (l != Label::Neutral) {
+      EXPECT_GT(m.field(l).norm(), 0.05) << to_string(l);
+    }
   // Intensity scales the displacement linearly.
   const Eigen::MatrixXd half = m.landmarks(Label::Anger, 0.5, id), full = m.landmarks(Label::Anger, 1.0, id);
   EXPECT_NEAR(((half - n) * 2.0 - (full - n)).norm(), 0.0, 1e-9);

@@ -182,7 +182,9 @@ TEST(FaceSolver, RegionCutOff) {
   std::size_t moved = 0;
   for (long v = 0; v < d.vertices.rows(); ++v) {
     const bool changed = d.vertices.row(v) != face().mesh.vertices.row(v);
-    if (!allowed[static_cast<std::size_t>(v)]) ASSERT_FALSE(changed) << v;
+    if (!allowed[static_cast<std::size_t>(v)]) {
+      ASSERT_FALSE(changed) << v;
+    }
     moved += changed ? 1 : 0;
   }
   EXPECT_GT(moved, 20u);
@@ -383,7 +385,9 @@ TEST(FaceSolver, GazeRotatesEyeballsWithinTheLimit) {
     const bool eyeball = std::find(eye.eyeball_vertices.begin(), eye.eyeball_vertices.end(), v) != eye.eyeball_vertices.end() ||
                          std::find(face().rig.eyes[0].eyeball_vertices.begin(), face().rig.eyes[0].eyeball_vertices.end(), v) !=
                              face().rig.eyes[0].eyeball_vertices.end();
-    if (!eyeball) ASSERT_EQ(d.vertices.row(v), face().mesh.vertices.row(v));
+    if (!eyeball) {
+      ASSERT_EQ(d.vertices.row(v), face().mesh.vertices.row(v));
+    }
   }
 }
 

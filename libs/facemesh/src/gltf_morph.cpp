@@ -254,7 +254,7 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
                               {static_cast<double>(t.front())}, {static_cast<double>(t.back())});
     // One LINEAR sampler over the key times and the channel that plays it on `node`'s `path`.
     const auto add_channel = [&](const std::vector<float>& values, std::size_t count, int type,
-                                 int node, const char* path) {
+                                 int node, const char* channel_path) {
       tinygltf::AnimationSampler s;
       s.input = ta;
       s.output = b.accessor(b.view(values.data(), values.size() * 4, 0),
@@ -264,7 +264,7 @@ MorphGltfReport write_morph_gltf(const std::string& path, const Mesh& neutral,
       tinygltf::AnimationChannel c;
       c.sampler = static_cast<int>(anim.samplers.size()) - 1;
       c.target_node = node;
-      c.target_path = path;
+      c.target_path = channel_path;
       anim.channels.push_back(c);
     };
     const auto quaternions = [](const std::vector<Eigen::Quaterniond>& rotations) {
