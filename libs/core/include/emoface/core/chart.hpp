@@ -3,8 +3,8 @@
 // with its own y axis (linear or log10), grid lines and tick marks at multiples of a step, tick
 // values, a panel title, vertical markers with labels, a chart title, axis labels and a legend, all
 // in core's bitmap font (font.hpp), drawn into a core::Image. The parlee/obie emotion charts, the
-// mind-map mood charts, the retarget GA error curve and the motiongraph trajectory plots are specs
-// for it.
+// mind-map mood charts, the retarget GA error curve, the motiongraph trajectory plots and the
+// talkinghead plot are specs for it.
 //
 // Mapping (pixels, x to the right, y down): with the axis range [lo, hi] in axis units (log10 of
 // the values on a log10 axis), a value v lands at
