@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "emoface/core/chart.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/image.hpp"
 #include "emoface/core/io.hpp"
@@ -26,28 +27,34 @@ void plot_png(const std::string& path, const std::vector<std::vector<double>>& s
   for (const auto& s : series) {
     frames = std::max(frames, s.size());
     for (double v : s) {
+      if (!std::isfinite(v)) continue;  // a gap in the line
       lo = std::min(lo, v);
       hi = std::max(hi, v);
     }
   }
-  core::Image img(width, height);
-  const int m = 20;  // margin, pixels
-  const double duration = frames > 1 ? static_cast<double>(frames - 1) / fps : 1.0;
-  const auto X = [&](double t) { return m + (width - 2 * m) * t / duration; };
-  const auto Y = [&](double v) { return height - m - (height - 2 * m) * (v - lo) / (hi - lo); };
-  const core::Rgb grid{225, 225, 225}, axis{120, 120, 120};
-  for (double v = std::ceil(lo * 10) / 10; v <= hi + 1e-9; v += 0.1)
-    core::draw_line(img, X(0), Y(v), X(duration), Y(v), grid, 1);
-  const double step = duration > 60 ? 10.0 : 1.0;
-  for (double t = 0; t <= duration + 1e-9; t += step)
-    core::draw_line(img, X(t), Y(lo), X(t), Y(hi), grid, 1);
-  core::draw_line(img, X(0), Y(0), X(duration), Y(0), axis, 1);
-  core::draw_line(img, X(0), Y(lo), X(0), Y(hi), axis, 1);
+  // core::draw_chart (issue 18 item 3): time over [0, duration], grid every second (10 s past a
+  // minute) and every 0.1, no text
+  core::ChartSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.text_scale = 0;
+  spec.x.min = 0;
+  spec.x.max = frames > 1 ? static_cast<double>(frames - 1) / fps : 1.0;
+  spec.x.grid_step = spec.x.max > 60 ? 10.0 : 1.0;
+  core::ChartPanel panel;
+  panel.y.min = lo;
+  panel.y.max = hi;
+  panel.y.grid_step = 0.1;
   for (std::size_t k = 0; k < series.size(); ++k) {
-    const auto& s = series[k];
-    for (std::size_t f = 1; f < s.size(); ++f)
-      core::draw_line(img, X((f - 1) / fps), Y(s[f - 1]), X(f / fps), Y(s[f]), kRgb[k % 8], 3);
+    core::ChartSeries s;
+    for (std::size_t f = 0; f < series[k].size(); ++f) s.x.push_back(static_cast<double>(f) / fps);
+    s.y = series[k];
+    s.colour = kRgb[k % 8];
+    s.thickness = 3;
+    panel.series.push_back(std::move(s));
   }
+  spec.panels.push_back(std::move(panel));
+  const core::Image img = core::draw_chart(spec);
   core::write_png(path, img);
 }
 

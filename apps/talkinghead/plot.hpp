@@ -1,7 +1,8 @@
 #pragma once
-// A small PNG line plot of parameter tracks (libpng): white background, grey grid every second and
-// every 0.1 units, one coloured line per series in the order of kPlotColours. No text: captions in
-// docs/channels.md name the colours.
+// A small PNG line plot of parameter tracks, drawn by core::draw_chart (the one chart routine,
+// issue 18 item 3): white background, grey frame, grey grid every second and every 0.1 units, one
+// coloured line per series in the order of kPlotColours. No text: captions in docs/channels.md name
+// the colours.
 #include <string>
 #include <vector>
 

@@ -23,6 +23,18 @@ TEST(Render, FitViewContactSheetAndPlot) {
   EXPECT_NE(sheet.rgb[(static_cast<std::size_t>(y) * 200 + static_cast<std::size_t>(x)) * 3], 255);
   const core::Image plot = plot_series({{0, 1, 2}, {2, 1, 0}}, 100, 50);
   EXPECT_EQ(plot.rgb.size(), 100u * 50u * 3u);
+  // core::draw_chart's layout without text: columns 10 … 84 (100 − 10 − 16), two bands of
+  // (50 − 8 − 8) / 2 = 17 rows from row 8. Each series' range [0, 2] (= min_range) spans 85 % of
+  // its band: y from 1 − 2/1.7 to 1 + 2/1.7, so 0 lies 1.275 rows above a band's bottom, 2 15.725
+  // rows.
+  const core::Rgb blue = core::rgb_from_hex(0x1f77b4), red = core::rgb_from_hex(0xd62728);
+  EXPECT_EQ(plot.at(10, 24), blue);  // (0, 0): row 25 − 1.275
+  EXPECT_EQ(plot.at(84, 9), blue);   // (2, 2): row 25 − 15.725
+  EXPECT_EQ(plot.at(10, 26), red);   // (0, 2) in the second band: row 42 − 15.725
+  EXPECT_EQ(plot.at(84, 41), red);   // (2, 0): row 42 − 1.275
+  EXPECT_EQ(plot.at(47, 44),
+            (core::Rgb{120, 120, 120}));  // sample 1's tick under the axis (row 42)
+  EXPECT_THROW(plot_series({{0, 1}}, 100, 50, 0.0), InvalidInput);
   const core::Image traj = plot_trajectories({p, p}, {0, 1});
   EXPECT_EQ(traj.width, 640);
   EXPECT_THROW(contact_sheet({}, {}, 2), InvalidInput);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-
+#include "emoface/core/chart.hpp"
 #include "emoface/core/errors.hpp"
 
 namespace emoface::motiongraph {
@@ -131,31 +131,34 @@ core::Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int
 
 core::Image plot_series(const std::vector<std::vector<double>>& series, int width, int height,
                         double min_range) {
-  core::Image img(width, height);
-  std::size_t n = 0;
-  for (const auto& s : series) n = std::max(n, s.size());
-  const int m = 10;
-  core::fill_rect(img, m, height - m, width - 2 * m, 1, {0, 0, 0});
-  core::fill_rect(img, m, m, 1, height - 2 * m + 1, {0, 0, 0});
-  if (n < 2 || series.empty()) return img;
-  const double band = (height - 2.0 * m) / static_cast<double>(series.size());
-  auto px = [&](std::size_t i) { return m + (width - 2.0 * m) * static_cast<double>(i) / static_cast<double>(n - 1); };
-  for (std::size_t i = 0; i < n; ++i)
-    core::fill_rect(img, static_cast<int>(px(i)), height - m, 1, 4, {0, 0, 0});
+  if (!(min_range > 0) || !std::isfinite(min_range))
+    throw InvalidInput("plot_series: min_range must be finite and > 0");
+  // core::draw_chart (issue 18 item 3): one panel per series, stacked without gaps, no text; a tick
+  // per sample on the x axis (the frame index)
+  core::ChartSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.text_scale = 0;
+  spec.panel_gap = 0;
+  spec.x.tick_step = 1;
   for (std::size_t k = 0; k < series.size(); ++k) {
+    core::ChartPanel panel;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (double v : series[k])
       if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-    if (!(hi >= lo)) continue;
-    const double mid = 0.5 * (lo + hi), range = std::max(hi - lo, min_range);
-    const double top = m + band * static_cast<double>(k);
-    for (int x = m; x < width - m; x += 4)
-      img.set(x, static_cast<int>(top + band), {0xdd, 0xdd, 0xdd});
-    auto py = [&](double v) { return top + band * (0.5 - 0.85 * (v - mid) / range); };
-    for (std::size_t i = 1; i < series[k].size(); ++i)
-      line(img, px(i - 1), py(series[k][i - 1]), px(i), py(series[k][i]), palette(static_cast<int>(k)));
+    if (hi >= lo) {  // the series' range (at least min_range) fills 85 % of the band, centred
+      const double mid = 0.5 * (lo + hi), half = std::max(hi - lo, min_range) / 1.7;
+      panel.y.min = mid - half;
+      panel.y.max = mid + half;
+    }
+    core::ChartSeries s;
+    s.y = series[k];
+    s.colour = core::rgb_from_hex(palette(static_cast<int>(k)));
+    panel.series.push_back(std::move(s));
+    spec.panels.push_back(std::move(panel));
   }
-  return img;
+  if (spec.panels.empty()) spec.panels.emplace_back();
+  return core::draw_chart(spec);
 }
 
 core::Image plot_trajectories(const std::vector<Pose>& frames, const std::vector<int>& groups,

@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "emoface/core/chart.hpp"
 #include "emoface/core/image.hpp"
 #include "emoface/core/io.hpp"
 #include "emoface/obie/pipeline.hpp"
+#include "emoface/parlee/chart.hpp"
 #include "emoface/parlee/io.hpp"
 
 namespace emoface::obie {
@@ -24,19 +26,17 @@ double round6(double x) { return std::round(x * 1e6) / 1e6; }
 }  // namespace
 
 core::Image emotion_chart(const ObieResult& result) {
-  parlee::ChartOptions options;
-  options.panel_height = 120;
-  double x_max = 10;
-  for (const auto& rec : result.timeline) x_max = std::max(x_max, rec.time);
-  options.x_max = std::ceil(x_max / 10) * 10;
+  core::ChartSpec spec;
+  spec.width = 960;
+  spec.x = parlee::time_axis(parlee::last_time({result.timeline}), "match minute");
+  spec.panels = parlee::emotion_panels(result.agent_name, result.timeline);
+  for (auto& panel : spec.panels) panel.height = 120;
   for (const auto& g : result.goals)
-    options.markers.push_back({g.minute, std::to_string(g.for_score) + "-" + std::to_string(g.against_score),
-                               {200, 60, 60}});
-  options.title =
-      "obie (" + result.agent_name + "): felt basic emotions, goals marked with the score";
-  options.x_label = "match minute";
-  options.y_label = "intensity";
-  return parlee::draw_chart(parlee::emotion_panels(result.agent_name, result.timeline), options);
+    spec.markers.push_back({g.minute,
+                            std::to_string(g.for_score) + "-" + std::to_string(g.against_score),
+                            {200, 60, 60}});
+  spec.title = "obie (" + result.agent_name + "): felt basic emotions, goals marked with the score";
+  return core::draw_chart(spec);
 }
 
 core::Image key_moment_sheet(const ObieResult& result) {

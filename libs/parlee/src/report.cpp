@@ -100,36 +100,37 @@ void stage_run_charts(core::OutputBundle& bundle, const std::string& dir,
                       const std::vector<std::string>& names,
                       const std::vector<std::vector<StepRecord>>& runs, double unit_seconds) {
   if (names.size() != runs.size()) throw InvalidInput("stage_run_charts: one name per run");
-  ChartOptions options;  // x_max: every chart of the run shares the longest run's axis
-  options.x_max = 10;
-  for (const auto& run : runs)
-    for (const auto& r : run) options.x_max = std::max(options.x_max, r.time);
-  options.x_max = std::ceil(options.x_max / 10) * 10;
-  options.x_label = time_axis_label(unit_seconds);
-  options.y_label = "intensity";
-  std::vector<std::vector<ChartPanel>> per_run;
+  core::ChartSpec spec;  // every chart of the run shares the longest run's time axis
+  spec.width = 960;
+  spec.x = time_axis(last_time(runs), time_axis_label(unit_seconds));
+  std::vector<std::vector<core::ChartPanel>> per_run;
   for (std::size_t k = 0; k < runs.size(); ++k) {  // per personality: Figs. 7.4, 7.5, 7.7, 7.8
     per_run.push_back(emotion_panels(names[k], runs[k]));
-    ChartOptions o = options;
-    o.title = names[k] + ": felt basic emotions";
-    bundle.add(dir + "/" + names[k] + ".png", render_chart(per_run.back(), o));
+    core::ChartSpec s = spec;
+    s.panels = per_run.back();
+    s.title = names[k] + ": felt basic emotions";
+    bundle.add(dir + "/" + names[k] + ".png", core::encode_png(core::draw_chart(s)));
   }
   // per emotion, one line per personality in one panel: Figs. 7.10, 7.11
   static const std::array<std::array<std::uint8_t, 3>, 6> kPalette{
       {{40, 40, 40}, {230, 120, 0}, {30, 90, 210}, {200, 40, 40}, {40, 160, 60}, {150, 60, 170}}};
   const auto& emotions = chart_emotions();
   for (std::size_t c = 0; c < emotions.size(); ++c) {
-    ChartPanel panel{std::string(emotions[c].name), {}, 1.0};
+    core::ChartPanel panel = emotion_panels("", {}).at(c);
+    panel.title = emotions[c].name;
+    panel.height = 240;
+    panel.series.clear();
     for (std::size_t k = 0; k < per_run.size(); ++k) {
-      ChartSeries s = per_run[k][c].series.front();
+      core::ChartSeries s = per_run[k][c].series.front();
       s.name = names[k];
-      s.rgb = kPalette[k % kPalette.size()];
+      s.colour = kPalette[k % kPalette.size()];
       panel.series.push_back(std::move(s));
     }
-    ChartOptions o = options;
-    o.panel_height = 240;
-    o.title = std::string(emotions[c].name) + ": one line per agent";
-    bundle.add(dir + "/" + std::string(emotions[c].name) + ".png", render_chart({panel}, o));
+    core::ChartSpec s = spec;
+    s.panels = {panel};
+    s.title = std::string(emotions[c].name) + ": one line per agent";
+    bundle.add(dir + "/" + std::string(emotions[c].name) + ".png",
+               core::encode_png(core::draw_chart(s)));
   }
 }
 

@@ -47,8 +47,10 @@ core::Image contact_sheet(const std::vector<Pose>& frames, const std::vector<int
                           int columns, int cell_width = 160, int cell_height = 140,
                           const std::vector<std::vector<int>>& contours = {});
 
-/// Line plot of several series over frames: each series in its own horizontal band, scaled to its
-/// own range (at least `min_range`), with a frame tick per sample. No text.
+/// Line plot of several series over frames (core::draw_chart, the one chart routine): each series
+/// in its own horizontal band, scaled to its own range (at least `min_range`, filling 85 % of the
+/// band), with a frame tick per sample. No text; non-finite values are gaps. Throws InvalidInput
+/// for sizes outside [32, 8192] pixels, bands under 8 pixels or min_range ≤ 0.
 core::Image plot_series(const std::vector<std::vector<double>>& series, int width = 640,
                         int height = 320, double min_range = 2.0);
 
