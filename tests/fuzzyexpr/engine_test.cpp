@@ -44,13 +44,22 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // fear: AU5 (m16, Table 6.7 gives fear m16 in two blends) and AU7 (m17) only slight
       // and the jaw (m19) opened slightly, as the text says fear opens it (VerySmall = 0 here)
       // and no m3 (triangularis = AU15, sadness's lip corner depressor) or m12 (levator labii
-      // superioris = AU10, disgust's upper-lip raiser): fear's mouth is AU20+25/26 (round 4)
+      // superioris = AU10, disgust's upper-lip raiser): fear's mouth is AU20+25/26 (round 4);
+      // AU4 only as the corrugator (m14) drawing the raised brows together, no m13/m15
+      // (depressor supercilii, depressor glabellae: they pull the inner brows down, anger's
+      // lowered brow; round 5)
       {Emotion::Fear,
        {{16, "vs s m b vb"},
         {17, "vs vs s s s"},
         {19, "- vs s s s"},
         {3, "- - - - -"},
-        {12, "- - - - -"}}},
+        {12, "- - - - -"},
+        {13, "- - - - -"},
+        {15, "- - - - -"}}},
+      // surprise: AU1+2 raise the brow evenly (m9 frontalis medialis, AU1, a step lower than m10
+      // at the top, so the inner ends do not rise above the lateral ones: sadness's oblique
+      // brow) and the jaw drops open (AU26/27: m19 Big from High on; round 5)
+      {Emotion::Surprise, {{9, "vs s m m b"}, {19, "vs vs s b b"}}},
       // anger: no m4 (risorius = AU20, fear's lip stretcher; anger presses the lips, AU23/24) and
       // m10 (frontalis lateralis = AU2, not in anger's AUs 4+5+7+23/24) only up to Medium
       {Emotion::Anger, {{4, "- - - - -"}, {10, "vs s s m m"}}},

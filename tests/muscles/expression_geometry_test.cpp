@@ -109,6 +109,9 @@ class ExpressionGeometry : public ::testing::TestWithParam<int> {
   }
   double widening(const fm::Vertices& X) const { return mouth_width(X) - mouth_width(neutral()); }
   double lid_ratio(const fm::Vertices& X) const { return aperture(X) / aperture(neutral()); }
+  double mouth_opening(const fm::Vertices& X) const {
+    return at(X, "upper_lip_centre").y() - at(X, "lower_lip_centre").y();
+  }
 };
 
 constexpr double mm = 1e-3;
@@ -142,12 +145,20 @@ TEST_P(ExpressionGeometry, Surprise) {
   EXPECT_GT(inner, 5.0 * mm);
   EXPECT_GT(gap, -1.0 * mm);  // no AU4: the brows are not drawn together
   EXPECT_GT(lids, 1.15);      // AU5
-  // AU1+2 together: the brows are raised along their whole length, arched, the lateral brows
-  // almost as high as the inner ends (frontalis lateralis k 15.4 / 16.8 mm since round 4: 14.1
-  // against 17.8 mm on the default head; before, 9.9 against 17.2 mm, a slanted, sad brow)
+  // AU1+2 together: the brows are raised evenly along their whole length and arched, the lateral
+  // brows at least as high as the inner ends (an inner end higher than the lateral brow is AU1
+  // alone, sadness's oblique brow). Round 4: lateral 14.1 against inner 17.8 mm on the default
+  // head (before, 9.9 against 17.2 mm); round 5 (frontalis medialis a step lower than the
+  // lateralis in surprise's rules): lateral 14.0 / inner 13.2 mm, the middle 15.3 mm.
   const double outer = outer_brow_rise(X);
-  std::printf("%s surprise 0.9: lateral brows up %.1f mm\n", face_name(), outer / mm);
-  EXPECT_GT(outer, 0.7 * inner);
+  // AU26/27: the jaw drops, the lips part (the outer lip contour's centres, above the resting gap)
+  const double opening = mouth_opening(X) - mouth_opening(neutral());
+  std::printf("%s surprise 0.9: lateral brows up %.1f mm, lips %.1f mm further apart\n",
+              face_name(), outer / mm, opening / mm);
+  EXPECT_GT(outer, 0.95 * inner);  // evenly raised, not oblique
+  EXPECT_GT(brow, inner);          // arched: the middle highest
+  EXPECT_GT(opening,
+            24.0 * mm);  // jaw dropped (AU26/27; 20.1 mm on the head with round 4's Medium)
 }
 
 TEST_P(ExpressionGeometry, Anger) {
@@ -179,7 +190,16 @@ TEST_P(ExpressionGeometry, Fear) {
       "neutral, mouth wider by %.1f mm\n",
       face_name(), inner / mm, gap / mm, lids, widen / mm);
   EXPECT_GT(inner, 2.0 * mm);  // AU1
-  EXPECT_LT(gap, -2.0 * mm);   // AU4: drawn together (6.3 / 3.9 mm default / generic)
+  EXPECT_LT(gap, -2.0 * mm);   // AU4: drawn together (5.8 / 2.7 mm default / generic since round 5)
+  // ... but not lowered: fear's AU4 is the corrugator drawing the raised brows together; the
+  // depressors' pull down at the inner ends (anger's frown) is not in fear's rules since round 5.
+  // The inner ends rise most (AU1 > AU2: 1.4 / 2.0 mm above the brows' middle, default / generic;
+  // 0.4 mm on the head with round 4's depressors) and above the lateral brows.
+  const double outer = outer_brow_rise(X), brow = brow_rise(X);
+  std::printf("%s fear 0.9: lateral brows up %.1f mm, brows up %.1f mm\n", face_name(), outer / mm,
+              brow / mm);
+  EXPECT_GT(inner - brow, 1.0 * mm);
+  EXPECT_GT(inner, outer);
   EXPECT_GT(lids, 1.0);        // AU5 wins over AU7: the eyes open, never narrow
   EXPECT_GT(widen, 2.0 * mm);  // AU20: lips stretched sideways
 }
