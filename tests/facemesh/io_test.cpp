@@ -94,8 +94,9 @@ TEST(RigIo, RejectsMalformedAndTruncatedText) {
   EXPECT_THROW(parse_rig("{\"format\": \"emoface.rig\", \"version\": \"1.0\", \"x\": NaN}", "t.rig"), FormatError);
 }
 
-// The default rig with every format 1.1 field set: a frame (mesh in decimetres, turned 90° about y and
-// shifted), lips driven through bindings only, two parts.
+// The default rig with every format 1.1 and 1.2 field set: a frame (mesh in decimetres, turned 90°
+// about y and shifted), lips driven through bindings only, two parts, the border's jaw weights
+// (1.2).
 Rig rig_1_1() {
   Rig rig = default_face().rig;
   rig.frame.scale = 0.1;
@@ -106,13 +107,16 @@ Rig rig_1_1() {
   rig.lips.bound.push_back({3, 0.0, 1.0, Eigen::Vector3d::Zero(), 0.5});
   rig.parts.push_back({"eye_r", PartKind::Eyeball, 0, {1, 2, 5}});
   rig.parts.push_back({"teeth lower", PartKind::LowerTeeth, -1, {9}});
+  rig.lips.border_jaw.assign(LipGrid::kAround, 0.0);
+  rig.lips.border_jaw[3] = 0.25;
+  rig.lips.border_jaw[18] = 1.0;
   return rig;
 }
 
 TEST(RigIo, RoundTripsFormat11Fields) {
   const Rig rig = rig_1_1();
   const std::string text = format_rig(rig);
-  EXPECT_NE(text.find("\"version\": \"1.1\""), std::string::npos);
+  EXPECT_NE(text.find("\"version\": \"1.2\""), std::string::npos);
   const Rig back = parse_rig(text, "mem");
   EXPECT_EQ(format_rig(back), text);
   EXPECT_EQ(back.frame.scale, 0.1);
@@ -130,6 +134,7 @@ TEST(RigIo, RoundTripsFormat11Fields) {
   EXPECT_EQ(back.parts[1].kind, PartKind::LowerTeeth);
   EXPECT_EQ(back.parts[0].side, 0);
   EXPECT_EQ(back.parts[0].vertices, (std::vector<int>{1, 2, 5}));
+  EXPECT_EQ(back.lips.border_jaw, rig.lips.border_jaw);
 }
 
 TEST(RigIo, ReadsVersion10WithDefaults) {
@@ -137,12 +142,14 @@ TEST(RigIo, ReadsVersion10WithDefaults) {
   EXPECT_FALSE(doc.contains("frame"));  // 1.1 fields at their defaults are not written
   EXPECT_FALSE(doc.contains("parts"));
   EXPECT_FALSE(doc["lips"].contains("bound"));
+  EXPECT_FALSE(doc["lips"].contains("border_jaw"));  // 1.2: empty = derived by the solver
   doc["version"] = "1.0";
   const Rig rig = parse_rig(doc.dump(), "old.rig");
   EXPECT_TRUE(rig.frame.is_identity());
   EXPECT_TRUE(rig.lips.samples_in_mesh);
   EXPECT_TRUE(rig.lips.bound.empty());
   EXPECT_TRUE(rig.parts.empty());
+  EXPECT_TRUE(rig.lips.border_jaw.empty());
   EXPECT_TRUE(same_rig(rig, default_face().rig));
 }
 
@@ -152,12 +159,12 @@ TEST(RigIo, ReadsVersion10WithDefaults) {
 TEST(RigIo, UnknownFieldRule) {
   const Json base = Json::parse(format_rig(rig_1_1()));
   Json newer = base;
-  newer["version"] = "1.2";
+  newer["version"] = "1.3";
   newer["a_later_minor_field"] = Json::object({{"x", 1}});
   newer["lips"]["another_one"] = 3;
   newer["lips"]["bound"][1]["stiffness"] = 0.5;
   newer["eyes"][0]["iris_radius"] = 0.006;
-  newer["muscles"][2]["note"] = "added in 1.2";
+  newer["muscles"][2]["note"] = "added in 1.3";
   newer["frame"]["units"] = "dm";
   newer["parts"][0]["colour"] = "white";
   EXPECT_EQ(format_rig(parse_rig(newer.dump(), "new.rig")), format_rig(rig_1_1()));
@@ -173,7 +180,7 @@ TEST(RigIo, UnknownFieldRule) {
       {[](Json& d) { d["parts"][1]["sied"] = 0; }, "/parts/1/sied"},
       {[](Json& d) { d["a/b~c"] = 0; }, "/a~1b~0c"},  // RFC 6901 escapes
   };
-  for (const char* version : {"1.1", "1.0"}) {
+  for (const char* version : {"1.2", "1.1", "1.0"}) {
     for (const auto& [edit, pointer] : typos) {
       Json doc = base;
       doc["version"] = version;
@@ -231,6 +238,18 @@ TEST(RigIo, RejectsBadFormat11Content) {
     d["lips"]["bound"][0]["vertex"] = d["lips"]["first_vertex"].get<int>() + 3;
   }, "/lips/bound/0/vertex");
   expect_bad_11([](Json& d) { d["lips"]["control_points"] = Json::array(); }, "/lips/bound");
+  expect_bad_11([](Json& d) { d["lips"]["border_jaw"].erase(23); }, "/lips/border_jaw");
+  expect_bad_11([](Json& d) { d["lips"]["border_jaw"].push_back(0.5); }, "/lips/border_jaw");
+  expect_bad_11([](Json& d) { d["lips"]["border_jaw"][5] = 1.5; }, "/lips/border_jaw/5");
+  expect_bad_11([](Json& d) { d["lips"]["border_jaw"][6] = -0.1; }, "/lips/border_jaw/6");
+  expect_bad_11([](Json& d) { d["lips"]["border_jaw"][7] = "half"; }, "/lips/border_jaw/7");
+  expect_bad_11([](Json& d) { d["lips"]["border_jaw"] = 0.5; }, "/lips/border_jaw");
+  expect_bad_11(
+      [](Json& d) {
+        d["lips"]["control_points"] = Json::array();
+        d["lips"].erase("bound");
+      },
+      "/lips/border_jaw");
   expect_bad_11([](Json& d) { d["parts"][0]["kind"] = "wing"; }, "/parts/0/kind");
   expect_bad_11([](Json& d) { d["parts"][0]["side"] = 2; }, "/parts/0/side");
   expect_bad_11([](Json& d) { d["parts"][0]["name"] = ""; }, "/parts/0/name");

@@ -1,11 +1,11 @@
 // Vertices driven by the lip B-spline surface through LipBinding (rig format 1.1).
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Geometry>
-
+#include "emoface/core/errors.hpp"
 #include "emoface/facemesh/default_face.hpp"
 #include "emoface/muscles/solver.hpp"
 
@@ -225,6 +225,56 @@ TEST(LipBinding, NoGridResamplingWhenTheSamplesAreNotInTheMesh) {
   const long first = rig.lips.first_vertex, count = rig.lips.samples_around * rig.lips.samples_across;
   EXPECT_GT((a.vertices.middleRows(first, count) - face().mesh.vertices.middleRows(first, count)).cwiseAbs().maxCoeff(), 1e-3);
   EXPECT_EQ(b.vertices, face().mesh.vertices);
+}
+
+// The border's jaw weights (rig format 1.2, LipGrid::border_jaw): the solver's own derivation
+// stored in the rig changes nothing; explicit weights turn each border control point about the jaw
+// axis (parallel to x through the pivot) by masseter · max_angle · weight, and the innermost row by
+// the thesis' weight alone (§2.4.4: lower lip middle 1), whatever the border's.
+TEST(LipBorderJaw, StoredWeightsAreUsedAndTheDerivedOnesChangeNothing) {
+  const auto derived = lip_border_jaw_weights(face().mesh, face().rig);
+  ASSERT_EQ(derived.size(), static_cast<std::size_t>(fm::LipGrid::kAround));
+  double sum = 0.0;
+  for (double w : derived) {
+    EXPECT_GE(w, 0.0);
+    EXPECT_LE(w, 1.0);
+    sum += w;
+  }
+  EXPECT_GT(sum, 1.0);  // the lower lip's border follows the chin
+  fm::Rig stored = face().rig;
+  stored.lips.border_jaw = derived;
+  std::vector<double> values(kParameterCount, 0.0);
+  values[parameter_index("masseter")] = 1.0;
+  EXPECT_EQ(FaceSolver(face().mesh, face().rig).deform(values).vertices,
+            FaceSolver(face().mesh, stored).deform(values).vertices);
+
+  fm::Rig half = face().rig;
+  half.lips.border_jaw.assign(fm::LipGrid::kAround, 0.5);
+  const Deformation d = FaceSolver(face().mesh, half).deform(values);
+  const auto& cps = half.lips.control_points;
+  const Eigen::Vector3d pivot = half.jaw.pivot;
+  auto angle = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {  // about x, yz plane
+    const Eigen::Vector2d p = (a - pivot).tail<2>(), q = (b - pivot).tail<2>();
+    return std::abs(std::atan2(p.x() * q.y() - p.y() * q.x(), p.dot(q)));
+  };
+  const int na = fm::LipGrid::kAround;
+  for (int c : {0, 6, 12, 18}) {
+    const auto i = static_cast<std::size_t>(c);
+    EXPECT_NEAR(angle(cps[i], d.lip_control_points[i]), 0.5 * half.jaw.max_angle, 1e-12) << c;
+    EXPECT_DOUBLE_EQ(d.lip_control_points[i].x(), cps[i].x());
+  }
+  const auto inner = static_cast<std::size_t>((fm::LipGrid::kAcross - 1) * na + 18);  // sin = −1
+  EXPECT_NEAR(angle(cps[inner], d.lip_control_points[inner]), half.jaw.max_angle, 1e-12);
+
+  fm::Rig bad = face().rig;
+  bad.lips.border_jaw.assign(5, 0.5);
+  EXPECT_THROW(FaceSolver(face().mesh, bad), InvalidInput);
+  bad.lips.border_jaw.assign(fm::LipGrid::kAround, 1.5);
+  EXPECT_THROW(FaceSolver(face().mesh, bad), InvalidInput);
+  bad = face().rig;
+  bad.jaw.vertices.push_back(static_cast<int>(face().mesh.vertices.rows()));
+  bad.jaw.weights.push_back(1.0);
+  EXPECT_THROW(lip_border_jaw_weights(face().mesh, bad), InvalidInput);
 }
 
 }  // namespace

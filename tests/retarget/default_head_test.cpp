@@ -193,7 +193,9 @@ TEST(DefaultFace, TeethShowWhenTheMouthOpens) {
   // 503 pixels before the mouth cavity (the lower teeth seen through the torn bag, in front of the
   // lit inside of the head); 259 with the bag's wall behind the teeth: the lower lip's lining now
   // runs back over the teeth's top edge (docs/facemesh.md "Mouth cavity"). The upper teeth stay
-  // behind the upper lip when only the jaw opens, before and after.
+  // behind the upper lip when only the jaw opens, before and after. Session 5: 205 — the lower
+  // lip's border turns with the jaw by the generic's weights (LipGrid::border_jaw; MakeHuman's
+  // nearest jaw vertex had given its middle 0) and covers more of the lower teeth's edge.
   EXPECT_GT(px, 200) << "the open mouth shows no teeth";
 }
 

@@ -40,18 +40,20 @@ TEST(Transfer, RotatedDecimetreCopyKeepsItsFrameAndMoves) {
               residual.angle() * 180.0 / 3.14159265358979323846, fr.scale * scale);
   EXPECT_LT(std::abs(residual.angle()), 0.05 * 3.14159265358979323846 / 180.0);
   std::size_t worst_over = 0;
+  double worst_share = 0.0;
   for (const auto& e : compare(f.source, f.remeshed, r, rot, scale)) {
-    if (e.over > 30) std::printf("    %-34s over 3 %%: %zu\n", e.name.c_str(), e.over);
+    if (e.over > 0) std::printf("    %-34s over 3 %%: %zu\n", e.name.c_str(), e.over);
     worst_over = std::max(worst_over, e.over);
+    worst_share = std::max(worst_share, e.worst / e.largest);
   }
-  std::printf("  rotated copy: worst %zu of %ld vertices beyond 3 %%\n", worst_over,
-              static_cast<long>(input.vertices.rows()));
-  // Measured 9 of 3,150 (masseter; as on the unrotated copy in transfer_test.cpp: the built-in
-  // face's own mouth-rim seam); 365 before the frame was refined on the face: the alignment's
-  // ≈ 0.5° tilt moved the §3.2.1 detected landmarks (highest y, highest z, extreme x), this short
-  // GA (6 generations) did not recover, and the registration does not undo a tangential
-  // misplacement. Bound: the unrotated copy's (transfer_test.cpp), 0.5 % of the vertices.
-  EXPECT_LE(worst_over, static_cast<std::size_t>(input.vertices.rows() / 200));
+  std::printf("  rotated copy: worst %zu of %ld vertices beyond 3 %% (worst %.1f %%)\n", worst_over,
+              static_cast<long>(input.vertices.rows()), 100 * worst_share);
+  // The check at every vertex, as on the unrotated copy (transfer_test.cpp). Measured
+  // (session 5): 0 of 3,150; 9 before (masseter: the mouth rim, docs/retarget.md), and 365 before
+  // the frame was refined on the face: the alignment's ≈ 0.5° tilt moved the §3.2.1 detected
+  // landmarks (highest y, highest z, extreme x), this short GA (6 generations) did not recover,
+  // and the registration does not undo a tangential misplacement.
+  EXPECT_EQ(worst_over, 0u);
 }
 
 // A tilt small enough for the alignment to snap it away (AlignOptions::snap_degrees 1.5: the

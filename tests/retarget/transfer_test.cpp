@@ -66,9 +66,11 @@ TEST(Transfer, OntoARemeshedCopyReproducesTheBuiltInDeformation) {
         "  %-34s largest %.2f mm  worst %.3f mm (%.1f %%)  over 3 %%: %zu of %ld vertices\n",
         e.name.c_str(), 1e3 * e.largest, 1e3 * e.worst, 100 * e.worst / e.largest, e.over,
         static_cast<long>(f.remeshed.vertices.rows()));
-    // Measured: at most 9 of 3014 vertices beyond 3 %, all on the built-in's mouth rim, where the
-    // rim and the lip border row coincide but move differently (docs/retarget.md).
-    EXPECT_LE(e.over, f.remeshed.vertices.rows() / 200) << e.name;
+    // The check at every vertex. Measured: 0 of 3,150 beyond 3 %, worst 2.4 % (funneler);
+    // 9 before session 5, on the mouth rim: the strip's shares as weights and the border's jaw
+    // weights taken from the nearest jaw vertex of the copy (docs/retarget.md).
+    EXPECT_EQ(e.over, 0u) << e.name;
+    EXPECT_LT(e.worst, 0.03 * e.largest) << e.name;
     worst_over = std::max(worst_over, e.over);
   }
   std::printf("  worst: %zu vertices beyond 3 %%\n", worst_over);

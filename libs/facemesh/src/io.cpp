@@ -113,7 +113,7 @@ Rig parse_rig(std::string_view text, const std::string& source) {
 
   const JsonValue lips = doc.at("lips");
   lips.only_keys({"control_points", "samples_around", "samples_across", "first_vertex", "centre",
-                  "samples_in_mesh", "bound"});
+                  "samples_in_mesh", "bound", "border_jaw"});
   for (const JsonValue& c : lips.at("control_points").expect_array().items())
     rig.lips.control_points.push_back(vec3(c));
   rig.lips.samples_around = integer(lips.at("samples_around"));
@@ -135,6 +135,9 @@ Rig parse_rig(std::string_view text, const std::string& source) {
       rig.lips.bound.push_back(b);
     }
   }
+
+  // format 1.2 (absent before: derived by the solver)
+  if (const auto border_jaw = lips.find("border_jaw")) rig.lips.border_jaw = doubles(*border_jaw);
 
   const JsonValue jaw = doc.at("jaw");
   jaw.only_keys({"pivot", "max_angle", "vertices", "weights"});
@@ -248,6 +251,7 @@ std::string format_rig(const Rig& rig) {
     }
     lips["bound"] = bound;
   }
+  if (!rig.lips.border_jaw.empty()) lips["border_jaw"] = rig.lips.border_jaw;
   doc["lips"] = lips;
   Json jaw;
   jaw["pivot"] = vec(rig.jaw.pivot);

@@ -114,6 +114,15 @@ void validate_rig(const Rig& rig, const std::string& source) {
   }
   c.finite(lips.centre, "/lips/centre");
   if (!lips.bound.empty() && lips.control_points.empty()) c.fail("/lips/bound", "bound vertices need the lip control points");
+  if (!lips.border_jaw.empty()) {
+    if (lips.control_points.empty())
+      c.fail("/lips/border_jaw", "border jaw weights need the lip control points");
+    if (lips.border_jaw.size() != static_cast<std::size_t>(LipGrid::kAround)) {
+      c.fail("/lips/border_jaw", "needs 24 weights (one per border control point) or none");
+    }
+    for (std::size_t i = 0; i < lips.border_jaw.size(); ++i)
+      c.number(lips.border_jaw[i], 0.0, 1.0, "/lips/border_jaw/" + std::to_string(i));
+  }
   {
     std::vector<char> seen(n, 0);
     for (std::size_t i = 0; i < lips.bound.size(); ++i) {

@@ -181,16 +181,10 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
     return;
   }
   const double contact_y = 0.5 * (cps[static_cast<std::size_t>((nr - 2) * na)].y() + cps[static_cast<std::size_t>((nr - 2) * na + na / 2)].y());
-  // jaw weight of the skin next to each border control point (nearest jaw vertex, else 0)
-  std::vector<double> border_jaw(na, 0.0);
-  for (int c = 0; c < na; ++c) {
-    double best = 1e300;
-    for (std::size_t j = 0; j < rig_.jaw.vertices.size(); ++j) {
-      const double d = (mesh_.vertices.row(rig_.jaw.vertices[j]).transpose() - cps[static_cast<std::size_t>(c)]).squaredNorm();
-      if (d < best) best = d, border_jaw[static_cast<std::size_t>(c)] = rig_.jaw.weights[j];
-    }
-    if (best > 0.004 * 0.004) border_jaw[static_cast<std::size_t>(c)] = 0.0;
-  }
+  // jaw weight of the skin next to each border control point: the rig's own (a transferred rig),
+  // else the nearest jaw vertex's
+  const std::vector<double> border_jaw =
+      rig_.lips.border_jaw.empty() ? lip_border_jaw_weights(mesh_, rig_) : rig_.lips.border_jaw;
   for (int r = 0; r < nr; ++r) {
     const double wr = static_cast<double>(r) / (nr - 1);
     for (int c = 0; c < na; ++c) {
@@ -219,6 +213,28 @@ FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions opt
     }
   }
   build_fast_path();
+}
+
+std::vector<double> lip_border_jaw_weights(const facemesh::Mesh& mesh, const facemesh::Rig& rig) {
+  const auto& cps = rig.lips.control_points;
+  if (cps.empty()) return {};
+  constexpr int na = facemesh::LipGrid::kAround;
+  if (cps.size() < static_cast<std::size_t>(na))
+    throw InvalidInput("lip_border_jaw_weights: the rig's lip grid is incomplete");
+  std::vector<double> out(na, 0.0);
+  for (int c = 0; c < na; ++c) {
+    double best = 1e300;
+    for (std::size_t j = 0; j < rig.jaw.vertices.size(); ++j) {
+      const int v = rig.jaw.vertices[j];
+      if (v < 0 || v >= mesh.vertices.rows() || j >= rig.jaw.weights.size())
+        throw InvalidInput("lip_border_jaw_weights: jaw vertex or weight out of range");
+      const double d =
+          (mesh.vertices.row(v).transpose() - cps[static_cast<std::size_t>(c)]).squaredNorm();
+      if (d < best) best = d, out[static_cast<std::size_t>(c)] = rig.jaw.weights[j];
+    }
+    if (best > 0.004 * 0.004) out[static_cast<std::size_t>(c)] = 0.0;
+  }
+  return out;
 }
 
 void FaceSolver::build_fast_path() {

@@ -16,6 +16,7 @@
 #include "emoface/core/errors.hpp"
 #include "emoface/core/text.hpp"
 #include "emoface/facemesh/bspline.hpp"
+#include "emoface/muscles/solver.hpp"
 #include "kdtree.hpp"
 #include "surface_index.hpp"
 
@@ -1086,10 +1087,17 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       continue;
     }
     // Skin. On the strip between the mouth rim and the lip border row (triangles with both skin and
-    // lip-sample corners) the vertex is bound to the lip border with the interpolated lip share as
-    // its weight, and its muscle-side attributes come from the skin corners alone: the weight falls
-    // from 1 at the border row to 0 at the rim, so the lips and the skin meet without a seam, and a
-    // vertex on the strip of the built-in face moves as the strip itself does.
+    // lip-sample corners) the vertex belongs to the sheet with the larger barycentric share: the
+    // lip border (bound to it with weight 1 at the corners' interpolated (u, v)) or the skin (its
+    // muscle-side attributes from the skin corners alone). The strip has no width of its own: the
+    // built-in face puts its rim vertices and its border row on one curve (thesis §2.3.2: the lips
+    // stitched to the face), so its zipper triangles are 0.2-0.5 mm high while the two sheets move
+    // differently (a border vertex moves with the lips, a rim vertex with the skin: up to 5 mm
+    // apart under triangularis). Barycentrics across it are noise: on a remeshed copy the
+    // registered generic sits 40-96 µm off the target's vertices (the registration lies on the
+    // copy's chords), which put the border and rim vertices of the copy at shares 0.64-0.87 and
+    // 0.13-0.15 and moved them by up to 10.9 % of a parameter's largest displacement when the share
+    // was the weight.
     double lip_share = 0.0, skin_share = 0.0, j = 0.0;
     Eigen::Index skin_arg = -1;
     Eigen::Vector2d uv = Eigen::Vector2d::Zero();
@@ -1107,6 +1115,12 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
         if (skin_arg < 0 || h.bary(k) > h.bary(skin_arg)) skin_arg = k;
         skin_share += h.bary(k);
       }
+    }
+    if (lip_share > 0.0 && skin_share > 0.0) {  // the strip: the nearer sheet
+      if (lip_share >= skin_share)
+        uv /= lip_share, lip_share = 1.0;
+      else
+        lip_share = 0.0;
     }
     const int sv = skin_arg >= 0 ? gsurf.faces(h.face, static_cast<int>(skin_arg)) : gv;
     rig.regions[static_cast<std::size_t>(v)] = srig.regions[static_cast<std::size_t>(sv)];
@@ -1126,6 +1140,19 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
   std::sort(rig.lips.bound.begin(), rig.lips.bound.end(),
             [](const fm::LipBinding& a, const fm::LipBinding& b) { return a.vertex < b.vertex; });
   refit_lip_grid(rig.lips, T);
+  // The border's jaw weights (LipGrid::border_jaw, thesis §2.4.4) as the source's solver has them:
+  // the grid is carried over column for column, so is the weight with which each border column
+  // turns with the jaw. Left to the solver, they came from whichever of the target's jaw vertices
+  // lay nearest to each border control point: on a remeshed copy of the built-in face 6 of the 24
+  // columns changed (by up to 0.27, where the nearest vertex had been removed) and the jaw moved
+  // the copy's lips up to 16 % of its largest displacement away from the built-in face's; on
+  // MakeHuman the upper lip's middle turned with the jaw (0.83-0.87) and the lower lip's middle did
+  // not (0: no jaw vertex within 4 mm). The same rule on the registered generic was tried:
+  // asymmetric on MakeHuman (columns 14 and 22 at 0.71 and 0.64 against 0.29 in the source), 44
+  // mouth triangles turned over with the jaw open.
+  rig.lips.border_jaw = srig.lips.border_jaw.empty()
+                            ? muscles::lip_border_jaw_weights(source.mesh, srig)
+                            : srig.lips.border_jaw;
   // The mouth bag next to the lips follows them: its vertices within 20 % of the mouth's width
   // (geodesic, through the bag) of a lip vertex are bound to that lip vertex's (u, v) with a weight
   // falling from 1 at the lip to 0 (smoothstep). Before, the bag stood still (or turned with the

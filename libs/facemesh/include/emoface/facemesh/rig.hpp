@@ -88,6 +88,13 @@ struct LipGrid {
   /// transferred rig): no grid sample is a mesh vertex; the lip surface drives the `bound` vertices.
   bool samples_in_mesh = true;
   std::vector<LipBinding> bound;  ///< vertices driven through (u, v, offset); may be used with either mode
+  /// Jaw weight of the skin beside each border control point (column c of row 0), kAround values in
+  /// [0, 1]: how far the border turns with the jaw (thesis §2.4.4; inner rows blend towards the
+  /// thesis' lower/upper-lip weights). Empty: the solver takes the weight of the jaw vertex nearest
+  /// to the control point (within 4 mm), which depends on the mesh's vertices — a transferred rig
+  /// carries the source's values here (rig format 1.2) so that a remeshed face moves its lips as
+  /// the source does (muscles::lip_border_jaw_weights).
+  std::vector<double> border_jaw;
   /// Column c sits at angle 2πc/kAround around the mouth, counter-clockwise seen from the front,
   /// starting at the subject's left corner; columns with sin < 0 belong to the lower lip.
 };

@@ -209,6 +209,14 @@ class FaceSolver {
   std::size_t funneler_param_ = 0, pressor_param_ = 0, masseter_param_ = 0;
 };
 
+/// The jaw weight of the skin beside each border control point of the lip grid (thesis §2.4.4), as
+/// the solver derives it when the rig carries none (`LipGrid::border_jaw` empty): per column c of
+/// row 0, the weight of the jaw vertex nearest to the control point, 0 when none lies within 4 mm.
+/// kAround values; empty for a rig without lips. It depends on which vertices the mesh has, so a
+/// rig transferred onto another mesh stores the source's values. Throws InvalidInput for jaw ids
+/// outside the mesh or a lip grid with fewer than kAround control points.
+std::vector<double> lip_border_jaw_weights(const facemesh::Mesh& mesh, const facemesh::Rig& rig);
+
 /// One-off: builds a FaceSolver and deforms once (same code path, so they cannot drift apart).
 Deformation deform_face(const facemesh::Mesh& mesh, const facemesh::Rig& rig,
                         const std::map<std::string, double>& named, const SolverOptions& options = {});
