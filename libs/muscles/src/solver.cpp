@@ -49,7 +49,95 @@ std::vector<double> mean_edge_lengths(const facemesh::Mesh& mesh) {
 // Distance from p to a muscle's zone of influence (0 inside): the vector muscle's zone is the cone of
 // half-angle Ω about the axis at v1 capped at Rf (a 2-D sector in axial/radial coordinates); for the
 // sphincter (x/y only) min(semi-axes)·(e − 1), e the elliptic radius, is a lower bound (enough here).
-double FaceSolver::zone_distance(const Muscle& m, const Eigen::Vector3d& p) {
+// FaceSolver's state and hot path (see solver.hpp: FaceSolver::Impl).
+struct FaceSolver::Impl {
+  Impl(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions options);
+  void deform(const std::vector<double>& values, Deformation& out, DeformWorkspace& workspace) const;
+  void deform_reference(const std::vector<double>& values, Deformation& out) const;
+
+  struct Muscle {
+    facemesh::MuscleKind kind;
+    VectorMuscle geometry;
+    Eigen::Vector3d axis;  // unit v1->v2
+    Eigen::Vector2d semi_axes;
+    std::size_t parameter;
+    std::vector<int> vertices;       // candidates (region cut-off ∩ reachable zone), ascending
+    std::vector<int> control_points; // lip control points it may move
+    int wrinkle_count;
+    double wrinkle_height;
+  };
+  // Hot-loop form of one muscle (solver.cpp, build_fast_path): constants and the fitted polynomial
+  // factors of fast_math.hpp ({centre, 1/half-width, c0..cN} each, within detail::kFitTolerance).
+  static constexpr int kAngularDegree = 7;    // A(cos α)
+  static constexpr int kRadialDegree = 6;     // cos(π/2·√s), s = u², R = cos(π/2·u) (see fast_math.hpp)
+  static constexpr int kSphincterDegree = 9;  // sin(π·e) on [0, 1]
+  struct MusclePlan {
+    bool sphincter;
+    bool exact;  // a fit missed detail::kFitTolerance: use the exact <cmath> factors
+    double hx, hy, hz;  // v1 (vector) or centre (sphincter), m
+    double ax, ay, az;  // unit axis v1->v2
+    double rf2, cos_omega, rs, rf, omega, k;
+    double inv_a2, inv_b2;  // sphincter: 1/semi-axis²
+    double inv_rs, inv_span;  // 1/Rs, 1/(Rf − Rs)
+    std::array<double, kAngularDegree + 3> angular;  // packed A(cos α)
+    std::array<double, kRadialDegree + 3> radial;    // packed cos(π/2·√s) on s ∈ [0, 1]
+    std::array<double, kSphincterDegree + 3> sphincter_falloff;
+    // the vector-muscle constants and both packed polynomials, each value twice (one per SSE2 lane)
+    alignas(16) std::array<double, 2 * (13 + kAngularDegree + 3 + kRadialDegree + 3)> lanes;
+  };
+  // Per point (vertex or lip control point) candidate muscles, built once; deform() runs on their
+  // muscle-major copy muscle_slots_. A point's displacement depends only on its own position.
+  struct CandidateLists {
+    std::vector<int> point;   // vertex (or control point) ids, ascending
+    std::vector<int> start;   // CSR offsets into muscle, size point.size() + 1
+    std::vector<int> muscle;  // muscle indices, per point sorted by reach2 (ties: muscle order)
+    // per entry: squared distance from the neutral position to the muscle's zone (less a 1e-9 m slack);
+    // the muscle cannot act on the point before it has moved that far from its neutral position
+    std::vector<double> reach2;
+  };
+  // Muscle-major copy of vertex_lists_ and control_point_lists_ for the two-lane (SSE2) pass: per
+  // muscle the slots (vertex_lists_.point indices, then nv + control point) and the entries' reach2,
+  // ascending, padded to an even length with a dummy slot (the last slot, reach2 = +inf).
+  struct MuscleSlots {
+    std::vector<int> slot;
+    std::vector<double> reach2;
+  };
+  std::vector<MuscleSlots> muscle_slots_;
+  std::vector<double> slot_neutral_;  // neutral positions of the slots, SoA (x | y | z), dummy = 0
+  // Wrinkles depend only on the neutral positions: per muscle, (compact vertex, amplitude at level 1).
+  struct WrinkleEntry {
+    int slot;       // index into wrinkle_vertices_
+    double height;  // A·f(l) at full contraction, m
+    bool crease;
+  };
+  void build_fast_path();
+  static double zone_distance(const Muscle& m, const Eigen::Vector3d& p);
+  // Shared by deform() and deform_reference(): validation, eyelid coupling, muscle levels, steps.
+  int prepare(const std::vector<double>& values, Deformation& out, std::array<EyelidLevels, 2>& lids,
+              std::vector<double>& level) const;
+  // Eyelids, jaw and lip re-sampling (after the contraction), then eyeballs and head pose (last).
+  void apply_lids_jaw_lips(const std::vector<double>& values, const std::array<EyelidLevels, 2>& lids,
+                           Deformation& out) const;
+  void apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const;
+  facemesh::Mesh mesh_;
+  facemesh::Rig rig_;
+  SolverOptions options_;
+  std::vector<Muscle> muscles_;
+  std::vector<MusclePlan> muscle_plans_;
+  CandidateLists vertex_lists_, control_point_lists_;
+  std::vector<std::vector<WrinkleEntry>> wrinkles_;  // per muscle
+  std::vector<int> wrinkle_vertices_;                // ascending
+  facemesh::LipSampler lip_sampler_;
+  std::vector<int> bound_start_;                       // rig_.lips.bound -> bound_terms_ (CSR)
+  std::vector<facemesh::LipSampler::Term> bound_terms_;  // ≤ 16 basis terms of S(u, v) per binding
+  std::vector<Eigen::Vector3d> funnel_delta_, press_delta_;  // per control point, per unit contraction
+  std::vector<double> lip_jaw_weight_;  // per control point
+  std::vector<int> vertex_face_start_, vertex_faces_;  // vertex -> incident faces (CSR)
+  std::array<std::size_t, 2> closing_param_{}, squeezing_param_{}, opening_param_{}, blink_param_{};
+  std::size_t funneler_param_ = 0, pressor_param_ = 0, masseter_param_ = 0;
+};
+
+double FaceSolver::Impl::zone_distance(const Muscle& m, const Eigen::Vector3d& p) {
   if (m.kind != facemesh::MuscleKind::Vector) {
     const double dx = (p.x() - m.geometry.head.x()) / m.semi_axes.x(), dy = (p.y() - m.geometry.head.y()) / m.semi_axes.y();
     const double e = std::sqrt(dx * dx + dy * dy);
@@ -102,7 +190,7 @@ void SolverOptions::validate() const {
         "crease_resolution must be in [0, 1e6]");
 }
 
-FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions options)
+FaceSolver::Impl::Impl(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions options)
     : mesh_(std::move(mesh)),
       rig_(std::move(rig)),
       options_(options),
@@ -237,7 +325,7 @@ std::vector<double> lip_border_jaw_weights(const facemesh::Mesh& mesh, const fac
   return out;
 }
 
-void FaceSolver::build_fast_path() {
+void FaceSolver::Impl::build_fast_path() {
   // Region cut-off (thesis §2.4.1, performance): a muscle visits only vertices of its regions, and of
   // those only the ones that can ever enter its zone of influence. A muscle moves a point by at most
   // its k over the whole deformation (|c·k·A·R| <= δ·k per step, Σδ <= 1; sphincter likewise), so a
@@ -548,7 +636,7 @@ void vector_muscle_pass(const Plan& q, double ck, const int* slot, const double*
 
 }  // namespace
 
-int FaceSolver::prepare(const std::vector<double>& values, Deformation& out, std::array<EyelidLevels, 2>& lids,
+int FaceSolver::Impl::prepare(const std::vector<double>& values, Deformation& out, std::array<EyelidLevels, 2>& lids,
                         std::vector<double>& level) const {
   validate_parameter_vector(values);
   out.vertices = mesh_.vertices;
@@ -580,7 +668,7 @@ int FaceSolver::prepare(const std::vector<double>& values, Deformation& out, std
   return steps;
 }
 
-void FaceSolver::deform(const std::vector<double>& values, Deformation& out, DeformWorkspace& ws) const {
+void FaceSolver::Impl::deform(const std::vector<double>& values, Deformation& out, DeformWorkspace& ws) const {
   std::array<EyelidLevels, 2> lids;
   const int steps = prepare(values, out, lids, ws.level);
   const std::size_t nm = muscles_.size();
@@ -712,12 +800,31 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out, Def
   apply_gaze_and_pose(values, out);
 }
 
+FaceSolver::FaceSolver(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions options)
+    : impl_(std::make_shared<const Impl>(std::move(mesh), std::move(rig), options)) {}
+
+void FaceSolver::deform(const std::vector<double>& values, Deformation& out,
+                        DeformWorkspace& workspace) const {
+  impl_->deform(values, out, workspace);
+}
+
+void FaceSolver::deform_reference(const std::vector<double>& values, Deformation& out) const {
+  impl_->deform_reference(values, out);
+}
+
+const facemesh::Mesh& FaceSolver::neutral() const noexcept { return impl_->mesh_; }
+const facemesh::Rig& FaceSolver::rig() const noexcept { return impl_->rig_; }
+const SolverOptions& FaceSolver::options() const noexcept { return impl_->options_; }
+std::size_t FaceSolver::candidate_count(std::size_t muscle) const {
+  return impl_->muscles_.at(muscle).vertices.size();
+}
+
 void FaceSolver::deform(const std::vector<double>& values, Deformation& out) const {
   DeformWorkspace workspace;
   deform(values, out, workspace);
 }
 
-void FaceSolver::apply_lids_jaw_lips(const std::vector<double>& values, const std::array<EyelidLevels, 2>& lids,
+void FaceSolver::Impl::apply_lids_jaw_lips(const std::vector<double>& values, const std::array<EyelidLevels, 2>& lids,
                                      Deformation& out) const {
   auto& X = out.vertices;
   auto& C = out.lip_control_points;
@@ -783,7 +890,7 @@ void FaceSolver::apply_lids_jaw_lips(const std::vector<double>& values, const st
   }
 }
 
-void FaceSolver::apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const {
+void FaceSolver::Impl::apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const {
   auto& X = out.vertices;
   const long nv = X.rows();
   // Eyeballs (thesis §2.4.5): rotate about the eye centre, limited by the elliptical eye hole.
@@ -813,7 +920,7 @@ void FaceSolver::apply_gaze_and_pose(const std::vector<double>& values, Deformat
   if (z0 + z1 != 0.0) throw NumericalError("FaceSolver: deformation produced a non-finite vertex");
 }
 
-void FaceSolver::deform_reference(const std::vector<double>& values, Deformation& out) const {
+void FaceSolver::Impl::deform_reference(const std::vector<double>& values, Deformation& out) const {
   std::array<EyelidLevels, 2> lids;
   std::vector<double> level;
   const int steps = prepare(values, out, lids, level);

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -120,93 +121,18 @@ class FaceSolver {
   /// default face (vertex normals by a scan of all faces), some 40× slower than deform().
   void deform_reference(const std::vector<double>& values, Deformation& out) const;
 
-  const facemesh::Mesh& neutral() const noexcept { return mesh_; }
-  const facemesh::Rig& rig() const noexcept { return rig_; }
-  const SolverOptions& options() const noexcept { return options_; }
+  const facemesh::Mesh& neutral() const noexcept;
+  const facemesh::Rig& rig() const noexcept;
+  const SolverOptions& options() const noexcept;
   /// Number of candidate vertices visited per step by muscle i (after the region cut-off).
-  std::size_t candidate_count(std::size_t muscle) const { return muscles_.at(muscle).vertices.size(); }
+  std::size_t candidate_count(std::size_t muscle) const;
 
  private:
-  struct Muscle {
-    facemesh::MuscleKind kind;
-    VectorMuscle geometry;
-    Eigen::Vector3d axis;  // unit v1->v2
-    Eigen::Vector2d semi_axes;
-    std::size_t parameter;
-    std::vector<int> vertices;       // candidates (region cut-off ∩ reachable zone), ascending
-    std::vector<int> control_points; // lip control points it may move
-    int wrinkle_count;
-    double wrinkle_height;
-  };
-  // Hot-loop form of one muscle (solver.cpp, build_fast_path): constants and the fitted polynomial
-  // factors of fast_math.hpp ({centre, 1/half-width, c0..cN} each, within detail::kFitTolerance).
-  static constexpr int kAngularDegree = 7;    // A(cos α)
-  static constexpr int kRadialDegree = 6;     // cos(π/2·√s), s = u², R = cos(π/2·u) (see fast_math.hpp)
-  static constexpr int kSphincterDegree = 9;  // sin(π·e) on [0, 1]
-  struct MusclePlan {
-    bool sphincter;
-    bool exact;  // a fit missed detail::kFitTolerance: use the exact <cmath> factors
-    double hx, hy, hz;  // v1 (vector) or centre (sphincter), m
-    double ax, ay, az;  // unit axis v1->v2
-    double rf2, cos_omega, rs, rf, omega, k;
-    double inv_a2, inv_b2;  // sphincter: 1/semi-axis²
-    double inv_rs, inv_span;  // 1/Rs, 1/(Rf − Rs)
-    std::array<double, kAngularDegree + 3> angular;  // packed A(cos α)
-    std::array<double, kRadialDegree + 3> radial;    // packed cos(π/2·√s) on s ∈ [0, 1]
-    std::array<double, kSphincterDegree + 3> sphincter_falloff;
-    // the vector-muscle constants and both packed polynomials, each value twice (one per SSE2 lane)
-    alignas(16) std::array<double, 2 * (13 + kAngularDegree + 3 + kRadialDegree + 3)> lanes;
-  };
-  // Per point (vertex or lip control point) candidate muscles, built once; deform() runs on their
-  // muscle-major copy muscle_slots_. A point's displacement depends only on its own position.
-  struct CandidateLists {
-    std::vector<int> point;   // vertex (or control point) ids, ascending
-    std::vector<int> start;   // CSR offsets into muscle, size point.size() + 1
-    std::vector<int> muscle;  // muscle indices, per point sorted by reach2 (ties: muscle order)
-    // per entry: squared distance from the neutral position to the muscle's zone (less a 1e-9 m slack);
-    // the muscle cannot act on the point before it has moved that far from its neutral position
-    std::vector<double> reach2;
-  };
-  // Muscle-major copy of vertex_lists_ and control_point_lists_ for the two-lane (SSE2) pass: per
-  // muscle the slots (vertex_lists_.point indices, then nv + control point) and the entries' reach2,
-  // ascending, padded to an even length with a dummy slot (the last slot, reach2 = +inf).
-  struct MuscleSlots {
-    std::vector<int> slot;
-    std::vector<double> reach2;
-  };
-  std::vector<MuscleSlots> muscle_slots_;
-  std::vector<double> slot_neutral_;  // neutral positions of the slots, SoA (x | y | z), dummy = 0
-  // Wrinkles depend only on the neutral positions: per muscle, (compact vertex, amplitude at level 1).
-  struct WrinkleEntry {
-    int slot;       // index into wrinkle_vertices_
-    double height;  // A·f(l) at full contraction, m
-    bool crease;
-  };
-  void build_fast_path();
-  static double zone_distance(const Muscle& m, const Eigen::Vector3d& p);
-  // Shared by deform() and deform_reference(): validation, eyelid coupling, muscle levels, steps.
-  int prepare(const std::vector<double>& values, Deformation& out, std::array<EyelidLevels, 2>& lids,
-              std::vector<double>& level) const;
-  // Eyelids, jaw and lip re-sampling (after the contraction), then eyeballs and head pose (last).
-  void apply_lids_jaw_lips(const std::vector<double>& values, const std::array<EyelidLevels, 2>& lids,
-                           Deformation& out) const;
-  void apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const;
-  facemesh::Mesh mesh_;
-  facemesh::Rig rig_;
-  SolverOptions options_;
-  std::vector<Muscle> muscles_;
-  std::vector<MusclePlan> muscle_plans_;
-  CandidateLists vertex_lists_, control_point_lists_;
-  std::vector<std::vector<WrinkleEntry>> wrinkles_;  // per muscle
-  std::vector<int> wrinkle_vertices_;                // ascending
-  facemesh::LipSampler lip_sampler_;
-  std::vector<int> bound_start_;                       // rig_.lips.bound -> bound_terms_ (CSR)
-  std::vector<facemesh::LipSampler::Term> bound_terms_;  // ≤ 16 basis terms of S(u, v) per binding
-  std::vector<Eigen::Vector3d> funnel_delta_, press_delta_;  // per control point, per unit contraction
-  std::vector<double> lip_jaw_weight_;  // per control point
-  std::vector<int> vertex_face_start_, vertex_faces_;  // vertex -> incident faces (CSR)
-  std::array<std::size_t, 2> closing_param_{}, squeezing_param_{}, opening_param_{}, blink_param_{};
-  std::size_t funneler_param_ = 0, pressor_param_ = 0, masseter_param_ = 0;
+  // The precomputed muscle data and the hot path (solver.cpp): immutable after construction and
+  // shared by copies, so that a copy is cheap and this header exposes none of the fast path's
+  // layout (issue 18: 26 files recompiled with every change of it).
+  struct Impl;
+  std::shared_ptr<const Impl> impl_;
 };
 
 /// The jaw weight of the skin beside each border control point of the lip grid (thesis §2.4.4), as
