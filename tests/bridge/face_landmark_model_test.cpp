@@ -150,7 +150,8 @@ TEST(FaceLandmarkModel, EveryEmotionMovesTheFaceSurpriseOpensTheJaw) {
     if (l == mg::Label::Neutral) continue;
     const double moved = (m.landmarks(l, 1.0, id) - n).rowwise().norm().maxCoeff();
     EXPECT_GT(moved, 5.0) << mg::to_string(l);
-    EXPECT_LT(moved, 60.0) << mg::to_string(l);
+    // surprise's chin moves most: 65 with round 5's jaw drop (masseter Big at 1, AU26/27)
+    EXPECT_LT(moved, 75.0) << mg::to_string(l);
   }
   const Eigen::MatrixXd s = m.landmarks(mg::Label::Surprise, 1.0, id);
   EXPECT_GT(s(8, 1), n(8, 1) + 5.0);    // chin down
