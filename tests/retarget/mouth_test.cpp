@@ -179,8 +179,8 @@ TEST(DefaultHeadMouth, NoTrianglesTurnOverAroundTheMouth) {
   // (LipGrid::border_jaw) — before, the border took MakeHuman's nearest jaw vertex, which turned
   // the upper lip's middle with the jaw (0.83-0.87, a V torn down into the opened mouth) and left
   // the lower lip's middle behind (0); the lower lip now opens fully and its rows fold over the
-  // bag. With round 5's surprise (the jaw at Big, docs/fuzzyexpr.md) on the integrated tree: surprise
-  // 19, total 92.
+  // bag. With round 5's surprise (the jaw at Big, docs/fuzzyexpr.md) on the integrated tree:
+  // surprise 19, total 92.
   EXPECT_LE(worst, 32);
   EXPECT_LE(total, 100);
 }

@@ -46,13 +46,14 @@ std::vector<double> mean_edge_lengths(const facemesh::Mesh& mesh) {
 
 }  // namespace
 
-// Distance from p to a muscle's zone of influence (0 inside): the vector muscle's zone is the cone of
-// half-angle Ω about the axis at v1 capped at Rf (a 2-D sector in axial/radial coordinates); for the
-// sphincter (x/y only) min(semi-axes)·(e − 1), e the elliptic radius, is a lower bound (enough here).
-// FaceSolver's state and hot path (see solver.hpp: FaceSolver::Impl).
+// Distance from p to a muscle's zone of influence (0 inside): the vector muscle's zone is the cone
+// of half-angle Ω about the axis at v1 capped at Rf (a 2-D sector in axial/radial coordinates); for
+// the sphincter (x/y only) min(semi-axes)·(e − 1), e the elliptic radius, is a lower bound (enough
+// here). FaceSolver's state and hot path (see solver.hpp: FaceSolver::Impl).
 struct FaceSolver::Impl {
   Impl(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions options);
-  void deform(const std::vector<double>& values, Deformation& out, DeformWorkspace& workspace) const;
+  void deform(const std::vector<double>& values, Deformation& out,
+              DeformWorkspace& workspace) const;
   void deform_reference(const std::vector<double>& values, Deformation& out) const;
 
   struct Muscle {
@@ -61,24 +62,25 @@ struct FaceSolver::Impl {
     Eigen::Vector3d axis;  // unit v1->v2
     Eigen::Vector2d semi_axes;
     std::size_t parameter;
-    std::vector<int> vertices;       // candidates (region cut-off ∩ reachable zone), ascending
-    std::vector<int> control_points; // lip control points it may move
+    std::vector<int> vertices;        // candidates (region cut-off ∩ reachable zone), ascending
+    std::vector<int> control_points;  // lip control points it may move
     int wrinkle_count;
     double wrinkle_height;
   };
   // Hot-loop form of one muscle (solver.cpp, build_fast_path): constants and the fitted polynomial
   // factors of fast_math.hpp ({centre, 1/half-width, c0..cN} each, within detail::kFitTolerance).
-  static constexpr int kAngularDegree = 7;    // A(cos α)
-  static constexpr int kRadialDegree = 6;     // cos(π/2·√s), s = u², R = cos(π/2·u) (see fast_math.hpp)
+  static constexpr int kAngularDegree = 7;  // A(cos α)
+  static constexpr int kRadialDegree =
+      6;  // cos(π/2·√s), s = u², R = cos(π/2·u) (see fast_math.hpp)
   static constexpr int kSphincterDegree = 9;  // sin(π·e) on [0, 1]
   struct MusclePlan {
     bool sphincter;
-    bool exact;  // a fit missed detail::kFitTolerance: use the exact <cmath> factors
+    bool exact;         // a fit missed detail::kFitTolerance: use the exact <cmath> factors
     double hx, hy, hz;  // v1 (vector) or centre (sphincter), m
     double ax, ay, az;  // unit axis v1->v2
     double rf2, cos_omega, rs, rf, omega, k;
-    double inv_a2, inv_b2;  // sphincter: 1/semi-axis²
-    double inv_rs, inv_span;  // 1/Rs, 1/(Rf − Rs)
+    double inv_a2, inv_b2;                           // sphincter: 1/semi-axis²
+    double inv_rs, inv_span;                         // 1/Rs, 1/(Rf − Rs)
     std::array<double, kAngularDegree + 3> angular;  // packed A(cos α)
     std::array<double, kRadialDegree + 3> radial;    // packed cos(π/2·√s) on s ∈ [0, 1]
     std::array<double, kSphincterDegree + 3> sphincter_falloff;
@@ -91,20 +93,22 @@ struct FaceSolver::Impl {
     std::vector<int> point;   // vertex (or control point) ids, ascending
     std::vector<int> start;   // CSR offsets into muscle, size point.size() + 1
     std::vector<int> muscle;  // muscle indices, per point sorted by reach2 (ties: muscle order)
-    // per entry: squared distance from the neutral position to the muscle's zone (less a 1e-9 m slack);
-    // the muscle cannot act on the point before it has moved that far from its neutral position
+    // per entry: squared distance from the neutral position to the muscle's zone (less a 1e-9 m
+    // slack); the muscle cannot act on the point before it has moved that far from its neutral
+    // position
     std::vector<double> reach2;
   };
   // Muscle-major copy of vertex_lists_ and control_point_lists_ for the two-lane (SSE2) pass: per
-  // muscle the slots (vertex_lists_.point indices, then nv + control point) and the entries' reach2,
-  // ascending, padded to an even length with a dummy slot (the last slot, reach2 = +inf).
+  // muscle the slots (vertex_lists_.point indices, then nv + control point) and the entries'
+  // reach2, ascending, padded to an even length with a dummy slot (the last slot, reach2 = +inf).
   struct MuscleSlots {
     std::vector<int> slot;
     std::vector<double> reach2;
   };
   std::vector<MuscleSlots> muscle_slots_;
   std::vector<double> slot_neutral_;  // neutral positions of the slots, SoA (x | y | z), dummy = 0
-  // Wrinkles depend only on the neutral positions: per muscle, (compact vertex, amplitude at level 1).
+  // Wrinkles depend only on the neutral positions: per muscle, (compact vertex, amplitude at level
+  // 1).
   struct WrinkleEntry {
     int slot;       // index into wrinkle_vertices_
     double height;  // A·f(l) at full contraction, m
@@ -113,11 +117,11 @@ struct FaceSolver::Impl {
   void build_fast_path();
   static double zone_distance(const Muscle& m, const Eigen::Vector3d& p);
   // Shared by deform() and deform_reference(): validation, eyelid coupling, muscle levels, steps.
-  int prepare(const std::vector<double>& values, Deformation& out, std::array<EyelidLevels, 2>& lids,
-              std::vector<double>& level) const;
+  int prepare(const std::vector<double>& values, Deformation& out,
+              std::array<EyelidLevels, 2>& lids, std::vector<double>& level) const;
   // Eyelids, jaw and lip re-sampling (after the contraction), then eyeballs and head pose (last).
-  void apply_lids_jaw_lips(const std::vector<double>& values, const std::array<EyelidLevels, 2>& lids,
-                           Deformation& out) const;
+  void apply_lids_jaw_lips(const std::vector<double>& values,
+                           const std::array<EyelidLevels, 2>& lids, Deformation& out) const;
   void apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const;
   facemesh::Mesh mesh_;
   facemesh::Rig rig_;
@@ -128,10 +132,11 @@ struct FaceSolver::Impl {
   std::vector<std::vector<WrinkleEntry>> wrinkles_;  // per muscle
   std::vector<int> wrinkle_vertices_;                // ascending
   facemesh::LipSampler lip_sampler_;
-  std::vector<int> bound_start_;                       // rig_.lips.bound -> bound_terms_ (CSR)
+  std::vector<int> bound_start_;                         // rig_.lips.bound -> bound_terms_ (CSR)
   std::vector<facemesh::LipSampler::Term> bound_terms_;  // ≤ 16 basis terms of S(u, v) per binding
-  std::vector<Eigen::Vector3d> funnel_delta_, press_delta_;  // per control point, per unit contraction
-  std::vector<double> lip_jaw_weight_;  // per control point
+  std::vector<Eigen::Vector3d> funnel_delta_,
+      press_delta_;                                    // per control point, per unit contraction
+  std::vector<double> lip_jaw_weight_;                 // per control point
   std::vector<int> vertex_face_start_, vertex_faces_;  // vertex -> incident faces (CSR)
   std::array<std::size_t, 2> closing_param_{}, squeezing_param_{}, opening_param_{}, blink_param_{};
   std::size_t funneler_param_ = 0, pressor_param_ = 0, masseter_param_ = 0;
@@ -636,8 +641,8 @@ void vector_muscle_pass(const Plan& q, double ck, const int* slot, const double*
 
 }  // namespace
 
-int FaceSolver::Impl::prepare(const std::vector<double>& values, Deformation& out, std::array<EyelidLevels, 2>& lids,
-                        std::vector<double>& level) const {
+int FaceSolver::Impl::prepare(const std::vector<double>& values, Deformation& out,
+                              std::array<EyelidLevels, 2>& lids, std::vector<double>& level) const {
   validate_parameter_vector(values);
   out.vertices = mesh_.vertices;
   out.crease.assign(mesh_.vertex_count(), 0);
@@ -668,7 +673,8 @@ int FaceSolver::Impl::prepare(const std::vector<double>& values, Deformation& ou
   return steps;
 }
 
-void FaceSolver::Impl::deform(const std::vector<double>& values, Deformation& out, DeformWorkspace& ws) const {
+void FaceSolver::Impl::deform(const std::vector<double>& values, Deformation& out,
+                              DeformWorkspace& ws) const {
   std::array<EyelidLevels, 2> lids;
   const int steps = prepare(values, out, lids, ws.level);
   const std::size_t nm = muscles_.size();
@@ -824,8 +830,9 @@ void FaceSolver::deform(const std::vector<double>& values, Deformation& out) con
   deform(values, out, workspace);
 }
 
-void FaceSolver::Impl::apply_lids_jaw_lips(const std::vector<double>& values, const std::array<EyelidLevels, 2>& lids,
-                                     Deformation& out) const {
+void FaceSolver::Impl::apply_lids_jaw_lips(const std::vector<double>& values,
+                                           const std::array<EyelidLevels, 2>& lids,
+                                           Deformation& out) const {
   auto& X = out.vertices;
   auto& C = out.lip_control_points;
   // Eyelids (thesis §2.4.3, after Parke 1974): rotation of the lid about the eye's horizontal axis,
@@ -890,7 +897,8 @@ void FaceSolver::Impl::apply_lids_jaw_lips(const std::vector<double>& values, co
   }
 }
 
-void FaceSolver::Impl::apply_gaze_and_pose(const std::vector<double>& values, Deformation& out) const {
+void FaceSolver::Impl::apply_gaze_and_pose(const std::vector<double>& values,
+                                           Deformation& out) const {
   auto& X = out.vertices;
   const long nv = X.rows();
   // Eyeballs (thesis §2.4.5): rotate about the eye centre, limited by the elliptical eye hole.
