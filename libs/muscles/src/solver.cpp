@@ -46,10 +46,7 @@ std::vector<double> mean_edge_lengths(const facemesh::Mesh& mesh) {
 
 }  // namespace
 
-// Distance from p to a muscle's zone of influence (0 inside): the vector muscle's zone is the cone
-// of half-angle Ω about the axis at v1 capped at Rf (a 2-D sector in axial/radial coordinates); for
-// the sphincter (x/y only) min(semi-axes)·(e − 1), e the elliptic radius, is a lower bound (enough
-// here). FaceSolver's state and hot path (see solver.hpp: FaceSolver::Impl).
+// FaceSolver's state and hot path (see solver.hpp: FaceSolver::Impl).
 struct FaceSolver::Impl {
   Impl(facemesh::Mesh mesh, facemesh::Rig rig, SolverOptions options);
   void deform(const std::vector<double>& values, Deformation& out,
@@ -142,6 +139,10 @@ struct FaceSolver::Impl {
   std::size_t funneler_param_ = 0, pressor_param_ = 0, masseter_param_ = 0;
 };
 
+// Distance from p to a muscle's zone of influence (0 inside): the vector muscle's zone is the cone
+// of half-angle Ω about the axis at v1 capped at Rf (a 2-D sector in axial/radial coordinates); for
+// the sphincter (x/y only) min(semi-axes)·(e − 1), e the elliptic radius, is a lower bound (enough
+// here).
 double FaceSolver::Impl::zone_distance(const Muscle& m, const Eigen::Vector3d& p) {
   if (m.kind != facemesh::MuscleKind::Vector) {
     const double dx = (p.x() - m.geometry.head.x()) / m.semi_axes.x(), dy = (p.y() - m.geometry.head.y()) / m.semi_axes.y();
