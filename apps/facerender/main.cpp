@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> meshes;
   std::string out, view = "front", rig_path, video, audio;
   int sheet = 0, width = 480, height = 560, fps = 25;
-  double yaw = 0.0;
+  double yaw = 0.0, shadow = fm::RenderOptions{}.shadow, occlusion = fm::RenderOptions{}.occlusion;
   std::string camera = "auto";
   bool no_paint = false;
   app.add_option("meshes", meshes, "Mesh files (OBJ/PLY/OFF/glTF/GLB)")->required();
@@ -40,6 +40,11 @@ int main(int argc, char** argv) {
   app.add_option("--width", width, "Image width in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--height", height, "Image height in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--yaw", yaw, "Extra camera yaw in radians")->check(CLI::Range(-3.14159, 3.14159));
+  app.add_option("--shadow", shadow, "Strength of the key light's cast shadow, 0 = none")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--occlusion", occlusion,
+                 "Strength of ambient occlusion (dark cavities), 0 = none")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--video", video, "Also encode the frames to a video (.mp4/.mov/.mkv/.gif) with the ffmpeg binary");
   app.add_option("--audio", audio, "Audio file (e.g. WAV) muxed into --video");
   app.add_option("--fps", fps, "Video frame rate")->check(CLI::Range(1, 240));
@@ -60,6 +65,8 @@ int main(int argc, char** argv) {
     options.width = width;
     options.height = height;
     options.yaw = yaw;
+    options.shadow = shadow;
+    options.occlusion = occlusion;
     struct Input {
       fm::Mesh mesh;
       std::vector<Eigen::Vector3f> colors;

@@ -54,6 +54,25 @@ BENCHMARK(BM_RenderPainted)
     ->Args({480, 560, 0})
     ->Unit(benchmark::kMillisecond);
 
+// The optional light terms (issue 14, session 6) on the default face at 480×560, painted, against
+// the plain render in the same run (args: shadow, occlusion; 0, 0 = the baseline).
+void BM_RenderShadowOcclusion(benchmark::State& state) {
+  static const fm::Face f = fm::make_default_face();
+  const auto colors = fm::material_colors(f.rig, f.mesh);
+  fm::RenderOptions ro;
+  ro.shadow = static_cast<double>(state.range(0));
+  ro.occlusion = static_cast<double>(state.range(1));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(fm::render(f.mesh, colors, {}, ro, fm::paint_for(f.rig)).rgb.data());
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_RenderShadowOcclusion)
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Args({0, 1})
+    ->Args({1, 1})
+    ->Unit(benchmark::kMillisecond);
+
 void BM_EncodePng(benchmark::State& state) {
   const auto& f = face();
   fm::RenderOptions ro;

@@ -58,12 +58,145 @@ TEST(Render, ShadingFollowsTheLight) {
   EXPECT_GT(flat.rgb[c], dark.rgb[c] + 10);
 }
 
+// The key light's direction and the light terms as render() has them (upper left front; fill from
+// the right): lit = (0.22 + 0.22·fill)·ambient + 0.68·key·shadow.
+const Eigen::Vector3d kKeyLight = Eigen::Vector3d(-0.35, 0.55, 0.75).normalized();
+const Eigen::Vector3d kFillLight = Eigen::Vector3d(0.6, 0.1, 0.5).normalized();
+
+// Appends the square [x0, x1] × [y0, y1] at depth z (facing +z), n × n quads, to m.
+void add_square(Mesh& m, double x0, double x1, double y0, double y1, double z, int n) {
+  const long base = m.vertices.rows(), nf = m.faces.rows();
+  m.vertices.conservativeResize(base + (n + 1) * (n + 1), 3);
+  m.faces.conservativeResize(nf + 2 * n * n, 3);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      m.vertices.row(base + j * (n + 1) + i) << x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * j / n, z;
+  long f = nf;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = static_cast<int>(base) + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      m.faces.row(f++) << a, b, d;
+      m.faces.row(f++) << a, d, c;
+    }
+}
+
+std::uint8_t red_at(const core::Image& im, const RenderOptions& o, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d s = project_point(o, p);
+  return im.rgb[(static_cast<std::size_t>(s.y()) * im.width + static_cast<std::size_t>(s.x())) * 3];
+}
+
+// A small square 5 cm in front of a large one: with the shadow on, the key light is blocked on the
+// large square where the line to the light passes through the small one — there the colour is
+// base·(0.22 + 0.22·fill) instead of base·(0.22 + 0.22·fill + 0.68·key) (hand-computed below);
+// elsewhere the image is unchanged.
+TEST(Render, KeyLightShadowFallsBehindAnOccluder) {
+  Mesh m;
+  m.vertices.resize(0, 3);
+  m.faces.resize(0, 3);
+  add_square(m, -0.1, 0.1, -0.1, 0.1, 0.0, 4);
+  add_square(m, -0.01, 0.01, -0.01, 0.01, 0.05, 1);
+  RenderOptions o;
+  o.width = o.height = 200;
+  o.target = Eigen::Vector3d::Zero();
+  o.specular = 0.0;
+  const std::vector<Eigen::Vector3f> grey(static_cast<std::size_t>(m.vertex_count()),
+                                          Eigen::Vector3f::Constant(0.8f));
+  const core::Image lit = render(m, grey, {}, o);
+  o.shadow = 1.0;
+  const core::Image shadowed = render(m, grey, {}, o);
+  // where the ray from the occluder's centre along −key meets z = 0
+  const Eigen::Vector3d centre(0.0, 0.0, 0.05),
+      behind = centre - (0.05 / kKeyLight.z()) * kKeyLight;
+  const double key = kKeyLight.z(), fill = kFillLight.z();  // the plane's normal is +z
+  EXPECT_NEAR(red_at(lit, o, behind), 255.0 * 0.8 * (0.22 + 0.22 * fill + 0.68 * key), 1.0);
+  EXPECT_NEAR(red_at(shadowed, o, behind), 255.0 * 0.8 * (0.22 + 0.22 * fill), 1.0);
+  // away from the shadow (and the occluder) nothing changes
+  for (const Eigen::Vector3d p :
+       {Eigen::Vector3d(-0.06, 0.06, 0.0), Eigen::Vector3d(0.06, 0.06, 0.0),
+        Eigen::Vector3d(-0.06, -0.06, 0.0), Eigen::Vector3d(0.0, 0.0, 0.05)})
+    EXPECT_EQ(red_at(lit, o, p), red_at(shadowed, o, p)) << p.transpose();
+  // a plane alone casts no shadow on itself (no acne from the depth map's texels)
+  Mesh plane;
+  plane.vertices.resize(0, 3);
+  plane.faces.resize(0, 3);
+  add_square(plane, -0.1, 0.1, -0.1, 0.1, 0.0, 4);
+  const std::vector<Eigen::Vector3f> pg(25, Eigen::Vector3f::Constant(0.8f));
+  o.shadow = 0.0;
+  const core::Image a = render(plane, pg, {}, o);
+  o.shadow = 1.0;
+  EXPECT_EQ(render(plane, pg, {}, o).rgb, a.rgb);
+}
+
+// Ambient occlusion at the centre of the floor of an open box (floor 10 cm square, walls 5 cm high,
+// open towards the camera): the cosine-weighted share of the sky it sees is the view factor from a
+// point to the parallel square opening centred above it, 4 · (1/2π)·[A/√(1+A²)·atan(B/√(1+A²)) +
+// B/√(1+B²)·atan(A/√(1+B²))] with A = B = half side / height = 1: 0.5541 (hand-computed; the
+// point-to-rectangle view factor of radiative transfer tables). Recovered from the pixel with the
+// light terms above; 512 directions.
+TEST(Render, AmbientOcclusionIsTheViewFactorOfTheSky) {
+  Mesh m;
+  m.vertices.resize(0, 3);
+  m.faces.resize(0, 3);
+  add_square(m, -0.05, 0.05, -0.05, 0.05, 0.0, 8);  // the floor; its centre is vertex 40
+  const auto wall = [&](const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& b) {  // a vertical quad from a to b, 5 cm deep
+    const long v = m.vertices.rows(), f = m.faces.rows();
+    m.vertices.conservativeResize(v + 4, 3);
+    m.vertices.row(v) = a.transpose();
+    m.vertices.row(v + 1) = b.transpose();
+    m.vertices.row(v + 2) = (b + Eigen::Vector3d(0, 0, 0.05)).transpose();
+    m.vertices.row(v + 3) = (a + Eigen::Vector3d(0, 0, 0.05)).transpose();
+    m.faces.conservativeResize(f + 2, 3);
+    m.faces.row(f) << static_cast<int>(v), static_cast<int>(v + 1), static_cast<int>(v + 2);
+    m.faces.row(f + 1) << static_cast<int>(v), static_cast<int>(v + 2), static_cast<int>(v + 3);
+  };
+  wall({-0.05, -0.05, 0}, {0.05, -0.05, 0});
+  wall({0.05, -0.05, 0}, {0.05, 0.05, 0});
+  wall({0.05, 0.05, 0}, {-0.05, 0.05, 0});
+  wall({-0.05, 0.05, 0}, {-0.05, -0.05, 0});
+  RenderOptions o;
+  o.width = o.height = 400;
+  o.target = Eigen::Vector3d::Zero();
+  o.specular = 0.0;
+  o.occlusion = 1.0;
+  o.occlusion_directions = 512;
+  const std::vector<Eigen::Vector3f> grey(static_cast<std::size_t>(m.vertex_count()),
+                                          Eigen::Vector3f::Constant(0.8f));
+  const double red = red_at(render(m, grey, {}, o), o, Eigen::Vector3d::Zero()) / 255.0;
+  const double key = kKeyLight.z(), fill = kFillLight.z();
+  const double sky = (red / 0.8 - 0.68 * key) / (0.22 + 0.22 * fill);
+  const double a = 1.0 / std::sqrt(2.0),
+               expected = 4.0 / (2.0 * 3.14159265358979) * 2.0 * a * std::atan(a);
+  EXPECT_NEAR(expected, 0.5541, 1e-4);
+  EXPECT_NEAR(sky, expected, 0.04);
+  // the floor alone sees the whole sky: occlusion changes nothing
+  Mesh floor;
+  floor.vertices.resize(0, 3);
+  floor.faces.resize(0, 3);
+  add_square(floor, -0.05, 0.05, -0.05, 0.05, 0.0, 8);
+  const std::vector<Eigen::Vector3f> fg(81, Eigen::Vector3f::Constant(0.8f));
+  const core::Image with = render(floor, fg, {}, o);
+  o.occlusion = 0.0;
+  EXPECT_EQ(render(floor, fg, {}, o).rgb, with.rgb);
+}
+
 TEST(Render, Validation) {
   RenderOptions o;
   o.width = 0;
   EXPECT_THROW(o.validate(), InvalidInput);
   o = RenderOptions{};
   o.field_of_view = 3.0;
+  EXPECT_THROW(o.validate(), InvalidInput);
+  for (double bad : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    o = RenderOptions{};
+    o.shadow = bad;
+    EXPECT_THROW(o.validate(), InvalidInput) << bad;
+    o = RenderOptions{};
+    o.occlusion = bad;
+    EXPECT_THROW(o.validate(), InvalidInput) << bad;
+  }
+  o = RenderOptions{};
+  o.occlusion_directions = 3;
   EXPECT_THROW(o.validate(), InvalidInput);
   EXPECT_THROW(view_from_string("side"), InvalidInput);
   EXPECT_EQ(view_from_string(to_string(View::ThreeQuarter)), View::ThreeQuarter);

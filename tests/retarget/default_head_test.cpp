@@ -261,6 +261,49 @@ TEST(DefaultFace, TheOpenedMouthIsDarkInside) {
   EXPECT_EQ(deep_skin, 0) << "the opened mouth shows skin inside the head";
 }
 
+// Height above the eye centre up to which a ray from the front through the column x meets the
+// eyeball (sclera, iris or pupil) rather than skin or the socket's lining, in 0.1 mm steps.
+double eyeball_seen_above_centre(const fm::Vertices& X, const fm::Faces& F, const fm::Rig& rig,
+                                 int e, double x) {
+  const auto& eye = rig.eyes[static_cast<std::size_t>(e)];
+  double h = 0.0;
+  for (; h < 2.0 * eye.radius; h += 1e-4) {
+    const fm::Material m = first_hit_from_front(X, F, rig, x, eye.centre.y() + h).material;
+    if (m != fm::Material::EyeWhite && m != fm::Material::Iris && m != fm::Material::Pupil) break;
+  }
+  return h;
+}
+
+// The raised upper lid (AU5, levator palpebrae superioris) uncovers the eyeball above the iris: the
+// lining of the closed socket behind the lid fold turns with the lid and stays inside the eyeball.
+// It used to stay put, so the triangles from the raised margin down to it covered the top of the
+// eyeball as a band (issue 14, rounds 5 and 6): at full levator the margin rose 3.45 mm and the
+// eyeball seen above the centre grew 0.80 mm; with the lining turning, 2.60 mm (75 %).
+TEST(DefaultFace, TheRaisedLidUncoversTheEyeball) {
+  const fm::Face face = fm::make_default_face();
+  const mu::FaceSolver solver(face.mesh, face.rig);
+  const mu::Deformation d =
+      solver.deform(std::map<std::string, double>{{"levator_palpebrae_superioris_r", 1.0}});
+  const auto& eye = face.rig.eyes[0];
+  double rise = 0.0;  // of the upper lid's margin (weight 1) over the middle of the eye
+  for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {
+    const int v = eye.upper_lid[k];
+    if (eye.upper_lid_weights[k] < 0.999 ||
+        std::abs(face.mesh.vertices(v, 0) - eye.centre.x()) > 0.3 * eye.radius ||
+        face.mesh.vertices(v, 2) < eye.centre.z())
+      continue;
+    rise = std::max(rise, d.vertices(v, 1) - face.mesh.vertices(v, 1));
+  }
+  const double before =
+      eyeball_seen_above_centre(face.mesh.vertices, face.mesh.faces, face.rig, 0, eye.centre.x());
+  const double after =
+      eyeball_seen_above_centre(d.vertices, face.mesh.faces, face.rig, 0, eye.centre.x());
+  std::printf("lid margin rose %.2f mm; eyeball seen above the centre %.2f -> %.2f mm\n",
+              1e3 * rise, 1e3 * before, 1e3 * after);
+  ASSERT_GT(rise, 0.001) << "the levator did not raise the lid";
+  EXPECT_GT(after - before, 0.6 * rise) << "the raised lid does not uncover the eyeball";
+}
+
 namespace {
 
 int landmark(const fm::Rig& rig, const std::string& name) {

@@ -3,20 +3,145 @@
 // optional surface paint (texture), into a core::Image.
 #include "emoface/facemesh/render.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
-
-#include <Eigen/Geometry>
 
 #include "emoface/core/errors.hpp"
 
 namespace emoface::facemesh {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+
+/// Orthographic depth map of a mesh seen from the unit direction `toward` (surface → light): per
+/// texel the largest p·toward of the triangles over the texel centre, i.e. the surface nearest the
+/// light (both sides of every triangle occlude). The map spans the mesh's projection with a
+/// one-texel margin.
+class DepthMap {
+ public:
+  DepthMap(const Vertices& vertices, const Faces& faces, const Eigen::Vector3d& toward,
+           int resolution)
+      : d_(toward.normalized()), n_(resolution) {
+    u_ = (std::abs(d_.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY())
+             .cross(d_)
+             .normalized();
+    v_ = d_.cross(u_);
+    const long nv = vertices.rows();
+    std::vector<Eigen::Vector3d> q(static_cast<std::size_t>(nv));
+    double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, xmax = -xmin, ymax = -xmin;
+    for (long i = 0; i < nv; ++i) {
+      const Eigen::Vector3d p = vertices.row(i);
+      q[static_cast<std::size_t>(i)] = {p.dot(u_), p.dot(v_), p.dot(d_)};
+      xmin = std::min(xmin, p.dot(u_)), xmax = std::max(xmax, p.dot(u_));
+      ymin = std::min(ymin, p.dot(v_)), ymax = std::max(ymax, p.dot(v_));
+    }
+    texel_ = std::max({xmax - xmin, ymax - ymin, 1e-12}) / (n_ - 2);
+    x0_ = xmin - texel_;
+    y0_ = ymin - texel_;
+    top_.assign(static_cast<std::size_t>(n_) * n_, -std::numeric_limits<float>::infinity());
+    for (auto& p : q)
+      p = {(p.x() - x0_) / texel_ - 0.5, (p.y() - y0_) / texel_ - 0.5,
+           p.z()};  // texel-centre coordinates
+    for (long f = 0; f < faces.rows(); ++f) {
+      const Eigen::Vector3d& a = q[static_cast<std::size_t>(faces(f, 0))];
+      const Eigen::Vector3d& b = q[static_cast<std::size_t>(faces(f, 1))];
+      const Eigen::Vector3d& c = q[static_cast<std::size_t>(faces(f, 2))];
+      const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+      if (area == 0.0) continue;
+      const int i0 = std::max(0, static_cast<int>(std::ceil(std::min({a.x(), b.x(), c.x()}))));
+      const int i1 =
+          std::min(n_ - 1, static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}))));
+      const int j0 = std::max(0, static_cast<int>(std::ceil(std::min({a.y(), b.y(), c.y()}))));
+      const int j1 =
+          std::min(n_ - 1, static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}))));
+      for (int j = j0; j <= j1; ++j) {
+        for (int i = i0; i <= i1; ++i) {
+          const double w0 = ((b.x() - i) * (c.y() - j) - (b.y() - j) * (c.x() - i)) / area;
+          const double w1 = ((c.x() - i) * (a.y() - j) - (c.y() - j) * (a.x() - i)) / area;
+          const double w2 = 1.0 - w0 - w1;
+          if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
+          float& t = top_[static_cast<std::size_t>(j) * n_ + i];
+          t = std::max(t, static_cast<float>(w0 * a.z() + w1 * b.z() + w2 * c.z()));
+        }
+      }
+    }
+    // Triangles thinner than a texel cover no texel centre: their vertices still occlude.
+    for (const auto& p : q) {
+      const int i = std::clamp(static_cast<int>(std::lround(p.x())), 0, n_ - 1);
+      const int j = std::clamp(static_cast<int>(std::lround(p.y())), 0, n_ - 1);
+      float& t = top_[static_cast<std::size_t>(j) * n_ + i];
+      t = std::max(t, static_cast<float>(p.z()));
+    }
+  }
+  double texel() const { return texel_; }
+  const Eigen::Vector3d& toward() const { return d_; }
+  /// Share of the (2r+1)² texels around p where p, raised by `bias` towards the light, is not below
+  /// the stored surface: 1 = fully lit.
+  double lit(const Eigen::Vector3d& p, double bias, int r) const {
+    const int i = static_cast<int>(std::lround((p.dot(u_) - x0_) / texel_ - 0.5));
+    const int j = static_cast<int>(std::lround((p.dot(v_) - y0_) / texel_ - 0.5));
+    const float z = static_cast<float>(p.dot(d_) + bias);
+    int lit = 0, all = 0;
+    for (int dj = -r; dj <= r; ++dj) {
+      for (int di = -r; di <= r; ++di) {
+        ++all;
+        const int x = i + di, y = j + dj;
+        if (x < 0 || y < 0 || x >= n_ || y >= n_ || z >= top_[static_cast<std::size_t>(y) * n_ + x])
+          ++lit;
+      }
+    }
+    return static_cast<double>(lit) / all;
+  }
+
+ private:
+  Eigen::Vector3d d_, u_, v_;
+  int n_;
+  double x0_ = 0.0, y0_ = 0.0, texel_ = 1.0;
+  std::vector<float> top_;
+};
+
+/// Depth bias for a surface whose normal makes cos_angle with the light: one texel plus the depth a
+/// slope of that angle gains over two texels (slope-scaled bias), capped for grazing light.
+double shadow_bias(double texel, double cos_angle) {
+  const double c = std::clamp(cos_angle, 0.2, 1.0);
+  return texel * (1.0 + 2.0 * std::sqrt(1.0 - c * c) / c);
 }
+
+/// Per-vertex ambient occlusion: the cosine-weighted share of `directions` (a Fibonacci sphere)
+/// over each vertex's normal hemisphere in which no part of the mesh stands between the vertex and
+/// the sky.
+std::vector<float> ambient_occlusion(const Vertices& vertices, const Faces& faces,
+                                     const Vertices& normals, int directions) {
+  constexpr int kResolution = 256;
+  const long nv = vertices.rows();
+  std::vector<double> seen(static_cast<std::size_t>(nv), 0.0),
+      total(static_cast<std::size_t>(nv), 0.0);
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < directions; ++k) {
+    const double y = 1.0 - (k + 0.5) * 2.0 / directions,
+                 rad = std::sqrt(std::max(0.0, 1.0 - y * y));
+    const Eigen::Vector3d dir(rad * std::cos(golden * k), y, rad * std::sin(golden * k));
+    const DepthMap map(vertices, faces, dir, kResolution);
+    for (long v = 0; v < nv; ++v) {
+      const Eigen::Vector3d n = normals.row(v);
+      const double c = n.dot(dir);
+      if (c <= 0.0) continue;
+      const Eigen::Vector3d p = Eigen::Vector3d(vertices.row(v)) + map.texel() * n;
+      seen[static_cast<std::size_t>(v)] += c * map.lit(p, shadow_bias(map.texel(), c), 0);
+      total[static_cast<std::size_t>(v)] += c;
+    }
+  }
+  std::vector<float> out(static_cast<std::size_t>(nv), 1.0f);
+  for (std::size_t v = 0; v < out.size(); ++v) {
+    if (total[v] > 0.0) out[v] = static_cast<float>(seen[v] / total[v]);
+  }
+  return out;
+}
+}  // namespace
 
 std::string to_string(View view) { return view == View::Front ? "front" : "threequarter"; }
 View view_from_string(std::string_view name) {
@@ -38,6 +163,10 @@ void RenderOptions::validate() const {
   check(shininess >= 1.0 && shininess <= 512.0, "shininess must be in [1, 512]");
   check(specular >= 0.0 && specular <= 1.0, "specular must be in [0, 1]");
   check(normal_smoothing >= 0 && normal_smoothing <= 10, "normal_smoothing must be in [0, 10]");
+  check(shadow >= 0.0 && shadow <= 1.0, "shadow must be in [0, 1]");
+  check(occlusion >= 0.0 && occlusion <= 1.0, "occlusion must be in [0, 1]");
+  check(occlusion_directions >= 4 && occlusion_directions <= 512,
+        "occlusion_directions must be in [4, 512]");
 }
 
 void Paint::validate(std::size_t vertex_count) const {
@@ -256,6 +385,12 @@ core::Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
   for (int i = 0; i <= kSpecSteps; ++i)
     spec_table[static_cast<std::size_t>(i)] = options.specular * std::pow(static_cast<double>(i) / kSpecSteps, options.shininess);
   spec_table[kSpecSteps + 1] = spec_table[kSpecSteps];
+  // Ambient occlusion per vertex and the key light's depth map (only when asked for).
+  std::vector<float> ao;
+  if (options.occlusion > 0.0 && nv > 0)
+    ao = ambient_occlusion(mesh.vertices, mesh.faces, vn, options.occlusion_directions);
+  std::optional<DepthMap> key_map;
+  if (options.shadow > 0.0 && nv > 0) key_map.emplace(mesh.vertices, mesh.faces, key_light, 1024);
   const auto shade = [&](std::size_t idx) -> Eigen::Vector3f {
     const std::int32_t f = face_of[idx];
     if (f < 0) return background;
@@ -301,7 +436,20 @@ core::Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
       const int i = static_cast<int>(t);
       spec = spec_table[static_cast<std::size_t>(i)] + (t - i) * (spec_table[static_cast<std::size_t>(i) + 1] - spec_table[static_cast<std::size_t>(i)]);
     }
-    const double light = 0.22 + 0.68 * kd + 0.22 * fd;
+    double ambient = 1.0, direct = 1.0;
+    if (!ao.empty()) {
+      double sky = 0.0;
+      for (int k = 0; k < 3; ++k) sky += wk[k] * ao[static_cast<std::size_t>(ids[k])];
+      ambient = 1.0 - options.occlusion * (1.0 - sky);
+    }
+    if (key_map && kd > 0.0) {
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) p += wk[k] * Eigen::Vector3d(mesh.vertices.row(ids[k]));
+      p += key_map->texel() * normal;  // normal offset: no self-shadowing acne
+      direct = 1.0 - options.shadow * (1.0 - key_map->lit(p, shadow_bias(key_map->texel(), kd), 1));
+    }
+    spec *= direct;
+    const double light = (0.22 + 0.22 * fd) * ambient + 0.68 * kd * direct;
     const Eigen::Vector3f out = base * static_cast<float>(light) + Eigen::Vector3f::Constant(static_cast<float>(spec));
     return out.cwiseMin(1.0f).cwiseMax(0.0f);
   };

@@ -298,10 +298,11 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
     // Lid weights from the margin found here (stop-gap: the transfer's weights, carried from the
     // generic's smaller eye opening, peak 1 cm above this head's margin; the transfer's own
     // target-side margin detection replaces this once merged). Upper lid: the vertices above the
-    // line through the eye corners, 1 at the upper margin falling (smoothstep) to 0 at 9 mm from it;
-    // lower lid likewise below the line, 0 at 5 mm; both fade to 0 at the corners (smoothstep over the
-    // outer 30 % of the eye's width at each end) so the corners stay put. The cup behind the fold (inside the margin, or behind the
-    // eye centre) is hidden by the eyeball and moves with neither lid.
+    // line through the eye corners, 1 at the upper margin falling (smoothstep) to 0 at 9 mm from
+    // it; lower lid likewise below the line, 0 at 5 mm; both fade to 0 at the corners (smoothstep
+    // over the outer 30 % of the eye's width at each end) so the corners stay put. The cup's lining
+    // inside the eyeball's sphere turns with its lid like the margin; the rest of the cup (behind
+    // the eye centre) is hidden by the eyeball and moves with neither lid.
     {
       const auto [lo_it, hi_it] = std::minmax_element(margin.begin(), margin.end(), [&](int p, int q) {
         return b.v[static_cast<std::size_t>(p)].x() < b.v[static_cast<std::size_t>(q)].x();
@@ -316,11 +317,18 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
       for (int v = 0; v < nh; ++v) {
         const Vec3& p = b.v[static_cast<std::size_t>(v)];
         if (in_mouth[static_cast<std::size_t>(v)] || (p - c).norm() > 3.0 * r) continue;
-        if (!is_margin[static_cast<std::size_t>(v)] && (socket[static_cast<std::size_t>(v)] || p.z() < c.z()))
+        // The lining of the cup (on or inside the sphere just inside the eyeball) turns with its
+        // lid as the margin does: it stays hidden inside the eyeball while the lid opens (AU5) or
+        // closes; left behind, the triangles from the raised margin down to it show as a band over
+        // the iris.
+        const bool lining =
+            socket[static_cast<std::size_t>(v)] && (p - c).norm() <= 0.95 * r + 1e-9;
+        if (!is_margin[static_cast<std::size_t>(v)] && !lining &&
+            (socket[static_cast<std::size_t>(v)] || p.z() < c.z()))
           continue;
         const bool up = above(p);
         const auto& ring = up ? upper_margin : lower_margin;
-        double d = 1e9;
+        double d = lining ? 0.0 : 1e9;
         for (int m : ring) d = std::min(d, (b.v[static_cast<std::size_t>(m)] - p).norm());
         const double reach = up ? 0.009 : 0.005;
         const double t = std::clamp(d / reach, 0.0, 1.0);

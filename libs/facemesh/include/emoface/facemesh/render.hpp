@@ -33,6 +33,19 @@ struct RenderOptions {
   /// [0, 10]: smooth shading across seams of thin triangles (the lips' stitching, folding lids);
   /// 0 = the plain area-weighted vertex normals.
   int normal_smoothing = 1;
+  /// Strength of the key light's cast shadow, [0, 1] (0 = none): the key light is blocked where
+  /// other parts of the mesh stand between it and the surface (under the upper lip and nose, inside
+  /// an open mouth, under the brows). An orthographic depth map from the light (1024², 3×3
+  /// percentage-closer filtered). Off by default: on the default face it did not help the
+  /// expression oracle (docs/muscles.md).
+  double shadow = 0.0;
+  /// Strength of ambient occlusion, [0, 1] (0 = none): the ambient and fill terms are scaled by the
+  /// share of the sky each vertex sees over its normal's hemisphere (cosine-weighted, from
+  /// orthographic depth maps in `occlusion_directions` directions), so cavities — the inside of an
+  /// open mouth, the corners of the eyes, the nostrils — stay dark instead of lit by a uniform
+  /// ambient term. Off by default, like `shadow`.
+  double occlusion = 0.0;
+  int occlusion_directions = 48;  ///< [4, 512]
   void validate() const;
 };
 
