@@ -10,7 +10,9 @@
 # ARKit weights per emotion) driving an ARKit character built from our own face — its 52 ARKit morph
 # targets baked by muscles::bake_rig, posed as an engine poses them (neutral + Σ weight · target,
 # `faceanim --weights arkit --blendshapes`) — rendered and named the same way (OUT_DIR out/oracle_arkit).
-# Usage: scripts/oracle.sh [--no-build] [--arkit]   Env: BUILD_DIR (build), OUT_DIR (out/oracle), MIN (6),
+# --network faceapi: a second network, @vladmandic/face-api's FaceExpressionNet, names the same renders
+# (OUT_DIR out/oracle_faceapi or out/oracle_arkit_faceapi; tests/oracle/classify.cjs explains both).
+# Usage: scripts/oracle.sh [--no-build] [--arkit] [--network human|faceapi]   Env: BUILD_DIR (build), OUT_DIR (out/oracle), MIN (6),
 #        JOBS (2), EMOTIONS (tests/oracle/emotions.csv), RIG (a rig file or "generic"; default face)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,16 +26,23 @@ rig_args=()
 if [ -n "$RIG" ]; then rig_args=(--rig "$RIG"); fi
 build=1
 arkit=0
-for a in "$@"; do
-  case "$a" in
+network=human
+while [ $# -gt 0 ]; do
+  case "$1" in
     --no-build) build=0 ;;
     --arkit) arkit=1 ;;
-    *) echo "oracle.sh: unknown argument $a" >&2; exit 2 ;;
+    --network)
+      network=${2:-}
+      case "$network" in human | faceapi) ;; *) echo "oracle.sh: --network human or faceapi" >&2; exit 2 ;; esac
+      shift ;;
+    *) echo "oracle.sh: unknown argument $1" >&2; exit 2 ;;
   esac
+  shift
 done
 
 if [ -z "$OUT_DIR" ]; then
   if [ "$arkit" = 1 ]; then OUT_DIR=out/oracle_arkit; else OUT_DIR=out/oracle; fi
+  if [ "$network" = faceapi ]; then OUT_DIR=${OUT_DIR}_faceapi; fi
 fi
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   SUDO=""
@@ -71,4 +80,4 @@ while IFS=, read -r id _; do
   args+=("$id=$OUT_DIR/$(printf 'face_%04d.png' "$i")")
   i=$((i + 1))
 done < <(tail -n +2 "$EMOTIONS")
-node tests/oracle/classify.cjs --min "$MIN" --json "$OUT_DIR"/oracle.json "${args[@]}"
+node tests/oracle/classify.cjs --network "$network" --min "$MIN" --json "$OUT_DIR"/oracle.json "${args[@]}"

@@ -1,12 +1,17 @@
 #!/usr/bin/env node
-// Independent expression oracle (issue 14): classifies rendered faces with @vladmandic/human's emotion
-// network and prints the confusion table. Offline by construction: the pure-JS CPU backend of
-// TensorFlow.js and the models shipped inside the npm package (models/*.json + *.bin); any other fetch
-// fails. The human build "node-wasm" is used because it takes tfjs from node_modules (the "node"
-// build needs @tensorflow/tfjs-node, whose native library is downloaded at install time; the ESM
-// bundle does not run under Node); its wasm backend is not used.
+// Independent expression oracles (issue 14): classify rendered faces with a facial-expression network
+// nobody here wrote and print the confusion table. Two networks, chosen with --network:
+//   human   @vladmandic/human's emotion model (oarriaga's mini-Xception on FER-2013: 64×64 grey crops of
+//           its face-mesh box); the issue's oracle.
+//   faceapi @vladmandic/face-api's FaceExpressionNet (112×112 colour crops of an SSD MobileNet v1 face
+//           box; trained by face-api.js on a different image set): a second opinion, so that a change
+//           is not tuned to one network's quirks.
+// Offline by construction: the pure-JS CPU backend of TensorFlow.js and the models shipped inside the
+// npm packages (models/*.json + *.bin, model/*manifest.json + *.bin); any other fetch fails. The
+// "node-wasm" builds are used because they take tfjs from node_modules (the "node" builds need
+// @tensorflow/tfjs-node, whose native library is downloaded at install time); wasm is not used.
 //
-// Usage: node classify.cjs [--min N] [--json FILE] EXPECTED=IMAGE.png ...
+// Usage: node classify.cjs [--network human|faceapi] [--min N] [--json FILE] EXPECTED=IMAGE.png ...
 //   EXPECTED is one of neutral, happiness, sadness, anger, fear, disgust, surprise.
 //   Prints a Markdown table (rows = intended expression, columns = the network's scores) and
 //   "correct: k of n"; exit status 1 when fewer than N (default: all) are top-1 correct, 2 on bad input.
@@ -66,20 +71,23 @@ function decodePng(file) {
 
 function usage(msg) {
   console.error(`classify.cjs: ${msg}`);
-  console.error('usage: node classify.cjs [--min N] [--json FILE] EXPECTED=IMAGE.png ...');
+  console.error('usage: node classify.cjs [--network human|faceapi] [--min N] [--json FILE] EXPECTED=IMAGE.png ...');
   process.exit(2);
 }
 
 function parseArgs(argv) {
-  const opts = { min: -1, json: '', items: [] };
+  const opts = { min: -1, json: '', network: 'human', items: [] };
   for (let i = 0; i < argv.length; ++i) {
     const a = argv[i];
-    if (a === '--min' || a === '--json') {
+    if (a === '--min' || a === '--json' || a === '--network') {
       if (i + 1 >= argv.length) usage(`${a} needs a value`);
       const v = argv[++i];
       if (a === '--min') {
         if (!/^[0-9]+$/.test(v)) usage(`--min: not a count: ${v}`);
         opts.min = Number(v);
+      } else if (a === '--network') {
+        if (!['human', 'faceapi'].includes(v)) usage(`--network: human or faceapi, not ${v}`);
+        opts.network = v;
       } else opts.json = v;
       continue;
     }
@@ -125,26 +133,56 @@ async function makeHuman() {
   return human;
 }
 
+// face-api's labels, in our names
+const FACEAPI = { neutral: 'neutral', happy: 'happiness', sad: 'sadness', angry: 'anger', fearful: 'fear',
+  disgusted: 'disgust', surprised: 'surprise' };
+
+// A classifier: image → { faces, scores (our names) }.
+async function makeClassifier(network) {
+  if (network === 'human') {
+    const human = await makeHuman();
+    return async (img) => {
+      const t = human.tf.tensor4d(Float32Array.from(img.data), [1, img.height, img.width, 3], 'float32');
+      const r = await human.detect(t);
+      t.dispose();
+      const scores = Object.fromEntries(OURS.map((n) => [n, 0]));
+      if (r.face.length > 0) {
+        for (const e of r.face[0].emotion) scores[OURS[LABELS.indexOf(e.emotion)]] = e.score;
+      }
+      return { faces: r.face.length, scores };
+    };
+  }
+  const tf = require('@tensorflow/tfjs');
+  const faceapi = require('@vladmandic/face-api/dist/face-api.node-wasm.js');
+  await tf.setBackend('cpu');
+  await tf.ready();
+  const dir = path.join(path.dirname(require.resolve('@vladmandic/face-api/package.json')), 'model');
+  await faceapi.nets.ssdMobilenetv1.loadFromDisk(dir);
+  await faceapi.nets.faceExpressionNet.loadFromDisk(dir);
+  return async (img) => {
+    const t = tf.tensor3d(Int32Array.from(img.data), [img.height, img.width, 3], 'int32');
+    const r = await faceapi.detectSingleFace(t, new faceapi.SsdMobilenetv1Options({ minConfidence: 0.2 }))
+      .withFaceExpressions();
+    t.dispose();
+    const scores = Object.fromEntries(OURS.map((n) => [n, 0]));
+    if (r) for (const [k, v] of Object.entries(r.expressions)) scores[FACEAPI[k]] = Math.trunc(100 * v) / 100;
+    return { faces: r ? 1 : 0, scores };
+  };
+}
+
 async function main() {
   const opts = parseArgs(process.argv.slice(2));
   const images = opts.items.map((it) => {
     try { return decodePng(it.file); } catch (e) { usage(e.message); }
     return null;
   });
-  const human = await makeHuman();
+  const classify = await makeClassifier(opts.network);
   const rows = [];
   for (let i = 0; i < opts.items.length; ++i) {
-    const img = images[i];
-    const t = human.tf.tensor4d(Float32Array.from(img.data), [1, img.height, img.width, 3], 'float32');
-    const r = await human.detect(t);
-    t.dispose();
-    const scores = Object.fromEntries(OURS.map((n) => [n, 0]));
-    if (r.face.length > 0) {
-      for (const e of r.face[0].emotion) scores[OURS[LABELS.indexOf(e.emotion)]] = e.score;
-    }
-    let top = r.face.length > 0 ? OURS[0] : 'no face';
-    for (const n of OURS) if (r.face.length > 0 && scores[n] > scores[top]) top = n;
-    rows.push({ expected: opts.items[i].expected, file: opts.items[i].file, faces: r.face.length,
+    const { faces, scores } = await classify(images[i]);
+    let top = faces > 0 ? OURS[0] : 'no face';
+    for (const n of OURS) if (faces > 0 && scores[n] > scores[top]) top = n;
+    rows.push({ expected: opts.items[i].expected, file: opts.items[i].file, faces,
       top, correct: top === opts.items[i].expected, scores });
   }
   const correct = rows.filter((r) => r.correct).length;
@@ -155,7 +193,9 @@ async function main() {
     console.log(`| ${r.expected} | ${cells.join(' | ')} | ${r.top}${r.correct ? ' ✓' : ''} |`);
   }
   console.log(`correct: ${correct} of ${rows.length} (required: ${opts.min})`);
-  if (opts.json) fs.writeFileSync(opts.json, JSON.stringify({ correct, required: opts.min, rows }, null, 1) + '\n');
+  if (opts.json) {
+    fs.writeFileSync(opts.json, JSON.stringify({ network: opts.network, correct, required: opts.min, rows }, null, 1) + '\n');
+  }
   process.exit(correct >= opts.min ? 0 : 1);
 }
 
