@@ -4,7 +4,7 @@
 # (@vladmandic/human's emotion model, tests/oracle/classify.cjs). Prints the confusion table; exit 1
 # when fewer than MIN (default 6) of the 7 are top-1 correct.
 # Installs Node/npm from Debian if missing and the pinned npm packages with `npm ci`
-# (tests/oracle/package-lock.json, ≈ 130 MB in tests/oracle/node_modules, once); nothing is
+# (tests/oracle/package-lock.json, ≈ 370 MB in tests/oracle/node_modules, once); nothing is
 # downloaded when it runs.
 # --arkit (issue 15, the ARKit check): the same emotions through `emo2muscle --weights arkit` (the 52
 # ARKit weights per emotion) driving an ARKit character built from our own face — its 52 ARKit morph
