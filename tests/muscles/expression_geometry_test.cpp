@@ -161,6 +161,30 @@ TEST_P(ExpressionGeometry, Surprise) {
             24.0 * mm);  // jaw dropped (AU26/27; 20.1 mm on the head with round 4's Medium)
 }
 
+// Thesis Appendix B, muscle 14: the corrugator is "the eyebrow wrinkler which depresses the middle
+// portion of the eyebrows" (and draws it in). Both corrugators at full contraction: the middle of
+// each brow (iBUG 18–20, 23–25) comes down about as much as it comes in. Its origin used to sit
+// level with the brow, so the pull was almost horizontal: 0.76 mm down against 2.52 mm in on the
+// generic face, 0.92 against 3.10 on the default head; with the origin at the medial superciliary
+// arch (issue 14, session 6) 0.93 / 1.11 and 1.29 / 1.53 mm.
+TEST_P(ExpressionGeometry, CorrugatorDepressesTheMiddleOfTheBrow) {
+  std::vector<double> v(kParameterCount, 0.0);
+  v[parameter_index("corrugator_supercilii_r")] = 1.0;
+  v[parameter_index("corrugator_supercilii_l")] = 1.0;
+  const FaceSolver solver(face().mesh, face().rig);
+  const fm::Vertices X = solver.deform(v).vertices;
+  double down = 0.0, in = 0.0;
+  for (int i : {18, 19, 20, 23, 24, 25}) {
+    const Eigen::Vector3d d = ibug(X, i) - ibug(neutral(), i);
+    down += -d.y() / 6.0;
+    in += -d.x() * (ibug(neutral(), i).x() > 0.0 ? 1.0 : -1.0) / 6.0;
+  }
+  std::printf("%s corrugator 1: middle of the brows %.2f mm down, %.2f mm in\n", face_name(),
+              down / mm, in / mm);
+  EXPECT_GT(down, 0.5 * mm);
+  EXPECT_GT(down, 0.75 * in);
+}
+
 TEST_P(ExpressionGeometry, Anger) {
   const auto X = deform(fx::Emotion::Anger, 0.9);
   const double inner = inner_brow_rise(X), outer = outer_brow_rise(X), lids = lid_ratio(X);

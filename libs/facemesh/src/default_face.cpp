@@ -881,11 +881,17 @@ Face make_generic_face() {
        0.0},
       {"corrugator_supercilii",
        "",
-       P(-0.005, 0.018, 0.007),
+       // Origin at the medial end of the superciliary arch, 8 mm above the eye centres (issue 14,
+       // session 6; was 18 mm, level with the brow's lower edge, so the muscle drew the brow
+       // inwards almost horizontally): "the eyebrow wrinkler which depresses the middle portion of
+       // the eyebrows" (thesis Appendix B, muscle 14); origin medial superciliary arch, insertion
+       // the skin of the middle of the brow, pulling it down and in (Gray's Anatomy, corrugator
+       // supercilii).
+       P(-0.005, 0.008, 0.007),
        P(-0.030, 0.025, 0.001),
        0.40,
-       0.8,
-       1.3,
+       0.688,  // 0.8 and 1.3 of the former 26.0 mm length (now 30.2 mm): the zone keeps its reach
+       1.118,  // (rs 20.8 mm, rf 33.8 mm on the generic face); only the direction changes
        0.0080,
        {R::RightMiddleFace, R::RightUpperFace},
        false,
