@@ -1,6 +1,7 @@
 // Software rasteriser: perspective camera, z-buffer, per-pixel Phong shading (Bui Tuong Phong 1975,
 // the shading the thesis uses in §2.3), 4-sample rotated-grid anti-aliasing, deferred shading,
-// optional surface paint (texture), into a core::Image.
+// optional surface paint (texture), optional key-light shadow (depth map) and per-vertex ambient
+// occlusion, into a core::Image.
 #include "emoface/facemesh/render.hpp"
 
 #include <Eigen/Geometry>
@@ -78,7 +79,6 @@ class DepthMap {
     }
   }
   double texel() const { return texel_; }
-  const Eigen::Vector3d& toward() const { return d_; }
   /// Share of the (2r+1)² texels around p where p, raised by `bias` towards the light, is not below
   /// the stored surface: 1 = fully lit.
   double lit(const Eigen::Vector3d& p, double bias, int r) const {
