@@ -242,11 +242,16 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
     }
     const Vec3 c(o.x(), o.y(), 0.5 * (za + zb));
     // the lids now turn about the new centre: keep the closing angle's share of the opening
+    // measured over the middle 40 % of the eye's width, where the opening is widest (the whole
+    // margin's mean left a 1.4 mm slit at a full blink; issue 14, session 6); towards the corners
+    // the upper lid's weights scale the angle down to each margin vertex's own opening (below)
+    const double middle = 0.2 * (hi.x() - lo.x());
     auto opening = [&](const Vec3& centre) {
       Vec3 up = Vec3::Zero(), dn = Vec3::Zero();
       int nu = 0, nd = 0;
       for (int v : margin) {
         const Vec3& p = b.v[static_cast<std::size_t>(v)];
+        if (std::abs(p.x() - o.x()) > middle) continue;
         ((p.y() > o.y()) ? (++nu, up) : (++nd, dn)) += p;
       }
       if (nu == 0 || nd == 0) return 0.0;
@@ -299,8 +304,9 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
     // generic's smaller eye opening, peak 1 cm above this head's margin; the transfer's own
     // target-side margin detection replaces this once merged). Upper lid: the vertices above the
     // line through the eye corners, 1 at the upper margin falling (smoothstep) to 0 at 9 mm from
-    // it; lower lid likewise below the line, 0 at 5 mm; both fade to 0 at the corners (smoothstep
-    // over the outer 30 % of the eye's width at each end) so the corners stay put. The cup's lining
+    // it; lower lid likewise below the line, 0 at 5 mm; the lower lid fades to 0 at the corners
+    // (smoothstep over the outer 30 % of the eye's width at each end) so the corners stay put, the
+    // upper lid by its margin's closing share (below). The cup's lining
     // inside the eyeball's sphere turns with its lid like the margin; the rest of the cup (behind
     // the eye centre) is hidden by the eyeball and moves with neither lid.
     {
@@ -312,6 +318,33 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
       auto above = [&](const Vec3& p) { return p.y() > k0.y() + along(p) * (k1.y() - k0.y()); };
       std::vector<int> upper_margin, lower_margin;
       for (int v : margin) (above(b.v[static_cast<std::size_t>(v)]) ? upper_margin : lower_margin).push_back(v);
+      // A full blink turns each upper margin vertex onto the lower margin's rest position at its x:
+      // its share of close_angle is the angle (about the eye centre, in the y–z plane) from it down
+      // to the lower margin there, over close_angle — 1 in the middle, falling to 0 at the corners,
+      // where the lids already meet. Upper-lid vertices take the share of their nearest margin
+      // vertex (this replaces the corner fade for the upper lid).
+      auto pitch = [&](const Vec3& q) { return std::atan2(q.y() - c.y(), q.z() - c.z()); };
+      std::vector<std::pair<double, double>> lower_line;  // (x, angle) of the lower margin, by x
+      for (int m : lower_margin)
+        lower_line.push_back(
+            {b.v[static_cast<std::size_t>(m)].x(), pitch(b.v[static_cast<std::size_t>(m)])});
+      std::sort(lower_line.begin(), lower_line.end());
+      auto lower_pitch = [&](double x) {
+        if (x <= lower_line.front().first) return lower_line.front().second;
+        if (x >= lower_line.back().first) return lower_line.back().second;
+        const auto it =
+            std::lower_bound(lower_line.begin(), lower_line.end(), std::make_pair(x, -1e9));
+        const auto& [x1, a1] = *it;
+        const auto& [x0, a0] = *(it - 1);
+        return x1 > x0 ? a0 + (a1 - a0) * (x - x0) / (x1 - x0) : a1;
+      };
+      std::vector<double> share(upper_margin.size(), 1.0);
+      if (!lower_line.empty() && eye.close_angle > 1e-6) {
+        for (std::size_t k = 0; k < upper_margin.size(); ++k) {
+          const Vec3& q = b.v[static_cast<std::size_t>(upper_margin[k])];
+          share[k] = std::clamp((pitch(q) - lower_pitch(q.x())) / eye.close_angle, 0.0, 1.0);
+        }
+      }
       eye.upper_lid.clear(), eye.upper_lid_weights.clear();
       eye.lower_lid.clear(), eye.lower_lid_weights.clear();
       for (int v = 0; v < nh; ++v) {
@@ -328,12 +361,18 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
           continue;
         const bool up = above(p);
         const auto& ring = up ? upper_margin : lower_margin;
-        double d = lining ? 0.0 : 1e9;
-        for (int m : ring) d = std::min(d, (b.v[static_cast<std::size_t>(m)] - p).norm());
+        double d = 1e9;
+        std::size_t nearest = 0;
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+          const double dk = (b.v[static_cast<std::size_t>(ring[k])] - p).norm();
+          if (dk < d) d = dk, nearest = k;
+        }
+        if (lining) d = 0.0;
         const double reach = up ? 0.009 : 0.005;
         const double t = std::clamp(d / reach, 0.0, 1.0);
         const double a = along(p), ea = std::clamp(a / 0.3, 0.0, 1.0), eb = std::clamp((1.0 - a) / 0.3, 0.0, 1.0);
-        const double corner = ea * ea * (3.0 - 2.0 * ea) * eb * eb * (3.0 - 2.0 * eb);
+        const double corner = up ? (share.empty() ? 0.0 : share[nearest])
+                                 : ea * ea * (3.0 - 2.0 * ea) * eb * eb * (3.0 - 2.0 * eb);
         const double w = (1.0 - t * t * (3.0 - 2.0 * t)) * corner;
         if (w < 1e-3) continue;
         (up ? eye.upper_lid : eye.lower_lid).push_back(v);
