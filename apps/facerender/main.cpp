@@ -21,8 +21,8 @@ int main(int argc, char** argv) {
                "Example: facerender out/frame_0000.obj out/frame_0001.obj --sheet 2 --out sheet.png"};
   std::vector<std::string> meshes;
   std::string out, view = "front", rig_path, video, audio;
-  int sheet = 0, width = 480, height = 560, fps = 25;
-  double yaw = 0.0, shadow = fm::RenderOptions{}.shadow, occlusion = fm::RenderOptions{}.occlusion;
+  int sheet = 0, fps = 25;
+  fm::RenderOptions ro;  // size, yaw and light terms straight from the flags
   std::string camera = "auto";
   bool no_paint = false;
   app.add_option("meshes", meshes, "Mesh files (OBJ/PLY/OFF/glTF/GLB)")->required();
@@ -37,12 +37,13 @@ int main(int argc, char** argv) {
                  "Rig for material colours and its mesh frame, or 'generic' (default: the built-in default face, or\n"
                  "the generic face, when the vertex count matches; otherwise the mesh's own vertex colours, else\n"
                  "uniform skin)");
-  app.add_option("--width", width, "Image width in pixels")->check(CLI::Range(16, 8192));
-  app.add_option("--height", height, "Image height in pixels")->check(CLI::Range(16, 8192));
-  app.add_option("--yaw", yaw, "Extra camera yaw in radians")->check(CLI::Range(-3.14159, 3.14159));
-  app.add_option("--shadow", shadow, "Strength of the key light's cast shadow, 0 = none")
+  app.add_option("--width", ro.width, "Image width in pixels")->check(CLI::Range(16, 8192));
+  app.add_option("--height", ro.height, "Image height in pixels")->check(CLI::Range(16, 8192));
+  app.add_option("--yaw", ro.yaw, "Extra camera yaw in radians")
+      ->check(CLI::Range(-3.14159, 3.14159));
+  app.add_option("--shadow", ro.shadow, "Strength of the key light's cast shadow, 0 = none")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--occlusion", occlusion,
+  app.add_option("--occlusion", ro.occlusion,
                  "Strength of ambient occlusion (dark cavities), 0 = none")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--video", video, "Also encode the frames to a video (.mp4/.mov/.mkv/.gif) with the ffmpeg binary");
@@ -60,13 +61,8 @@ int main(int argc, char** argv) {
                   : rig_path == "generic" ? fm::make_generic_face().rig
                                           : fm::read_rig(rig_path);
     std::vector<Eigen::Vector3f> colors;  // from the first mesh that fits the rig (same topology)
-    fm::RenderOptions options;
+    fm::RenderOptions options = ro;
     options.view = fm::view_from_string(view);
-    options.width = width;
-    options.height = height;
-    options.yaw = yaw;
-    options.shadow = shadow;
-    options.occlusion = occlusion;
     struct Input {
       fm::Mesh mesh;
       std::vector<Eigen::Vector3f> colors;
