@@ -94,9 +94,9 @@ TEST(RigIo, RejectsMalformedAndTruncatedText) {
   EXPECT_THROW(parse_rig("{\"format\": \"emoface.rig\", \"version\": \"1.0\", \"x\": NaN}", "t.rig"), FormatError);
 }
 
-// The default rig with every format 1.1 and 1.2 field set: a frame (mesh in decimetres, turned 90°
-// about y and shifted), lips driven through bindings only, two parts, the border's jaw weights
-// (1.2).
+// The default rig with every format 1.1, 1.2 and 1.3 field set: a frame (mesh in decimetres,
+// turned 90° about y and shifted), lips driven through bindings only, two parts, the border's jaw
+// weights (1.2), the left eye's tightening angle (1.3).
 Rig rig_1_1() {
   Rig rig = default_face().rig;
   rig.frame.scale = 0.1;
@@ -110,13 +110,14 @@ Rig rig_1_1() {
   rig.lips.border_jaw.assign(LipGrid::kAround, 0.0);
   rig.lips.border_jaw[3] = 0.25;
   rig.lips.border_jaw[18] = 1.0;
+  rig.eyes[1].tighten_angle = 0.7 * rig.eyes[1].close_angle;
   return rig;
 }
 
 TEST(RigIo, RoundTripsFormat11Fields) {
   const Rig rig = rig_1_1();
   const std::string text = format_rig(rig);
-  EXPECT_NE(text.find("\"version\": \"1.2\""), std::string::npos);
+  EXPECT_NE(text.find("\"version\": \"1.3\""), std::string::npos);
   const Rig back = parse_rig(text, "mem");
   EXPECT_EQ(format_rig(back), text);
   EXPECT_EQ(back.frame.scale, 0.1);
@@ -135,6 +136,9 @@ TEST(RigIo, RoundTripsFormat11Fields) {
   EXPECT_EQ(back.parts[0].side, 0);
   EXPECT_EQ(back.parts[0].vertices, (std::vector<int>{1, 2, 5}));
   EXPECT_EQ(back.lips.border_jaw, rig.lips.border_jaw);
+  EXPECT_FALSE(back.eyes[0].tighten_angle.has_value());
+  ASSERT_TRUE(back.eyes[1].tighten_angle.has_value());
+  EXPECT_EQ(*back.eyes[1].tighten_angle, *rig.eyes[1].tighten_angle);
 }
 
 TEST(RigIo, ReadsVersion10WithDefaults) {
@@ -143,6 +147,7 @@ TEST(RigIo, ReadsVersion10WithDefaults) {
   EXPECT_FALSE(doc.contains("parts"));
   EXPECT_FALSE(doc["lips"].contains("bound"));
   EXPECT_FALSE(doc["lips"].contains("border_jaw"));  // 1.2: empty = derived by the solver
+  EXPECT_FALSE(doc["eyes"][0].contains("tighten_angle"));  // 1.3: empty = close_angle
   doc["version"] = "1.0";
   const Rig rig = parse_rig(doc.dump(), "old.rig");
   EXPECT_TRUE(rig.frame.is_identity());
@@ -150,6 +155,7 @@ TEST(RigIo, ReadsVersion10WithDefaults) {
   EXPECT_TRUE(rig.lips.bound.empty());
   EXPECT_TRUE(rig.parts.empty());
   EXPECT_TRUE(rig.lips.border_jaw.empty());
+  EXPECT_FALSE(rig.eyes[0].tighten_angle || rig.eyes[1].tighten_angle);
   EXPECT_TRUE(same_rig(rig, default_face().rig));
 }
 
@@ -159,12 +165,12 @@ TEST(RigIo, ReadsVersion10WithDefaults) {
 TEST(RigIo, UnknownFieldRule) {
   const Json base = Json::parse(format_rig(rig_1_1()));
   Json newer = base;
-  newer["version"] = "1.3";
+  newer["version"] = "1.4";
   newer["a_later_minor_field"] = Json::object({{"x", 1}});
   newer["lips"]["another_one"] = 3;
   newer["lips"]["bound"][1]["stiffness"] = 0.5;
   newer["eyes"][0]["iris_radius"] = 0.006;
-  newer["muscles"][2]["note"] = "added in 1.3";
+  newer["muscles"][2]["note"] = "added in 1.4";
   newer["frame"]["units"] = "dm";
   newer["parts"][0]["colour"] = "white";
   EXPECT_EQ(format_rig(parse_rig(newer.dump(), "new.rig")), format_rig(rig_1_1()));
@@ -180,7 +186,7 @@ TEST(RigIo, UnknownFieldRule) {
       {[](Json& d) { d["parts"][1]["sied"] = 0; }, "/parts/1/sied"},
       {[](Json& d) { d["a/b~c"] = 0; }, "/a~1b~0c"},  // RFC 6901 escapes
   };
-  for (const char* version : {"1.2", "1.1", "1.0"}) {
+  for (const char* version : {"1.3", "1.2", "1.1", "1.0"}) {
     for (const auto& [edit, pointer] : typos) {
       Json doc = base;
       doc["version"] = version;
@@ -244,6 +250,15 @@ TEST(RigIo, RejectsBadFormat11Content) {
   expect_bad_11([](Json& d) { d["lips"]["border_jaw"][6] = -0.1; }, "/lips/border_jaw/6");
   expect_bad_11([](Json& d) { d["lips"]["border_jaw"][7] = "half"; }, "/lips/border_jaw/7");
   expect_bad_11([](Json& d) { d["lips"]["border_jaw"] = 0.5; }, "/lips/border_jaw");
+  // 1.3: the tightening angle lies in [0, close_angle] (more could shut the eye)
+  expect_bad_11(
+      [](Json& d) {
+        d["eyes"][1]["tighten_angle"] = d["eyes"][1]["close_angle"].get<double>() + 0.01;
+      },
+      "/eyes/1/tighten_angle");
+  expect_bad_11([](Json& d) { d["eyes"][1]["tighten_angle"] = -0.1; }, "/eyes/1/tighten_angle");
+  expect_bad_11([](Json& d) { d["eyes"][1]["tighten_angle"] = "nan"; }, "/eyes/1/tighten_angle");
+  expect_bad_11([](Json& d) { d["eyes"][0]["tighten_angle"] = nullptr; }, "/eyes/0/tighten_angle");
   expect_bad_11(
       [](Json& d) {
         d["lips"]["control_points"] = Json::array();

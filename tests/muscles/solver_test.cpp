@@ -238,6 +238,47 @@ double lid_angle(const fm::Eye& eye, const fm::Vertices& X, int v) {
   return std::atan2(p1.y(), p1.z()) - std::atan2(p0.y(), p0.z());
 }
 
+// A rig may tighten its lids by a smaller angle than the one that closes them
+// (facemesh::Eye::tighten_angle, rig format 1.3): the tightener (AU7) and the cheek's push (AU6)
+// are fractions of it, the blink still closes by close_angle.
+TEST(FaceSolver, TheTightenerTurnsTheLidsByTheTighteningAngle) {
+  fm::Face f = face();
+  auto& eye = f.rig.eyes[0];
+  eye.tighten_angle = 0.5 * eye.close_angle;
+  SolverOptions off;
+  off.eyelid_coupling = EyelidCoupling::Off;
+  const FaceSolver s(f.mesh, f.rig, off);
+  const auto d = s.deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}}));
+  int upper = 0, lower = 0;
+  for (std::size_t k = 0; k < eye.upper_lid.size(); ++k, ++upper)
+    EXPECT_NEAR(lid_angle(eye, d.vertices, eye.upper_lid[k]),
+                -off.lid_tighten_upper * 0.5 * eye.close_angle * eye.upper_lid_weights[k], 1e-9);
+  // the cheek's push adds lid_cheek_raise of the same angle to the lower lid's tightening
+  const auto c = s.deform(
+      values({{"orbicularis_oculi_palpebralis_r", 1.0}, {"orbicularis_oculi_orbitalis_r", 0.5}}));
+  for (std::size_t k = 0; k < eye.lower_lid.size(); ++k, ++lower) {
+    EXPECT_NEAR(lid_angle(eye, d.vertices, eye.lower_lid[k]),
+                off.lid_tighten_lower * 0.5 * eye.close_angle * eye.lower_lid_weights[k], 1e-9);
+    if (eye.lower_lid_weights[k] > 0.999) {  // the orbitalis sphincter moves the rest of the lid
+      EXPECT_NEAR(lid_angle(eye, c.vertices, eye.lower_lid[k]),
+                  (off.lid_tighten_lower + 0.5 * off.lid_cheek_raise) * 0.5 * eye.close_angle,
+                  1e-9);
+    }
+  }
+  EXPECT_GT(upper, 0);
+  EXPECT_GT(lower, 0);
+  // the same level leaves more of the eye open than with the full closing angle
+  const auto full = FaceSolver(face().mesh, face().rig, off)
+                        .deform(values({{"orbicularis_oculi_palpebralis_r", 1.0}}));
+  EXPECT_GT(eye_aperture(f.rig, d.vertices, 0), eye_aperture(face().rig, full.vertices, 0) + 1e-3);
+  // a blink still closes the eye, the tightener on or off
+  for (double t : {0.0, 1.0}) {
+    const auto shut =
+        s.deform(values({{"orbicularis_oculi_palpebralis_r", t}, {"eye_blink_r", 1.0}}));
+    EXPECT_EQ(eye_aperture(f.rig, shut.vertices, 0), 0.0) << t;
+  }
+}
+
 TEST(FaceSolver, PalpebralisTightensTheLidsButNeverClosesThem) {
   // FACS AU7 (lid tightener): the aperture narrows, the lower lid rises; closure is AU45
   // (eye_blink).

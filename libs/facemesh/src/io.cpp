@@ -98,7 +98,8 @@ constexpr std::size_t kMaxVertices = 10'000'000;  // bounds the memory a hostile
 }  // namespace
 
 Rig parse_rig(std::string_view text, const std::string& source) {
-  // The unknown-field rule of docs/formats.md: a newer 1.x may add fields; 1.0 and 1.1 may not.
+  // The unknown-field rule of docs/formats.md: a newer 1.x may add fields; this and older minors
+  // may not.
   const core::JsonReader reader(text, source, "rig", {kRigFormatMajor, kRigFormatMinor});
   const JsonValue doc = reader.root();
   doc.only_keys({"mesh", "vertex_count", "regions", "materials", "head_pivot", "lips", "jaw",
@@ -152,7 +153,7 @@ Rig parse_rig(std::string_view text, const std::string& source) {
     const JsonValue j = eyes[e];
     j.only_keys({"centre", "radius", "eyeball_vertices", "upper_lid", "upper_lid_weights",
                  "lower_lid", "lower_lid_weights", "close_angle", "open_angle", "yaw_limit",
-                 "pitch_limit"});
+                 "pitch_limit", "tighten_angle"});
     Eye& eye = rig.eyes[e];
     eye.centre = vec3(j.at("centre"));
     eye.radius = j.at("radius").number();
@@ -165,6 +166,8 @@ Rig parse_rig(std::string_view text, const std::string& source) {
     eye.open_angle = j.at("open_angle").number();
     eye.yaw_limit = j.at("yaw_limit").number();
     eye.pitch_limit = j.at("pitch_limit").number();
+    // format 1.3 (absent before: the tightener's angle is close_angle)
+    if (const auto tighten = j.find("tighten_angle")) eye.tighten_angle = tighten->number();
   }
   const JsonValue landmarks = doc.at("landmarks");
   landmarks.only_keys({"ibug68", "retarget"});
@@ -273,6 +276,7 @@ std::string format_rig(const Rig& rig) {
     j["open_angle"] = eye.open_angle;
     j["yaw_limit"] = eye.yaw_limit;
     j["pitch_limit"] = eye.pitch_limit;
+    if (eye.tighten_angle) j["tighten_angle"] = *eye.tighten_angle;
     eyes.push_back(j);
   }
   doc["eyes"] = eyes;

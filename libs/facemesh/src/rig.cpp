@@ -181,6 +181,7 @@ void validate_rig(const Rig& rig, const std::string& source) {
     c.weights(eye.lower_lid, eye.lower_lid_weights, p + "/lower_lid_weights");
     c.number(eye.close_angle, 0.0, 3.14159, p + "/close_angle");
     c.number(eye.open_angle, 0.0, 3.14159, p + "/open_angle");
+    if (eye.tighten_angle) c.number(*eye.tighten_angle, 0.0, eye.close_angle, p + "/tighten_angle");
     c.number(eye.yaw_limit, 1e-6, 1.5707963267948966, p + "/yaw_limit");
     c.number(eye.pitch_limit, 1e-6, 1.5707963267948966, p + "/pitch_limit");
   }

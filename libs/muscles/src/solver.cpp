@@ -840,20 +840,23 @@ void FaceSolver::Impl::apply_lids_jaw_lips(const std::vector<double>& values,
   // weighted from the lid margin outwards. Pars palpebralis tightens (AU7: upper lid a little down,
   // lower lid up, never shut); a blink (eye_blink, AU45) closes the lid, linear in its level, and
   // takes over from the tightener and the levator (AU5) as it rises, so blink = 1 closes exactly
-  // (upper lid by close_angle, lower lid up by 0.2 of it) whatever else is active.
+  // (upper lid by close_angle, lower lid up by 0.2 of it) whatever else is active. The tightener's
+  // and the cheek's fractions are of Eye::tighten_angle (≤ close_angle; close_angle when absent).
   for (std::size_t e = 0; e < 2; ++e) {
     const auto& eye = rig_.eyes[e];
     const double blink = values[blink_param_[e]];
     const double tight = lids[e].closing;
-    const double upper =
-        eye.close_angle * ((1.0 - blink) * options_.lid_tighten_upper * tight + blink) -
-        (1.0 - blink) * values[opening_param_[e]] * eye.open_angle;
+    const double tighten_angle = eye.tighten_angle.value_or(eye.close_angle);
+    const double upper = (1.0 - blink) * tighten_angle * options_.lid_tighten_upper * tight +
+                         blink * eye.close_angle -
+                         (1.0 - blink) * values[opening_param_[e]] * eye.open_angle;
     // lower lid: the tightener (AU7) and the cheek pushed up by the orbitalis (AU6), capped so
     // that they never meet the tightened upper lid
     const double lower_raise =
         std::min(options_.lid_tighten_lower * tight + options_.lid_cheek_raise * lids[e].squeezing,
                  0.8 - options_.lid_tighten_upper);
-    const double lower = -eye.close_angle * ((1.0 - blink) * lower_raise + 0.2 * blink);
+    const double lower =
+        -((1.0 - blink) * tighten_angle * lower_raise + 0.2 * blink * eye.close_angle);
     if (upper != 0.0) {
       for (std::size_t k = 0; k < eye.upper_lid.size(); ++k) {
         const int v = eye.upper_lid[k];

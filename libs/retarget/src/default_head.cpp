@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -244,23 +245,29 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
     // the lids now turn about the new centre: keep the closing angle's share of the opening
     // measured over the middle 40 % of the eye's width, where the opening is widest (the whole
     // margin's mean left a 1.4 mm slit at a full blink; issue 14, session 6); towards the corners
-    // the upper lid's weights scale the angle down to each margin vertex's own opening (below)
+    // the upper lid's weights scale the angle down to each margin vertex's own opening (below).
+    // The tightener (AU7) and the cheek's push (AU6) keep the whole margin's mean as their angle
+    // (Eye::tighten_angle): the wider closing angle is for the blink alone.
     const double middle = 0.2 * (hi.x() - lo.x());
-    auto opening = [&](const Vec3& centre) {
+    auto opening = [&](const Vec3& centre, double half_width) {
       Vec3 up = Vec3::Zero(), dn = Vec3::Zero();
       int nu = 0, nd = 0;
       for (int v : margin) {
         const Vec3& p = b.v[static_cast<std::size_t>(v)];
-        if (std::abs(p.x() - o.x()) > middle) continue;
+        if (std::abs(p.x() - o.x()) > half_width) continue;
         ((p.y() > o.y()) ? (++nu, up) : (++nd, dn)) += p;
       }
       if (nu == 0 || nd == 0) return 0.0;
       up = up / nu - centre, dn = dn / nd - centre;
       return std::atan2(up.y(), up.z()) - std::atan2(dn.y(), dn.z());
     };
-    const double open_old = opening(c_old), open_new = opening(c);
-    if (open_old > 1e-6 && open_new > 1e-6)
+    const double whole = std::numeric_limits<double>::infinity();
+    const double open_old = opening(c_old, middle), open_new = opening(c, middle),
+                 open_mean = opening(c, whole);
+    if (open_old > 1e-6 && open_new > 1e-6) {
       eye.close_angle = 1.05 * open_new / 1.2;  // upper down by it, lower up by 0.2 of it: they meet
+      if (open_mean > 1e-6) eye.tighten_angle = std::min(eye.close_angle, 1.05 * open_mean / 1.2);
+    }
     eye.centre = c;
     // the margin polygon (sorted by angle about o) and the head vertices seen through it
     std::vector<std::pair<double, int>> around;

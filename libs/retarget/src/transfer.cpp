@@ -779,6 +779,7 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
     te = se;
     te.eyeball_vertices.clear(), te.upper_lid.clear(), te.upper_lid_weights.clear(),
         te.lower_lid.clear(), te.lower_lid_weights.clear();
+    te.tighten_angle.reset();  // the target's closing angle is measured below; AU7 is a share of it
     te.centre = se.centre + residual_at(se.centre);
   }
 

@@ -14,7 +14,7 @@ namespace emoface::facemesh {
 
 /// Current rig format version.
 inline constexpr int kRigFormatMajor = 1;
-inline constexpr int kRigFormatMinor = 2;
+inline constexpr int kRigFormatMinor = 3;
 
 /// Parses rig JSON text; `source` names it in errors. Throws FormatError (with JSON pointer) on any
 /// problem, including validate_rig failures.

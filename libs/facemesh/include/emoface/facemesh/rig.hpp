@@ -3,13 +3,13 @@
 // (§2.3.1), the B-spline lip grid (§2.3.2), muscles (Table 2.1, Appendix B), jaw pivot (§2.4.4), eyes
 // and eyelids (§2.4.3, §2.4.5), landmarks (iBUG 68 and the retargeting landmarks of chapter 3).
 // Units: metres and radians; axes as in mesh.hpp (+x subject's left, +y up, +z out of the face).
+#include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace emoface::facemesh {
 
@@ -117,6 +117,12 @@ struct Eye {
   std::vector<int> lower_lid;
   std::vector<double> lower_lid_weights;
   double close_angle = 0.6;   ///< upper-lid rotation (rad, about +x through centre) that closes the eye
+  /// The angle the lid tightener (AU7) and the cheek's push on the lower lid (AU6) are fractions of
+  /// (muscles::SolverOptions::lid_tighten_upper/lower, lid_cheek_raise), rad, in [0, close_angle];
+  /// empty: close_angle (rig format 1.3; absent before). The default head closes its lids by an
+  /// angle measured where the eye is widest and tightens them by one measured over the whole
+  /// margin, so that a full blink closes the eye without making AU7 and AU6 stronger (issue 14).
+  std::optional<double> tighten_angle;
   double open_angle = 0.15;   ///< extra upper-lid raise at full levator contraction, rad
   double yaw_limit = 0.6;     ///< elliptical eye-hole limit: (yaw/yaw_limit)^2+(pitch/pitch_limit)^2 <= 1
   double pitch_limit = 0.4;

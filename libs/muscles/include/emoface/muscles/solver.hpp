@@ -56,8 +56,9 @@ struct SolverOptions {
   EyelidCoupling eyelid_coupling = EyelidCoupling::OneEye;
   /// Orbicularis oculi pars palpebralis is the lid *tightener* (FACS AU7: narrows the eye aperture
   /// and raises the lower lid; Ekman, Friesen & Hager 2002); closing the eye is a blink (AU45,
-  /// eye_blink_*). At palpebralis level t the upper lid turns down by tighten_upper·close_angle·t
-  /// and the lower lid up by tighten_lower·close_angle·t (linear), both fractions in [0, 0.6], their
+  /// eye_blink_*). At palpebralis level t the upper lid turns down by tighten_upper·a·t and the
+  /// lower lid up by tighten_lower·a·t (linear; a = facemesh::Eye::tighten_angle, which is at most
+  /// close_angle and is close_angle when the rig has none), both fractions in [0, 0.6], their
   /// sum ≤ 0.8 so that t = 1 never shuts the eye (close_angle + 0.2·close_angle does). Defaults: on
   /// the default face t = 1 leaves about a third of the neutral aperture, mostly by raising the
   /// lower lid (docs/muscles.md, deviations).
@@ -66,8 +67,8 @@ struct SolverOptions {
   /// Orbicularis oculi pars orbitalis (FACS AU6, the cheek raiser) bunches the cheek against the
   /// lower lid and pushes it up (Ekman & Friesen 1975: "lower eyelid is pushed up ... by the
   /// cheek"): at orbitalis level s the lower lid turns up by a further
-  /// lid_cheek_raise·close_angle·s, in [0, 0.6]. The lower lid's total (tightener + cheek) is
-  /// capped at 0.8 − lid_tighten_upper of close_angle, so the two together never shut the eye
+  /// lid_cheek_raise·a·s, in [0, 0.6]. The lower lid's total (tightener + cheek) is
+  /// capped at 0.8 − lid_tighten_upper of a, so the two together never shut the eye
   /// either (issue 14). Default 0.15: on the default face (the MakeHuman head) the smile then reads
   /// as happiness to the expression oracle; 0 gives the generic face's old lids (docs/muscles.md).
   double lid_cheek_raise = 0.15;
