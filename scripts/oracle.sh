@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Expression oracle (issue 14): render neutral + the six emotions at 0.9 on the built-in face (front,
-# 480×560: emo2muscle → faceanim → facerender) and let an independent network name them
+# 480×560, at three camera distances: emo2muscle → faceanim → facerender) and let an independent network name them
 # (@vladmandic/human's emotion model, tests/oracle/classify.cjs). Prints the confusion table; exit 1
 # when fewer than MIN (default 6) of the 7 are top-1 correct.
 # Installs Node/npm from Debian if missing and the pinned npm packages with `npm ci`
@@ -13,7 +13,8 @@
 # --network faceapi: a second network, @vladmandic/face-api's FaceExpressionNet, names the same renders
 # (OUT_DIR out/oracle_faceapi or out/oracle_arkit_faceapi; tests/oracle/classify.cjs explains both).
 # Usage: scripts/oracle.sh [--no-build] [--arkit] [--network human|faceapi]   Env: BUILD_DIR (build), OUT_DIR (out/oracle), MIN (6),
-#        JOBS (2), EMOTIONS (tests/oracle/emotions.csv), RIG (a rig file or "generic"; default face)
+#        JOBS (2), EMOTIONS (tests/oracle/emotions.csv), RIG (a rig file or "generic"; default face),
+#        DISTANCES ("0.9 1.0 1.1": each face rendered at these camera distances, its scores averaged)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR=${BUILD_DIR:-build}
@@ -22,6 +23,7 @@ MIN=${MIN:-6}
 JOBS=${JOBS:-2}
 EMOTIONS=${EMOTIONS:-tests/oracle/emotions.csv}
 RIG=${RIG:-}  # a rig file or "generic"; empty: the built-in default face
+DISTANCES=${DISTANCES:-0.9 1.0 1.1}  # camera distances, m (facerender --distance)
 rig_args=()
 if [ -n "$RIG" ]; then rig_args=(--rig "$RIG"); fi
 build=1
@@ -72,12 +74,18 @@ else
   "$bin"/emo2muscle/emo2muscle "$EMOTIONS" --sides -o "$OUT_DIR"/muscles.csv
   "$bin"/faceanim/faceanim "${rig_args[@]}" --params "$OUT_DIR"/muscles.csv --out "$OUT_DIR"/frames
 fi
-"$bin"/facerender/facerender "${rig_args[@]}" "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
-  --out "$OUT_DIR"/face.png
+# Each face at three camera distances, framed as a portrait (the face box the networks crop lies
+# inside the image at all three; at the default framing, 0.75 m, the head fills the frame and
+# human's box is clipped by it); a row's scores are the mean of the three (classify.cjs).
 args=()
-i=0
-while IFS=, read -r id _; do
-  args+=("$id=$OUT_DIR/$(printf 'face_%04d.png' "$i")")
-  i=$((i + 1))
-done < <(tail -n +2 "$EMOTIONS")
+for d in $DISTANCES; do
+  mkdir -p "$OUT_DIR/d$d"
+  "$bin"/facerender/facerender "${rig_args[@]}" "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
+    --distance "$d" --out "$OUT_DIR/d$d/face.png"
+  i=0
+  while IFS=, read -r id _; do
+    args+=("$id=$OUT_DIR/d$d/$(printf 'face_%04d.png' "$i")")
+    i=$((i + 1))
+  done < <(tail -n +2 "$EMOTIONS")
+done
 node tests/oracle/classify.cjs --network "$network" --min "$MIN" --json "$OUT_DIR"/oracle.json "${args[@]}"

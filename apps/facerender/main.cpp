@@ -41,6 +41,11 @@ int main(int argc, char** argv) {
   app.add_option("--height", ro.height, "Image height in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--yaw", ro.yaw, "Extra camera yaw in radians")
       ->check(CLI::Range(-3.14159, 3.14159));
+  app.add_option(
+         "--distance", ro.distance,
+         "Camera distance from the head in metres (the face framing: 0.75; larger shows the head\n"
+         "smaller, with room around it, as in a portrait photograph)")
+      ->check(CLI::Range(0.05, 100.0));
   app.add_option("--shadow", ro.shadow, "Strength of the key light's cast shadow, 0 = none")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--occlusion", ro.occlusion,

@@ -119,6 +119,33 @@ TEST_F(Apps, FacerenderPngAndSheet) {
   EXPECT_FALSE(fs::exists(p("x.png")));
 }
 
+// --distance moves the camera back: the head covers fewer pixels (the portrait framing of
+// scripts/oracle.sh); out-of-range distances are refused.
+TEST_F(Apps, FacerenderDistance) {
+  const auto face = emoface::facemesh::make_default_face();
+  emoface::facemesh::write_mesh(p("a.obj"), face.mesh);
+  auto covered = [&](const std::string& file) {  // pixels off the background's colour
+    const emoface::core::Image im = emoface::core::read_png(file);
+    int n = 0;
+    for (std::size_t i = 0; i + 2 < im.rgb.size(); i += 3)
+      n += std::abs(im.rgb[i] - im.rgb[0]) + std::abs(im.rgb[i + 1] - im.rgb[1]) +
+               std::abs(im.rgb[i + 2] - im.rgb[2]) >
+           6;
+    return n;
+  };
+  const std::string base =
+      std::string(FACERENDER_EXE) + " " + p("a.obj") + " --width 96 --height 112";
+  ASSERT_EQ(run(base + " --distance 1 --out " + p("near.png")), 0);  // the whole head in the frame
+  ASSERT_EQ(run(base + " --distance 2 --out " + p("far.png")), 0);
+  const int near = covered(p("near.png")), far = covered(p("far.png"));
+  // the head's image scales with 1/distance: a quarter of the pixels at twice the distance
+  EXPECT_NEAR(static_cast<double>(far) / near, 0.25, 0.06) << near << " " << far;
+  EXPECT_EQ(run(base + " --distance 0 --out " + p("x.png")), 1);
+  EXPECT_EQ(run(base + " --distance nan --out " + p("x.png")),
+            2);  // passes the flag's range, not RenderOptions
+  EXPECT_FALSE(fs::exists(p("x.png")));
+}
+
 namespace fm = emoface::facemesh;
 namespace core = emoface::core;
 
