@@ -47,9 +47,11 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // superioris = AU10, disgust's upper-lip raiser): fear's mouth is AU20+25/26 (round 4);
       // AU4 only as the corrugator (m14) drawing the raised brows together, no m13/m15
       // (depressor supercilii, depressor glabellae: they pull the inner brows down, anger's
-      // lowered brow; round 5)
+      // lowered brow; round 5), a step stronger than printed (session 7: the brows drawn together
+      // are what tells fear from surprise)
       {Emotion::Fear,
-       {{16, "vs s m b vb"},
+       {{14, "vs s m b b"},
+        {16, "vs s m b vb"},
         {17, "vs vs s s s"},
         {19, "- vs s s s"},
         {3, "- - - - -"},
@@ -61,8 +63,9 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // brow) and the jaw drops open (AU26/27: m19 Big from High on; round 5)
       {Emotion::Surprise, {{9, "vs s m m b"}, {19, "vs vs s b b"}}},
       // anger: no m4 (risorius = AU20, fear's lip stretcher; anger presses the lips, AU23/24) and
-      // m10 (frontalis lateralis = AU2, not in anger's AUs 4+5+7+23/24) only up to Medium
-      {Emotion::Anger, {{4, "- - - - -"}, {10, "vs s s m m"}}},
+      // no m10 (frontalis lateralis = AU2, not in anger's AUs 4+5+7+23/24; up to Medium until
+      // session 7, when it held the lateral brows up against the stronger AU4)
+      {Emotion::Anger, {{4, "- - - - -"}, {10, "- - - - -"}}},
   };
   return t;
 }

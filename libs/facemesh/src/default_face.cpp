@@ -728,7 +728,8 @@ Face make_generic_face() {
        0.42,
        0.75,
        1.35,
-       0.0170,
+       0.0221,  // 17 mm until session 7: the smile at 0.9 read neutral as often as happy
+                // (docs/muscles.md)
        {R::RightLowerFace, R::RightMiddleFace},
        true,
        0,
@@ -740,7 +741,7 @@ Face make_generic_face() {
        0.35,
        0.75,
        1.3,
-       0.015,
+       0.0195,  // with the major (×1.3, session 7)
        {R::RightMiddleFace},
        true,
        0,
@@ -874,7 +875,7 @@ Face make_generic_face() {
        0.40,
        0.8,
        1.35,
-       0.0045,
+       0.0090,  // AU4 group ×2 (session 7): a full AU4 lowers the brow by several millimetres
        {R::RightMiddleFace, R::RightUpperFace},
        false,
        0,
@@ -889,10 +890,14 @@ Face make_generic_face() {
        // supercilii).
        P(-0.005, 0.008, 0.007),
        P(-0.030, 0.025, 0.001),
-       0.40,
-       0.688,  // 0.8 and 1.3 of the former 26.0 mm length (now 30.2 mm): the zone keeps its reach
-       1.118,  // (rs 20.8 mm, rf 33.8 mm on the generic face); only the direction changes
-       0.0080,
+       // session 7: the zone reaches the lateral brow (rs, rf 1.6 times session 6's 20.8 / 33.8 mm,
+       // a 0.6 rad cone) and the strength doubles, so that the whole brow comes down and in (AU4),
+       // not only its middle: the skin between the insertion and the brow's tail follows the
+       // insertion in a face, and Waters' zone is the model's only way to say so
+       0.60,
+       1.101,
+       1.789,
+       0.0160,
        {R::RightMiddleFace, R::RightUpperFace},
        false,
        2,
@@ -904,7 +909,7 @@ Face make_generic_face() {
        0.30,
        0.8,
        1.3,
-       0.0045,
+       0.0045,  // unchanged in session 7: it is also AU9's brow (faceweights), and its nose wrinkle
        {R::RightMiddleFace, R::RightUpperFace},
        false,
        2,
