@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -59,7 +60,8 @@ TEST(DefaultFace, DataFaceRegeneratesByteForByte) {
   for (const char* f : {"generic.rig", "generic_face.obj", "default.rig", "default_face.obj"})
     EXPECT_EQ(emoface::core::read_file((dir / f).string()), emoface::core::read_file(kData + f))
         << f << " differs: regenerate with  retarget --make-default-face data/face";
-  EXPECT_EQ(rep.head_vertices, 4459u);
+  EXPECT_EQ(rep.head_vertices, 4358u);  // 4,459 − 193 under the neck cut + 92 on its rim
+  EXPECT_GT(rep.neck_dropped, 100u);
   fs::remove_all(dir);
 }
 
@@ -460,6 +462,57 @@ TEST(DefaultFace, HairAboveTheHairlineOnly) {
       EXPECT_LT(lightest_hair, 90.0) << "no hair above the hairline, column " << x;
     }
   }
+}
+
+// The neck ends in a plane 20 mm under the chin (iBUG 8), closed by a cap with its own copy of the
+// rim: nothing of the face lies below the plane; under the chin the only open edges are the rim's,
+// on the plane, each there twice (the neck's side and the cap's) with opposite directions; the cap
+// faces down; the neck's rim vertices keep the neck's sideways normals (shared with the cap they
+// averaged in its downward ones and shaded the neck's end dark).
+TEST(DefaultFace, TheNeckEndsInAPlaneUnderTheChin) {
+  const fm::Face face = fm::make_default_face();
+  const auto& X = face.mesh.vertices;
+  const auto& F = face.mesh.faces;
+  const double chin = X(face.rig.ibug68[8], 1), y_cut = chin - 0.020;
+  EXPECT_GE(X.col(1).minCoeff(), y_cut);
+  std::map<std::pair<int, int>, int> directed;
+  for (long t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) ++directed[{F(t, k), F(t, (k + 1) % 3)}];
+  // open edges under the chin, keyed by their end positions
+  std::map<std::array<double, 6>, int> open_at;
+  int open = 0;
+  for (const auto& [e, n] : directed) {
+    if (std::max(X(e.first, 1), X(e.second, 1)) > chin - 0.010) continue;
+    EXPECT_EQ(n, 1);
+    if (directed.count({e.second, e.first})) continue;
+    ++open;
+    EXPECT_EQ(X(e.first, 1), y_cut);
+    EXPECT_EQ(X(e.second, 1), y_cut);
+    std::array<double, 3> a{X(e.first, 0), X(e.first, 1), X(e.first, 2)},
+        b{X(e.second, 0), X(e.second, 1), X(e.second, 2)};
+    if (b < a) std::swap(a, b);
+    ++open_at[{a[0], a[1], a[2], b[0], b[1], b[2]}];
+  }
+  EXPECT_GT(open, 60);
+  EXPECT_EQ(open, static_cast<int>(2 * open_at.size()));
+  for (const auto& [key, n] : open_at) EXPECT_EQ(n, 2);
+  const auto& cap = part(face.rig, "neck_cap");
+  std::vector<char> in_cap(static_cast<std::size_t>(X.rows()), 0);
+  for (int v : cap.vertices) in_cap[static_cast<std::size_t>(v)] = 1;
+  int cap_faces = 0;
+  for (long t = 0; t < F.rows(); ++t) {
+    if (!in_cap[static_cast<std::size_t>(F(t, 0))]) continue;
+    const Eigen::Vector3d a = X.row(F(t, 0)), b = X.row(F(t, 1)), c = X.row(F(t, 2));
+    EXPECT_LT((b - a).cross(c - a).y(), 0.0) << "cap triangle " << t << " faces up";
+    ++cap_faces;
+  }
+  EXPECT_EQ(cap_faces + 1, static_cast<int>(cap.vertices.size()));
+  const fm::Vertices n = fm::vertex_normals(X, F);
+  double lowest = 1.0;
+  for (int v : part(face.rig, "head").vertices)
+    if (X(v, 1) == y_cut) lowest = std::min(lowest, n(v, 1));
+  std::printf("neck rim: %d open edges, lowest rim normal y %.2f\n", open, lowest);
+  EXPECT_GT(lowest, -0.6);
 }
 
 TEST(DefaultFace, BadInputWritesNothing) {

@@ -54,14 +54,17 @@ constexpr double kHairSoft = 0.0015;  // the hairline's soft edge: ±1.5 mm (fin
 // Brows: the generic face's brow curve (default_face.cpp) around each of this head's eye centres,
 // x scaled by the eye's distance from the midline over the generic's (32 mm): from 11 to 50 mm
 // (scaled) out, a gentle arch peaking two thirds of the way out, the centre 18.5 mm above the eye
-// centre at the head (the generic's sits 20.3 mm above its smaller eye opening), 2.7 mm half height
-// at the head tapering to 1.2 mm at the tail, anti-aliased edges; lighter towards the tail.
+// centre at the head (the generic's sits 20.3 mm above its smaller eye opening), 4.0 mm half height
+// at the head tapering to 1.6 mm at the tail, anti-aliased edges; lighter towards the tail. The
+// band is as tall as a person's brow (8 mm at the head): at 5.4 mm it was one or two pixels in the
+// 64 × 64 crop the oracle's emotion network sees, and the corrugator's squeeze left a thin line
+// (issue 14, session 8).
 double brow_cover(const Rig& rig, double x, double y, double soft, double* tail) {
   const Eye& eye = rig.eyes[x < 0.0 ? 0 : 1];
   const double s = std::abs(eye.centre.x()) / 0.032;
   const double ax = std::abs(x) / s;
   const double t = std::clamp((ax - 0.011) / (0.050 - 0.011), 0.0, 1.0);
-  const double half = 0.0027 - 0.0015 * t * t;
+  const double half = 0.0040 - 0.0024 * t * t;
   const double arch = t * std::pow(1.0 - t, 0.55) / 0.3652;  // peaks at t = 0.645
   const double centre = eye.centre.y() + 0.0185 + 0.0045 * arch - 0.0010 * t;
   const double ends = smooth(0.0100, 0.0150, ax) * (1.0 - smooth(0.0460, 0.0505, ax));
@@ -137,7 +140,7 @@ Paint build_default_face_paint() {
       Eigen::Vector3f c = kSkin;
       double t = 0.0;
       const double brow = brow_cover(rig, x, y, soft, &t);
-      if (brow > 0.0) c += static_cast<float>(brow * (0.85 - 0.3 * t)) * (kBrow - c);
+      if (brow > 0.0) c += static_cast<float>(brow * (0.95 - 0.3 * t)) * (kBrow - c);
       const double z = depth.at(x, y);
       if (std::isfinite(z)) {
         const double hair = hair_cover(hairline, Eigen::Vector3d(x, y, z), kHairSoft);

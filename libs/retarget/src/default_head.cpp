@@ -136,6 +136,125 @@ std::vector<std::vector<int>> boundary_loops(const std::vector<Eigen::Vector3i>&
   return loops;
 }
 
+// The neck end (issue 14, session 8): MakeHuman's head ends in a ragged edge where the neck widens
+// into the shoulders (seen from the front, a flat collar; at 30 mm under the chin still the
+// trapezius' flare at the sides). Cut at the plane y = y_cut *after* the transfer (cutting the
+// target before it changed the fit's alignment, which samples the whole surface, and left strings
+// of skin across opened mouths): the vertices below the plane go, the triangles crossing it are
+// clipped (each crossing edge gets a vertex where it meets the plane, exactly on it: a flat rim;
+// moving the kept triangles' lower corners onto the plane instead folded thin triangles flat and
+// gave the rim downward normals), and the rig's vertex ids are renumbered: the kept vertices in
+// their order, then the rim's new ones, which take the material and region of the edge's upper end
+// and the jaw weight interpolated along the edge. Throws InvalidInput when a landmark would be cut
+// off.
+fm::Face cut_neck(const fm::Face& in, double y_cut, std::size_t* dropped) {
+  const auto& X = in.mesh.vertices;
+  const int n = static_cast<int>(X.rows());
+  auto above = [&](int v) { return X(v, 1) >= y_cut; };
+  std::vector<int> to_new(static_cast<std::size_t>(n), -1);
+  int m = 0;
+  for (int v = 0; v < n; ++v)
+    if (above(v)) to_new[static_cast<std::size_t>(v)] = m++;
+  if (dropped) *dropped = static_cast<std::size_t>(n - m);
+  struct Cut {
+    int up, down;
+    double t;  // position = X(up) + t (X(down) − X(up))
+  };
+  std::vector<Cut> cuts;
+  std::map<std::pair<int, int>, int> cut_id;  // (up, down) → new id
+  auto cut = [&](int up, int down) {
+    const auto [it, added] = cut_id.insert({{up, down}, m + static_cast<int>(cuts.size())});
+    if (added) cuts.push_back({up, down, (X(up, 1) - y_cut) / (X(up, 1) - X(down, 1))});
+    return it->second;
+  };
+  std::vector<Eigen::Vector3i> faces;
+  for (long t = 0; t < in.mesh.faces.rows(); ++t) {
+    const Eigen::Vector3i f = in.mesh.faces.row(t).transpose();
+    // the triangle's polygon above the plane, in its winding order (Sutherland–Hodgman, one plane)
+    std::vector<int> poly;
+    for (int k = 0; k < 3; ++k) {
+      const int p = f[k], q = f[(k + 1) % 3];
+      if (above(p)) poly.push_back(to_new[static_cast<std::size_t>(p)]);
+      if (above(p) != above(q)) poly.push_back(above(p) ? cut(p, q) : cut(q, p));
+    }
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+      faces.push_back({poly[0], poly[k], poly[k + 1]});
+  }
+  const int total = m + static_cast<int>(cuts.size());
+  fm::Face out;
+  out.mesh.vertices.resize(total, 3);
+  for (int v = 0; v < n; ++v)
+    if (to_new[static_cast<std::size_t>(v)] >= 0)
+      out.mesh.vertices.row(to_new[static_cast<std::size_t>(v)]) = X.row(v);
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    const Cut& c = cuts[k];
+    Vec3 p = X.row(c.up).transpose() + c.t * (X.row(c.down) - X.row(c.up)).transpose();
+    p.y() = y_cut;
+    out.mesh.vertices.row(m + static_cast<long>(k)) = p.transpose();
+  }
+  out.mesh.faces.resize(static_cast<long>(faces.size()), 3);
+  for (std::size_t t = 0; t < faces.size(); ++t)
+    out.mesh.faces.row(static_cast<long>(t)) = faces[t].transpose();
+  // the rig: per-vertex lists shrink, id lists drop the cut vertices (with their weights)
+  fm::Rig rig = in.rig;
+  auto id = [&](int v) { return to_new[static_cast<std::size_t>(v)]; };
+  auto keep = [&](std::vector<int>& ids, std::vector<double>* weights) {
+    std::size_t w = 0;
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      if (id(ids[k]) >= 0) {
+        if (weights) (*weights)[w] = (*weights)[k];
+        ids[w++] = id(ids[k]);
+      }
+    ids.resize(w);
+    if (weights) weights->resize(w);
+  };
+  rig.vertex_count = static_cast<std::size_t>(total);
+  rig.regions.clear(), rig.materials.clear();
+  for (int v = 0; v < n; ++v)
+    if (id(v) >= 0) {
+      rig.regions.push_back(in.rig.regions[static_cast<std::size_t>(v)]);
+      rig.materials.push_back(in.rig.materials[static_cast<std::size_t>(v)]);
+    }
+  for (const Cut& c : cuts) {
+    rig.regions.push_back(in.rig.regions[static_cast<std::size_t>(c.up)]);
+    rig.materials.push_back(in.rig.materials[static_cast<std::size_t>(c.up)]);
+  }
+  if (rig.lips.samples_in_mesh && !rig.lips.control_points.empty())
+    throw InvalidInput(
+        "default head: the neck cut needs a transferred rig (lip samples not in the mesh)");
+  std::vector<fm::LipBinding> bound;
+  for (fm::LipBinding lb : rig.lips.bound)
+    if (id(lb.vertex) >= 0) lb.vertex = id(lb.vertex), bound.push_back(lb);
+  rig.lips.bound = bound;
+  std::map<int, double> jaw_w;
+  for (std::size_t k = 0; k < in.rig.jaw.vertices.size(); ++k)
+    jaw_w[in.rig.jaw.vertices[k]] = in.rig.jaw.weights[k];
+  keep(rig.jaw.vertices, &rig.jaw.weights);
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    const Cut& c = cuts[k];
+    const double w = (1.0 - c.t) * (jaw_w.count(c.up) ? jaw_w[c.up] : 0.0) +
+                     c.t * (jaw_w.count(c.down) ? jaw_w[c.down] : 0.0);
+    if (w > 0.0) rig.jaw.vertices.push_back(m + static_cast<int>(k)), rig.jaw.weights.push_back(w);
+  }
+  for (auto& eye : rig.eyes) {
+    keep(eye.eyeball_vertices, nullptr);
+    keep(eye.upper_lid, &eye.upper_lid_weights);
+    keep(eye.lower_lid, &eye.lower_lid_weights);
+  }
+  for (auto& p : rig.parts) keep(p.vertices, nullptr);
+  for (int& v : rig.ibug68) {
+    if (id(v) < 0) throw InvalidInput("default head: the neck cut removes an iBUG landmark");
+    v = id(v);
+  }
+  for (auto& l : rig.retarget_landmarks) {
+    if (id(l.vertex) < 0)
+      throw InvalidInput("default head: the neck cut removes landmark " + l.name);
+    l.vertex = id(l.vertex);
+  }
+  out.rig = std::move(rig);
+  return out;
+}
+
 }  // namespace
 
 TransferOptions default_head_transfer_options() {
@@ -148,11 +267,16 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
                             DefaultHeadReport* report) {
   const TransferResult r =
       transfer_rig(generic, head.triangles(), head.groups(), default_head_transfer_options());
-  const fm::Face& t = r.face;
-  const fm::Rig& tr = t.rig;
-  const int nh = static_cast<int>(t.mesh.vertices.rows());
+  if (r.face.rig.ibug68.size() != 68)
+    throw InvalidInput("default head: the transferred rig has no iBUG-68 landmarks (the chin)");
   DefaultHeadReport rep;
   rep.transfer = r.report;
+  // the neck ends kNeckBelowChin under the chin (iBUG 8, the menton): a short neck, as in a bust
+  constexpr double kNeckBelowChin = 0.020;
+  const double y_cut = r.face.mesh.vertices(r.face.rig.ibug68[8], 1) - kNeckBelowChin;
+  const fm::Face t = cut_neck(r.face, y_cut, &rep.neck_dropped);
+  const fm::Rig& tr = t.rig;
+  const int nh = static_cast<int>(t.mesh.vertices.rows());
   rep.head_vertices = static_cast<std::size_t>(nh);
 
   Builder b;
@@ -660,19 +784,49 @@ fm::Face build_default_head(const fm::Face& generic, const fm::MeshDocument& hea
     }
   }
 
-  // ---- Neck end: the head's open boundary at the shoulders closed by a flat fan (skin).
+  // ---- Neck end: the flat rim left by the cut (cut_neck) closed by a fan (material and jaw weight
+  // of the rim). The fan has its own copy of the rim's vertices: sharing them, the rim's normals
+  // averaged the neck's (sideways) with the cap's (down) and the neck's lower end rendered as a
+  // dark, spiky band under the chin (session 8).
   {
+    std::map<int, double> jaw_w;
+    for (std::size_t k = 0; k < rig.jaw.vertices.size(); ++k)
+      jaw_w[rig.jaw.vertices[k]] = rig.jaw.weights[k];
     std::vector<Eigen::Vector3i> head_faces(b.f.begin(), b.f.begin() + t.mesh.faces.rows());
+    fm::Part cap;
+    cap.name = "neck_cap";
+    cap.kind = fm::PartKind::Other;
     for (const auto& loop : boundary_loops(head_faces)) {
       Vec3 c = Vec3::Zero();
-      for (int v : loop) c += b.v[static_cast<std::size_t>(v)];
+      bool on_cut = true;
+      for (int v : loop)
+        c += b.v[static_cast<std::size_t>(v)],
+            on_cut &= b.v[static_cast<std::size_t>(v)].y() == y_cut;
+      if (!on_cut) continue;  // only the rim the cut left
       c /= static_cast<double>(loop.size());
-      if (c.y() > rig.lips.centre.y()) continue;  // only the neck's end, below the mouth
+      double centre_w = 0.0;
+      std::vector<int> copy;
+      for (int v : loop) {
+        const int id = b.add(b.v[static_cast<std::size_t>(v)], b.mat[static_cast<std::size_t>(v)]);
+        copy.push_back(id);
+        cap.vertices.push_back(id);
+        const auto it = jaw_w.find(v);
+        if (it != jaw_w.end() && it->second > 0.0) {
+          rig.jaw.vertices.push_back(id), rig.jaw.weights.push_back(it->second);
+          centre_w += it->second;
+        }
+      }
+      centre_w /= static_cast<double>(loop.size());
       const int centre = b.add(c, fm::Material::Skin);
-      for (std::size_t k = 0; k < loop.size(); ++k)
-        b.f.push_back({centre, loop[k], loop[(k + 1) % loop.size()]});
-      rep.neck_cap += 1;
+      cap.vertices.push_back(centre);
+      if (centre_w > 0.0) rig.jaw.vertices.push_back(centre), rig.jaw.weights.push_back(centre_w);
+      for (std::size_t k = 0; k < copy.size(); ++k)
+        b.f.push_back({centre, copy[k], copy[(k + 1) % copy.size()]});
     }
+    if (cap.vertices.empty())
+      throw InvalidInput("default head: no neck rim to close under the chin");
+    rep.neck_cap = cap.vertices.size();
+    rig.parts.push_back(cap);
   }
 
   // ---- Assemble.

@@ -154,11 +154,12 @@ std::string default_face_summary(const DefaultHeadReport& rep, const std::string
   return printf_string(
       "retarget: default face: %zu head vertices, eyeballs %zu + %zu (sockets %zu + %zu), "
       "mouth cavity %zu (backdrop %zu), teeth %zu + %zu, tongue %zu, lashes %zu, hair %zu, "
-      "neck caps %zu; "
+      "neck cut %zu vertices, cap %zu; "
       "wrote %s\n",
       rep.head_vertices, rep.eyeball_vertices[0], rep.eyeball_vertices[1], rep.socket_vertices[0],
       rep.socket_vertices[1], rep.mouth_cavity_vertices, rep.mouth_backdrop, rep.upper_teeth,
-      rep.lower_teeth, rep.tongue, rep.lashes, rep.hair_vertices, rep.neck_cap, dir.c_str());
+      rep.lower_teeth, rep.tongue, rep.lashes, rep.hair_vertices, rep.neck_dropped, rep.neck_cap,
+      dir.c_str());
 }
 
 }  // namespace emoface::retarget

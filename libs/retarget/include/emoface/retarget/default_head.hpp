@@ -2,11 +2,12 @@
 // emoface's default face (issue 14 part 1): the CC0 MakeHuman head (data/face/makehuman_head.obj)
 // rigged by transfer from the procedural generic face (facemesh::make_generic_face(), the thesis'
 // generic model, which stays the transfer *source*), plus what the head lacks, built procedurally:
-// eyeballs (the generic's spheres with sclera/iris/pupil, placed in the sockets; the socket surface is
-// pulled behind them), upper and lower teeth (the generic's slabs, carried into the mouth bag), a
-// tongue (in the jaw, weight 1), upper and lower lashes (ribbons on the lid margins, in the lid lists),
-// lip and skin materials and a closed neck end. The result is in the rig (thesis) frame, metres, with
-// an identity Rig::frame; brows are painted by facemesh (paint_for) from the rig's iBUG brow points.
+// eyeballs (the generic's spheres with sclera/iris/pupil, placed in the sockets; the socket surface
+// is pulled behind them), upper and lower teeth (the generic's slabs, carried into the mouth bag),
+// a tongue (in the jaw, weight 1), upper and lower lashes (ribbons on the lid margins, in the lid
+// lists), lip and skin materials and a neck cut flat 20 mm under the chin and closed by a cap. The
+// result is in the rig (thesis) frame, metres, with an identity Rig::frame; brows are painted by
+// facemesh (paint_for) from the rig's iBUG brow points.
 //
 //   const auto doc = facemesh::read_mesh_document("data/face/makehuman_head.obj");
 //   facemesh::Face face = build_default_head(facemesh::make_generic_face(), doc);
@@ -24,7 +25,9 @@ namespace emoface::retarget {
 
 struct DefaultHeadReport {
   TransferReport transfer;
-  std::size_t head_vertices = 0;  ///< the MakeHuman head's own vertices (ids 0 .. head_vertices−1)
+  std::size_t head_vertices = 0;  ///< the MakeHuman head's vertices after the neck cut, with the
+                                  ///< rim's new ones (ids 0 .. head_vertices−1)
+  std::size_t neck_dropped = 0;                   ///< head vertices below the neck cut (removed)
   std::array<std::size_t, 2> eyeball_vertices{};  ///< added sphere vertices per eye (right, left)
   std::array<std::size_t, 2> socket_vertices{};   ///< head vertices pulled behind each eyeball
   std::size_t mouth_cavity_vertices = 0;  ///< bag vertices moved behind the teeth (the cavity)
@@ -32,7 +35,8 @@ struct DefaultHeadReport {
   std::size_t hair_vertices = 0;          ///< head vertices above the hairline (material hair)
   double upper_teeth_lowered =
       0.0;  ///< m the upper teeth were moved down (edge to the lips' contact)
-  std::size_t upper_teeth = 0, lower_teeth = 0, tongue = 0, lashes = 0, neck_cap = 0;
+  std::size_t upper_teeth = 0, lower_teeth = 0, tongue = 0, lashes = 0;
+  std::size_t neck_cap = 0;  ///< vertices of the cap closing the neck (a copy of the rim + centre)
 };
 
 /// The transfer options used for the default face (the GA seed and generations fixed: the shipped
