@@ -11,6 +11,6 @@ trap 'rm -rf "$tmp"' EXIT
 "$bin"/faceanim/faceanim --params "$tmp"/muscles.csv --out "$tmp"/frames
 mkdir -p docs/img/facemesh
 for v in front threequarter; do
-  "$bin"/facerender/facerender "$tmp"/frames/*.obj --view "$v" --width 200 --height 233 --sheet 7 \
+  "$bin"/facerender/facerender "$tmp"/frames/*.obj --view "$v" --width 200 --height 233 --sheet 7 --occlusion 0.4 \
     --out "docs/img/facemesh/default_face_emotions_$v.png"
 done

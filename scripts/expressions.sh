@@ -19,7 +19,7 @@ echo "== 2. muscle parameters → deformed default face, one mesh per row (thesi
 rm -rf "$OUT_DIR"/frames
 "$bin"/faceanim/faceanim --params "$OUT_DIR"/muscles.csv --out "$OUT_DIR"/frames --gltf "$OUT_DIR"/expressions.gltf
 echo "== 3. meshes → contact sheet"
-"$bin"/facerender/facerender "$OUT_DIR"/frames/*.obj --sheet 5 --out "$OUT_DIR"/expressions.png
-"$bin"/facerender/facerender "$OUT_DIR"/frames/*.obj --sheet 5 --view threequarter --out "$OUT_DIR"/expressions_threequarter.png
+"$bin"/facerender/facerender "$OUT_DIR"/frames/*.obj --sheet 5 --occlusion 0.4 --out "$OUT_DIR"/expressions.png
+"$bin"/facerender/facerender "$OUT_DIR"/frames/*.obj --sheet 5 --view threequarter --occlusion 0.4 --out "$OUT_DIR"/expressions_threequarter.png
 echo "wrote $OUT_DIR/muscles.csv, $OUT_DIR/frames/*.obj, $OUT_DIR/expressions.gltf,"
 echo "      $OUT_DIR/expressions.png and $OUT_DIR/expressions_threequarter.png (rows of data/fuzzyexpr/example_emotions.csv)"

@@ -14,7 +14,8 @@
 # (OUT_DIR out/oracle_faceapi or out/oracle_arkit_faceapi; tests/oracle/classify.cjs explains both).
 # Usage: scripts/oracle.sh [--no-build] [--arkit] [--network human|faceapi]   Env: BUILD_DIR (build), OUT_DIR (out/oracle), MIN (6),
 #        JOBS (2), EMOTIONS (tests/oracle/emotions.csv), RIG (a rig file or "generic"; default face),
-#        DISTANCES ("0.9 1.0 1.1": each face rendered at these camera distances, its scores averaged)
+#        DISTANCES ("0.9 1.0 1.1": each face rendered at these camera distances, its scores averaged),
+#        OCCLUSION (0.4: facerender --occlusion, the soft ambient occlusion the docs pictures use)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR=${BUILD_DIR:-build}
@@ -24,6 +25,7 @@ JOBS=${JOBS:-2}
 EMOTIONS=${EMOTIONS:-tests/oracle/emotions.csv}
 RIG=${RIG:-}  # a rig file or "generic"; empty: the built-in default face
 DISTANCES=${DISTANCES:-0.9 1.0 1.1}  # camera distances, m (facerender --distance)
+OCCLUSION=${OCCLUSION:-0.4}  # facerender --occlusion (0 = the plain render)
 rig_args=()
 if [ -n "$RIG" ]; then rig_args=(--rig "$RIG"); fi
 build=1
@@ -81,7 +83,7 @@ args=()
 for d in $DISTANCES; do
   mkdir -p "$OUT_DIR/d$d"
   "$bin"/facerender/facerender "${rig_args[@]}" "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
-    --distance "$d" --out "$OUT_DIR/d$d/face.png"
+    --distance "$d" --occlusion "$OCCLUSION" --out "$OUT_DIR/d$d/face.png"
   i=0
   while IFS=, read -r id _; do
     args+=("$id=$OUT_DIR/d$d/$(printf 'face_%04d.png' "$i")")
