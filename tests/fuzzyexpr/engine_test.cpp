@@ -66,6 +66,10 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // no m10 (frontalis lateralis = AU2, not in anger's AUs 4+5+7+23/24; up to Medium until
       // session 7, when it held the lateral brows up against the stronger AU4)
       {Emotion::Anger, {{4, "- - - - -"}, {10, "- - - - -"}}},
+      // sadness: no m18 (orbicularis oculi orbitalis = AU6, the cheek raiser of happiness; sadness
+      // is AU1+4+15, Ekman & Friesen's brow, lid corner and lip corners; session 8: with it the
+      // lateral brow came down and the eyes squinted, and the face read neutral)
+      {Emotion::Sadness, {{18, "- - - - -"}}},
   };
   return t;
 }
