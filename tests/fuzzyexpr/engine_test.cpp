@@ -62,10 +62,12 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // at the top, so the inner ends do not rise above the lateral ones: sadness's oblique
       // brow) and the jaw drops open (AU26/27: m19 Big from High on; round 5)
       {Emotion::Surprise, {{9, "vs s m m b"}, {19, "vs vs s b b"}}},
-      // anger: no m4 (risorius = AU20, fear's lip stretcher; anger presses the lips, AU23/24) and
+      // anger: no m4 (risorius = AU20, fear's lip stretcher; anger presses the lips, AU23/24),
       // no m10 (frontalis lateralis = AU2, not in anger's AUs 4+5+7+23/24; up to Medium until
       // session 7, when it held the lateral brows up against the stronger AU4)
-      {Emotion::Anger, {{4, "- - - - -"}, {10, "- - - - -"}}},
+      // and (session 8) m12 (levator labii superioris = AU10) up to Medium: FACS anger with the
+      // upper lip raised (4+5+7+10+23), which bares the upper teeth since AU10 reaches the lip
+      {Emotion::Anger, {{4, "- - - - -"}, {10, "- - - - -"}, {12, "- vs s m m"}}},
       // sadness: no m18 (orbicularis oculi orbitalis = AU6, the cheek raiser of happiness; sadness
       // is AU1+4+15, Ekman & Friesen's brow, lid corner and lip corners; session 8: with it the
       // lateral brow came down and the eyes squinted, and the face read neutral)

@@ -2,16 +2,20 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
 #include <thread>
+#include <tuple>
+#include <vector>
 
-#include <Eigen/Geometry>
-
+#include "../../libs/muscles/src/fast_math.hpp"
 #include "emoface/core/errors.hpp"
 #include "emoface/core/rng.hpp"
 #include "emoface/facemesh/default_face.hpp"
-#include "../../libs/muscles/src/fast_math.hpp"
 
 namespace emoface::muscles {
 namespace {
@@ -556,6 +560,46 @@ TEST(FastMath, PolynomialFactorsMatchLibm) {
 }
 
 // Random contractions of every parameter (seeded), the fast path against the plain reference.
+// The region cut-off carried to the lip surface (solver.cpp, reaches_lip_column): the upper-lip
+// raisers (regions middle + upper face) move the upper lip's control points and not the lower
+// lip's, the lower-lip muscles (lower face) the other way round; the corners (columns within 15° of
+// the mouth's axis) follow both. On the built-in generic face the levator labii superioris raised
+// the upper lip's middle and lifted the lower lip with it (issue 14, session 8).
+TEST(FaceSolver, LipMusclesMoveOnlyTheirHalfOfTheLips) {
+  const auto& cps = face().rig.lips.control_points;
+  constexpr int kA = fm::LipGrid::kAround;
+  auto column = [&](std::size_t k) { return static_cast<int>(k) % kA; };
+  auto upper = [&](int c) { return c >= 2 && c <= kA / 2 - 2; };
+  auto lower = [&](int c) { return c >= kA / 2 + 2 && c <= kA - 2; };
+  // (muscle, raises the upper lip, least motion of its own half, m: the nose wrinkler moves the
+  // upper lip 0.5 mm; the mentalis' zone, on the chin, does not reach the lower lip's control
+  // points)
+  const std::vector<std::tuple<std::string, bool, double>> muscles = {
+      {"levator_labii_superioris", true, 0.003},
+      {"levator_labii_nasi", true, 0.0003},
+      {"zygomatic_minor", true, 0.003},
+      {"depressor_labii", false, 0.001},
+      {"mentalis", false, 0.0}};
+  for (const auto& [muscle, raiser, least] : muscles) {
+    const Deformation d =
+        solver().deform(std::map<std::string, double>{{muscle + "_l", 1.0}, {muscle + "_r", 1.0}});
+    double moved = 0.0;
+    for (std::size_t k = 0; k < cps.size(); ++k) {
+      const double m = (d.lip_control_points[k] - cps[k]).norm();
+      if (raiser ? lower(column(k)) : upper(column(k)))
+        EXPECT_EQ(m, 0.0) << muscle << " moved control point " << k;
+      if (raiser ? upper(column(k)) : lower(column(k))) moved = std::max(moved, m);
+    }
+    EXPECT_GE(moved, least) << muscle << " does not move its own half of the lips";
+  }
+  // AU10 raises the upper lip's middle (column kA/4, the outer border row 0) by millimetres
+  const Deformation au10 = solver().deform(std::map<std::string, double>{
+      {"levator_labii_superioris_l", 1.0}, {"levator_labii_superioris_r", 1.0}});
+  const double rise = au10.lip_control_points[kA / 4].y() - cps[kA / 4].y();
+  std::printf("AU10: upper lip middle +%.2f mm\n", 1e3 * rise);
+  EXPECT_GT(rise, 0.003);
+}
+
 TEST(FaceSolver, FastPathMatchesReference) {
   const auto& f = face();
   const double head_height = f.mesh.vertices.col(1).maxCoeff() - f.mesh.vertices.col(1).minCoeff();

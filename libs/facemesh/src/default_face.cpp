@@ -861,8 +861,12 @@ Face make_generic_face() {
        P(-0.027, -0.016, 0.006),
        P(-0.014, -0.058, 0.002),
        0.32,
-       0.8,
-       1.3,
+       // session 8: the zone reaches the upper lip's middle (rs, rf 0.8, 1.3 → 1.15, 1.6 of the
+       // length), so AU10 raises the upper lip and bares the upper teeth (the middle rose 1.3 mm,
+       // now 5.3 mm on the default head); the solver keeps it off the lower lip
+       // (reaches_lip_column)
+       1.15,
+       1.6,
        0.0100,
        {R::RightMiddleFace, R::RightUpperFace},
        true,

@@ -44,6 +44,30 @@ std::vector<double> mean_edge_lengths(const facemesh::Mesh& mesh) {
   return sum;
 }
 
+// The thesis' region cut-off (§2.3, §2.4.1: a muscle moves only the vertices of its regions of
+// influence) carried to the lip surface: the upper lip's control points count as the middle face
+// (the regions meet at the lips' contact line), the lower lip's as the lower face, the corners'
+// (the columns within 15° of the mouth's horizontal axis) as both. A lip-moving muscle moves a
+// control point of column `column` only when its regions include that part of the face; one with no
+// face region at all moves every control point, as before. Without it the upper-lip raisers
+// (levator labii superioris, levator labii superioris alaeque nasi: middle and upper face) lifted
+// the lower lip as well (issue 14, session 8).
+bool reaches_lip_column(const facemesh::MuscleSpec& spec, int column) {
+  using R = facemesh::Region;
+  bool upper = false, lower = false;
+  for (R r : spec.regions) {
+    upper |= r == R::RightMiddleFace || r == R::LeftMiddleFace || r == R::RightUpperFace ||
+             r == R::LeftUpperFace;
+    lower |= r == R::RightLowerFace || r == R::LeftLowerFace;
+  }
+  if (!upper && !lower) return true;
+  const int around = facemesh::LipGrid::kAround, c = ((column % around) + around) % around;
+  // the corners and the columns next to them (within 15°), so that the control net does not step
+  // between neighbours where the corner muscles pull hardest
+  if (c <= 1 || c >= around - 1 || std::abs(2 * c - around) <= 2) return true;
+  return 2 * c < around ? upper : lower;  // columns 2 .. kAround/2−2: the upper lip
+}
+
 }  // namespace
 
 // FaceSolver's state and hot path (see solver.hpp: FaceSolver::Impl).
@@ -378,7 +402,9 @@ void FaceSolver::Impl::build_fast_path() {
   for (std::size_t c = 0; c < lip_cps.size(); ++c) {
     reach.clear();
     for (std::size_t i = 0; i < muscles_.size(); ++i) {
-      if (rig_.muscles[i].moves_lips) reach.push_back({zone_distance(muscles_[i], lip_cps[c]), static_cast<int>(i)});
+      if (rig_.muscles[i].moves_lips &&
+          reaches_lip_column(rig_.muscles[i], static_cast<int>(c) % facemesh::LipGrid::kAround))
+        reach.push_back({zone_distance(muscles_[i], lip_cps[c]), static_cast<int>(i)});
     }
     const double lips = funnel_delta_.empty() ? 0.0 : funnel_delta_[c].norm() + press_delta_[c].norm();
     select(lip_cps[c], reach, lips);
@@ -961,7 +987,9 @@ void FaceSolver::Impl::deform_reference(const std::vector<double>& values, Defor
         for (int v : regions[static_cast<std::size_t>(region)]) disp[static_cast<std::size_t>(v)] += displacement(X.row(v).transpose());
       }
       if (spec.moves_lips) {
-        for (std::size_t k = 0; k < C.size(); ++k) disp_c[k] += displacement(C[k]);
+        for (std::size_t k = 0; k < C.size(); ++k)
+          if (reaches_lip_column(spec, static_cast<int>(k) % facemesh::LipGrid::kAround))
+            disp_c[k] += displacement(C[k]);
       }
     }
     const double f = amount(values[funneler_param_]), p = amount(values[pressor_param_]);
