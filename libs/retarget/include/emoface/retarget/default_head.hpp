@@ -27,7 +27,7 @@ struct DefaultHeadReport {
   TransferReport transfer;
   std::size_t head_vertices = 0;  ///< the MakeHuman head's vertices after the neck cut, with the
                                   ///< rim's new ones (ids 0 .. head_vertices−1)
-  std::size_t neck_dropped = 0;                   ///< head vertices below the neck cut (removed)
+  std::size_t neck_dropped = 0;   ///< head vertices below the neck cut (removed)
   std::array<std::size_t, 2> eyeball_vertices{};  ///< added sphere vertices per eye (right, left)
   std::array<std::size_t, 2> socket_vertices{};   ///< head vertices pulled behind each eyeball
   std::size_t mouth_cavity_vertices = 0;  ///< bag vertices moved behind the teeth (the cavity)
