@@ -559,7 +559,6 @@ TEST(FastMath, PolynomialFactorsMatchLibm) {
   EXPECT_NEAR(line(4.0), 11.0, 1e-12);
 }
 
-// Random contractions of every parameter (seeded), the fast path against the plain reference.
 // The region cut-off carried to the lip surface (solver.cpp, reaches_lip_column): the upper-lip
 // raisers (regions middle + upper face) move the upper lip's control points and not the lower
 // lip's, the lower-lip muscles (lower face) the other way round; the corners (columns within 15° of
@@ -600,6 +599,7 @@ TEST(FaceSolver, LipMusclesMoveOnlyTheirHalfOfTheLips) {
   EXPECT_GT(rise, 0.003);
 }
 
+// Random contractions of every parameter (seeded), the fast path against the plain reference.
 TEST(FaceSolver, FastPathMatchesReference) {
   const auto& f = face();
   const double head_height = f.mesh.vertices.col(1).maxCoeff() - f.mesh.vertices.col(1).minCoeff();

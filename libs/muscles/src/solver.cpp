@@ -48,10 +48,10 @@ std::vector<double> mean_edge_lengths(const facemesh::Mesh& mesh) {
 // influence) carried to the lip surface: the upper lip's control points count as the middle face
 // (the regions meet at the lips' contact line), the lower lip's as the lower face, the corners'
 // (the columns within 15° of the mouth's horizontal axis) as both. A lip-moving muscle moves a
-// control point of column `column` only when its regions include that part of the face; one with no
-// face region at all moves every control point, as before. Without it the upper-lip raisers
-// (levator labii superioris, levator labii superioris alaeque nasi: middle and upper face) lifted
-// the lower lip as well (issue 14, session 8).
+// control point (index `column`, any row: taken modulo kAround) only when its regions include that
+// part of the face; one with no face region at all moves every control point, as before. Without it
+// the upper-lip raisers (levator labii superioris, levator labii superioris alaeque nasi: middle
+// and upper face) lifted the lower lip as well (issue 14, session 8).
 bool reaches_lip_column(const facemesh::MuscleSpec& spec, int column) {
   using R = facemesh::Region;
   bool upper = false, lower = false;
@@ -402,8 +402,7 @@ void FaceSolver::Impl::build_fast_path() {
   for (std::size_t c = 0; c < lip_cps.size(); ++c) {
     reach.clear();
     for (std::size_t i = 0; i < muscles_.size(); ++i) {
-      if (rig_.muscles[i].moves_lips &&
-          reaches_lip_column(rig_.muscles[i], static_cast<int>(c) % facemesh::LipGrid::kAround))
+      if (rig_.muscles[i].moves_lips && reaches_lip_column(rig_.muscles[i], static_cast<int>(c)))
         reach.push_back({zone_distance(muscles_[i], lip_cps[c]), static_cast<int>(i)});
     }
     const double lips = funnel_delta_.empty() ? 0.0 : funnel_delta_[c].norm() + press_delta_[c].norm();
@@ -988,8 +987,7 @@ void FaceSolver::Impl::deform_reference(const std::vector<double>& values, Defor
       }
       if (spec.moves_lips) {
         for (std::size_t k = 0; k < C.size(); ++k)
-          if (reaches_lip_column(spec, static_cast<int>(k) % facemesh::LipGrid::kAround))
-            disp_c[k] += displacement(C[k]);
+          if (reaches_lip_column(spec, static_cast<int>(k))) disp_c[k] += displacement(C[k]);
       }
     }
     const double f = amount(values[funneler_param_]), p = amount(values[pressor_param_]);
