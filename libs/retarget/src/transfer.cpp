@@ -182,7 +182,8 @@ LidMargin find_lid_margin(const fm::Vertices& X, const fm::Faces& F, const fm::V
                           const std::vector<std::vector<int>>& adjacency,
                           const std::vector<int>& candidates,
                           const std::vector<std::uint8_t>& excluded, const Eigen::Vector3d& probe,
-                          const Eigen::Vector3d& opening, double size) {
+                          const Eigen::Vector3d& opening, double size,
+                          bool split_by_normal = false) {
   LidMargin out;
   const auto nv = static_cast<std::size_t>(X.rows());
   std::vector<std::uint8_t> region(nv, 0);
@@ -267,8 +268,15 @@ LidMargin find_lid_margin(const fm::Vertices& X, const fm::Faces& F, const fm::V
     const double t = (X(v, 0) - c0.x()) / out.width;
     const double chord = c0.y() + t * (c1.y() - c0.y());
     const bool corner = v == margin.front() || v == margin.back();
-    if (corner || X(v, 1) >= chord) out.upper.push_back(v);
-    if (corner || X(v, 1) < chord) out.lower.push_back(v);
+    bool above = X(v, 1) >= chord;
+    // A closed mouth's crease is a slit whose two rows lie within a millimetre of the chord, and
+    // near its corners a vertex of one lip may lie on the other side of it (MakeHuman: 5 of 32
+    // "upper" vertices, lower lip by their normals, which the jaw and AU10 then pulled apart in
+    // a spike). There the normal decides: the upper lip's underside faces down, the lower lip's
+    // top faces up; only a normal within 30° of the horizontal leaves it to the chord.
+    if (split_by_normal && std::abs(normals(v, 1)) > 0.5) above = normals(v, 1) < 0.0;
+    if (corner || above) out.upper.push_back(v);
+    if (corner || !above) out.lower.push_back(v);
   }
   if (out.upper.size() < 3 || out.lower.size() < 3) return out;
   out.centroid = centroid_of(margin);
@@ -555,7 +563,7 @@ TransferResult transfer_rig(const fm::Face& source, const fm::Mesh& target,
       const fm::Vertices n0 = fm::vertex_normals(T, target.faces);
       LidMargin slit = find_lid_margin(T, target.faces, n0, adj0, head.vertices,
                                        std::vector<std::uint8_t>(static_cast<std::size_t>(nv), 0),
-                                       probe, opening, 0.8 * inner_width);
+                                       probe, opening, 0.8 * inner_width, true);
       // The crease search also collects creases near the mouth that are no slit (MakeHuman: the
       // nostrils 23 mm above it and the bag's floor 18 mm below, 32 of the 85 vertices); the slit
       // rows are a thin band about the line through the slit's corners (its extremes in x) and
