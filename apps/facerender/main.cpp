@@ -51,6 +51,11 @@ int main(int argc, char** argv) {
   app.add_option("--occlusion", ro.occlusion,
                  "Strength of ambient occlusion (dark cavities), 0 = none")
       ->check(CLI::Range(0.0, 1.0));
+  std::vector<double> key;
+  app.add_option("--key-light", key,
+                 "Direction towards the key light, X Y Z in the head frame (x to the front view's\n"
+                 "right, y up, z towards the camera; default -0.35 0.55 0.75)")
+      ->expected(3);
   app.add_option("--video", video, "Also encode the frames to a video (.mp4/.mov/.mkv/.gif) with the ffmpeg binary");
   app.add_option("--audio", audio, "Audio file (e.g. WAV) muxed into --video");
   app.add_option("--fps", fps, "Video frame rate")->check(CLI::Range(1, 240));
@@ -68,6 +73,8 @@ int main(int argc, char** argv) {
     std::vector<Eigen::Vector3f> colors;  // from the first mesh that fits the rig (same topology)
     fm::RenderOptions options = ro;
     options.view = fm::view_from_string(view);
+    if (!key.empty()) options.key_light = Eigen::Vector3d(key[0], key[1], key[2]);
+    options.validate();  // --key-light 0 0 0 or inf: the option's error, before any mesh is read
     struct Input {
       fm::Mesh mesh;
       std::vector<Eigen::Vector3f> colors;

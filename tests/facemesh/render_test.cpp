@@ -58,6 +58,32 @@ TEST(Render, ShadingFollowsTheLight) {
   EXPECT_GT(flat.rgb[c], dark.rgb[c] + 10);
 }
 
+// RenderOptions::key_light: only its direction counts; a key light at or behind the horizon of a
+// surface leaves it the ambient and fill terms alone; the light along the normal is the brightest.
+TEST(Render, KeyLightDirectionIsAnOption) {
+  Mesh m;
+  m.vertices.resize(4, 3);
+  m.vertices << -0.05, -0.05, 0, 0.05, -0.05, 0, 0.05, 0.05, 0, -0.05, 0.05, 0;
+  m.faces.resize(2, 3);
+  m.faces << 0, 1, 2, 0, 2, 3;
+  RenderOptions o;
+  o.width = o.height = 32;
+  o.target = Eigen::Vector3d::Zero();
+  o.specular = 0.0;
+  const core::Image by_default = render(m, {}, {}, o);
+  o.key_light = Eigen::Vector3d(-0.7, 1.1, 1.5);  // the default, twice as long
+  EXPECT_EQ(render(m, {}, {}, o).rgb, by_default.rgb);
+  o.key_light = Eigen::Vector3d(0, 0, -1);  // behind the square
+  const core::Image behind = render(m, {}, {}, o);
+  o.key_light = Eigen::Vector3d(1, 0, 0);  // grazing
+  EXPECT_EQ(render(m, {}, {}, o).rgb, behind.rgb);
+  o.key_light = Eigen::Vector3d(0, 0, 1);  // along the normal
+  const core::Image along = render(m, {}, {}, o);
+  const std::size_t c = (16u * 32u + 16u) * 3u;
+  EXPECT_GT(along.rgb[c], by_default.rgb[c]);
+  EXPECT_GT(by_default.rgb[c], behind.rgb[c] + 40);
+}
+
 // The key light's direction and the light terms as render() has them (upper left front; fill from
 // the right): lit = (0.22 + 0.22·fill)·ambient + 0.68·key·shadow.
 const Eigen::Vector3d kKeyLight = Eigen::Vector3d(-0.35, 0.55, 0.75).normalized();
@@ -111,7 +137,7 @@ TEST(Render, KeyLightShadowFallsBehindAnOccluder) {
   EXPECT_NEAR(red_at(lit, o, behind), 255.0 * 0.8 * (0.22 + 0.22 * fill + 0.68 * key), 1.0);
   EXPECT_NEAR(red_at(shadowed, o, behind), 255.0 * 0.8 * (0.22 + 0.22 * fill), 1.0);
   // away from the shadow (and the occluder) nothing changes
-  for (const Eigen::Vector3d p :
+  for (const Eigen::Vector3d& p :
        {Eigen::Vector3d(-0.06, 0.06, 0.0), Eigen::Vector3d(0.06, 0.06, 0.0),
         Eigen::Vector3d(-0.06, -0.06, 0.0), Eigen::Vector3d(0.0, 0.0, 0.05)})
     EXPECT_EQ(red_at(lit, o, p), red_at(shadowed, o, p)) << p.transpose();
@@ -198,6 +224,13 @@ TEST(Render, Validation) {
   o = RenderOptions{};
   o.occlusion_directions = 3;
   EXPECT_THROW(o.validate(), InvalidInput);
+  for (const Eigen::Vector3d& bad : std::vector<Eigen::Vector3d>{
+           Eigen::Vector3d::Zero(), Eigen::Vector3d(0, std::nan(""), 1),
+           Eigen::Vector3d(0, 1, std::numeric_limits<double>::infinity())}) {
+    o = RenderOptions{};
+    o.key_light = bad;
+    EXPECT_THROW(o.validate(), InvalidInput) << bad.transpose();
+  }
   EXPECT_THROW(view_from_string("side"), InvalidInput);
   EXPECT_EQ(view_from_string(to_string(View::ThreeQuarter)), View::ThreeQuarter);
   const Mesh t = testing::tetrahedron();

@@ -165,6 +165,8 @@ void RenderOptions::validate() const {
   check(normal_smoothing >= 0 && normal_smoothing <= 10, "normal_smoothing must be in [0, 10]");
   check(shadow >= 0.0 && shadow <= 1.0, "shadow must be in [0, 1]");
   check(occlusion >= 0.0 && occlusion <= 1.0, "occlusion must be in [0, 1]");
+  check(key_light.allFinite() && key_light.norm() > 1e-9,
+        "key_light must be a finite, non-zero direction");
   check(occlusion_directions >= 4 && occlusion_directions <= 512,
         "occlusion_directions must be in [4, 512]");
 }
@@ -373,7 +375,7 @@ core::Image render(const Mesh& mesh, const std::vector<Eigen::Vector3f>& colors,
   }
 
   const Eigen::Vector3f background = options.background.cast<float>();
-  const Eigen::Vector3d key_light = Eigen::Vector3d(-0.35, 0.55, 0.75).normalized();
+  const Eigen::Vector3d key_light = options.key_light.normalized();
   const Eigen::Vector3d fill_light = Eigen::Vector3d(0.6, 0.1, 0.5).normalized();
   const Eigen::Vector3d half = (key_light - forward).normalized();  // Blinn half vector, view = -forward
   const Eigen::Vector3f skin(0.87f, 0.69f, 0.58f);

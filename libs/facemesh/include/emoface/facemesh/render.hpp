@@ -33,6 +33,10 @@ struct RenderOptions {
   /// [0, 10]: smooth shading across seams of thin triangles (the lips' stitching, folding lids);
   /// 0 = the plain area-weighted vertex normals.
   int normal_smoothing = 1;
+  /// Direction towards the key light in the head frame (x to the front view's right, y up, z
+  /// towards the front camera), normalised when rendering; finite and not zero. The default lights
+  /// the face from the upper left at ≈ 34° elevation; the fill light and ambient term are fixed.
+  Eigen::Vector3d key_light = Eigen::Vector3d(-0.35, 0.55, 0.75);
   /// Strength of the key light's cast shadow, [0, 1] (0 = none): the key light is blocked where
   /// other parts of the mesh stand between it and the surface (under the upper lip and nose, inside
   /// an open mouth, under the brows). An orthographic depth map from the light (1024², 3×3
