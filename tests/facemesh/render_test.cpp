@@ -39,17 +39,28 @@ TEST(Render, DrawsTheDefaultFaceInBothViews) {
   }
 }
 
-TEST(Render, ShadingFollowsTheLight) {
-  // A square facing the camera, then the same square turned away from the key light (which comes from
-  // the upper left, −x): it must render darker.
+// A 10 cm square at the origin facing the camera (+z), and 32×32 options centred on it.
+Mesh front_square() {
   Mesh m;
   m.vertices.resize(4, 3);
   m.vertices << -0.05, -0.05, 0, 0.05, -0.05, 0, 0.05, 0.05, 0, -0.05, 0.05, 0;
   m.faces.resize(2, 3);
   m.faces << 0, 1, 2, 0, 2, 3;
+  return m;
+}
+
+RenderOptions square_options() {
   RenderOptions o;
   o.width = o.height = 32;
   o.target = Eigen::Vector3d::Zero();
+  return o;
+}
+
+TEST(Render, ShadingFollowsTheLight) {
+  // A square facing the camera, then the same square turned away from the key light (which comes
+  // from the upper left, −x): it must render darker.
+  const Mesh m = front_square();
+  RenderOptions o = square_options();
   const core::Image flat = render(m, {}, {}, o);
   Mesh tilted = m;
   for (long v = 0; v < 4; ++v) tilted.vertices(v, 2) = -tilted.vertices(v, 0);  // normal turns to +x
@@ -61,14 +72,8 @@ TEST(Render, ShadingFollowsTheLight) {
 // RenderOptions::key_light: only its direction counts; a key light at or behind the horizon of a
 // surface leaves it the ambient and fill terms alone; the light along the normal is the brightest.
 TEST(Render, KeyLightDirectionIsAnOption) {
-  Mesh m;
-  m.vertices.resize(4, 3);
-  m.vertices << -0.05, -0.05, 0, 0.05, -0.05, 0, 0.05, 0.05, 0, -0.05, 0.05, 0;
-  m.faces.resize(2, 3);
-  m.faces << 0, 1, 2, 0, 2, 3;
-  RenderOptions o;
-  o.width = o.height = 32;
-  o.target = Eigen::Vector3d::Zero();
+  const Mesh m = front_square();
+  RenderOptions o = square_options();
   o.specular = 0.0;
   const core::Image by_default = render(m, {}, {}, o);
   o.key_light = Eigen::Vector3d(-0.7, 1.1, 1.5);  // the default, twice as long
