@@ -518,8 +518,8 @@ TEST(DefaultFace, TheNeckEndsInAPlaneUnderTheChin) {
 // The lips move as a surface: no lip-bound vertex leaves its neighbours (the largest difference
 // between a vertex's displacement and its neighbours' mean) when the upper-lip raiser (AU10) or the
 // zygomatic minor contracts fully with the mouth closed. The transfer once filed five lower-lip
-// vertices near the subject's right corner of MakeHuman's closed slit into its upper row (they lay
-// 0.2 mm above the chord between the corners); they rose with the upper lip in a lip-coloured
+// vertices near the corners of MakeHuman's closed slit into its upper row (they lay up to 0.2 mm
+// above the chord between the corners); they rose with the upper lip in a lip-coloured
 // spike: 6.4 and 12.9 mm. With the slit's rows split by their normals: 1.1 and 2.4 mm.
 TEST(DefaultFace, TheLipsRiseWithoutSpikes) {
   const fm::Face face = fm::make_default_face();
