@@ -67,7 +67,11 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // session 7, when it held the lateral brows up against the stronger AU4)
       // and (session 8) m12 (levator labii superioris = AU10) up to Medium: FACS anger with the
       // upper lip raised (4+5+7+10+23), which bares the upper teeth since AU10 reaches the lip
-      {Emotion::Anger, {{4, "- - - - -"}, {10, "- - - - -"}, {12, "- vs s m m"}}},
+      // and (session 10) Ekman & Friesen's second anger mouth from High on: "open, tensed in a
+      // squarish shape as if shouting" (Unmasking the Face, 1975) — the pressor (m8, AU23/24)
+      // lets go, m12 (AU10) rises to VeryBig and the jaw (m19, AU26) opens: 4+7+10+26
+      {Emotion::Anger,
+       {{4, "- - - - -"}, {10, "- - - - -"}, {8, "vs s m - -"}, {12, "- vs s b vb"}, {19, "- - - s m"}}},
       // sadness: no m18 (orbicularis oculi orbitalis = AU6, the cheek raiser of happiness; sadness
       // is AU1+4+15, Ekman & Friesen's brow, lid corner and lip corners; session 8: with it the
       // lateral brow came down and the eyes squinted, and the face read neutral)
@@ -520,7 +524,14 @@ TEST(Measure, SingleModeRowBumpsAndJumps) {
       std::printf("measured: %-9s %-28s largest drop %.2e, largest step (1e-5 grid) %.3f\n",
                   std::string(to_string(emotion_at(e))).c_str(),
                   std::string(to_string(row.muscles.front())).c_str(), worst_drop, worst_jump);
-      EXPECT_LE(worst_drop, 1e-12);  // with the default symmetric sets no row ever decreases
+      // A row whose consequents never step down (a − cell counts as the lowest set) never decreases
+      // with the default symmetric sets; the one row that steps down by design (anger's pressor,
+      // "vs s m − −": the pressed lips let go as the mouth opens) falls continuously.
+      bool rising = true;
+      for (std::size_t i = 1; i < row.levels.size(); ++i)
+        rising = rising && std::max(row.levels[i], 0) >= std::max(row.levels[i - 1], 0);
+      if (rising) EXPECT_LE(worst_drop, 1e-12);
+      else EXPECT_LT(worst_jump, 1e-4);
     }
 }
 
