@@ -71,7 +71,11 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // squarish shape as if shouting" (Unmasking the Face, 1975) — the pressor (m8, AU23/24)
       // lets go, m12 (AU10) rises to VeryBig and the jaw (m19, AU26) opens: 4+7+10+26
       {Emotion::Anger,
-       {{4, "- - - - -"}, {10, "- - - - -"}, {8, "vs s m - -"}, {12, "- vs s b vb"}, {19, "- - - s m"}}},
+       {{4, "- - - - -"},
+        {10, "- - - - -"},
+        {8, "vs s m - -"},
+        {12, "- vs s b vb"},
+        {19, "- - - s m"}}},
       // sadness: no m18 (orbicularis oculi orbitalis = AU6, the cheek raiser of happiness; sadness
       // is AU1+4+15, Ekman & Friesen's brow, lid corner and lip corners; session 8: with it the
       // lateral brow came down and the eyes squinted, and the face read neutral)
@@ -530,8 +534,10 @@ TEST(Measure, SingleModeRowBumpsAndJumps) {
       bool rising = true;
       for (std::size_t i = 1; i < row.levels.size(); ++i)
         rising = rising && std::max(row.levels[i], 0) >= std::max(row.levels[i - 1], 0);
-      if (rising) EXPECT_LE(worst_drop, 1e-12);
-      else EXPECT_LT(worst_jump, 1e-4);
+      if (rising)
+        EXPECT_LE(worst_drop, 1e-12);
+      else
+        EXPECT_LT(worst_jump, 1e-4);
     }
 }
 
