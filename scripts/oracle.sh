@@ -48,18 +48,7 @@ if [ -z "$OUT_DIR" ]; then
   if [ "$arkit" = 1 ]; then OUT_DIR=out/oracle_arkit; else OUT_DIR=out/oracle; fi
   if [ "$network" = faceapi ]; then OUT_DIR=${OUT_DIR}_faceapi; fi
 fi
-if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  echo "oracle: installing nodejs npm (Debian)"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends nodejs npm
-fi
-stamp=tests/oracle/node_modules/.package-lock.json
-if [ ! -f "$stamp" ] || [ tests/oracle/package-lock.json -nt "$stamp" ]; then
-  echo "oracle: npm ci (tests/oracle)"
-  npm ci --prefix tests/oracle --no-audit --no-fund --loglevel=error
-fi
+scripts/oracle_install.sh  # Node/npm (Debian) and the pinned npm packages, once
 
 if [ "$build" = 1 ]; then
   cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
