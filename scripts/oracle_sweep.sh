@@ -38,25 +38,26 @@ case "$SEED" in '' | *[!0-9]*) echo "oracle_sweep.sh: SEED must be a non-negativ
 scripts/oracle_install.sh  # Node/npm (Debian) and the pinned npm packages, once
 if [ "$build" = 1 ]; then
   cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$BUILD_DIR" -j2 --target faceanim facerender
+  cmake --build "$BUILD_DIR" -j2 --target emo2muscle faceanim facerender
 fi
 bin="$BUILD_DIR"/apps
 rm -rf "$OUT_DIR"
 mkdir -p "$OUT_DIR"/render
 
-# The settings: a CSV of the 35 face parameters (faceanim --params), one row per face.
-python3 - "$N" "$SEED" "$OUT_DIR/settings.csv" <<'EOF'
+# The settings: a CSV of the 35 face parameters (the columns of `emo2muscle --sides`, which
+# faceanim --params reads), one row per face.
+printf 'id,sadness,happiness,anger,fear,disgust,surprise\nx,0,0,0,0,0,0\n' |
+  "$bin"/emo2muscle/emo2muscle --sides | grep -v '^#' | head -n 1 > "$OUT_DIR"/columns.csv
+python3 - "$N" "$SEED" "$OUT_DIR/settings.csv" "$OUT_DIR/columns.csv" <<'EOF'
 import random, sys
 n, seed, out = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
-sided = ["zygomatic_major", "zygomatic_minor", "triangularis", "risorius", "depressor_labii", "mentalis",
-         "frontalis_medialis", "frontalis_lateralis", "levator_labii_nasi", "levator_labii_superioris",
-         "depressor_supercilii", "corrugator_supercilii", "depressor_glabellae",
-         "levator_palpebrae_superioris", "orbicularis_oculi_palpebralis", "orbicularis_oculi_orbitalis"]
-single = ["orbicularis_oris_funneler", "orbicularis_oris_pressor", "masseter"]
-muscles = sorted(sided + single)  # the draw order, fixed
+cols = open(sys.argv[4]).read().strip().split(",")[1:]
+base = lambda c: c[:-2] if c[-2:] in ("_l", "_r") else c
+muscles = sorted({base(c) for c in cols})  # the draw order, fixed
+if len(muscles) != 19:
+    sys.exit("oracle_sweep: emo2muscle --sides gave %d muscles, not 19" % len(muscles))
 rng = random.Random(seed)
 with open(out, "w") as f:
-    cols = [m + s for m in sided for s in ("_l", "_r")] + single
     f.write("id," + ",".join(cols) + "\n")
     for i in range(n):
         v = {}
@@ -65,7 +66,7 @@ with open(out, "w") as f:
                 v[m] = round(rng.uniform(0.3, 1.0), 2)
         if "masseter" in v:
             v["masseter"] = round(0.6 * v["masseter"], 2)
-        row = [v.get(c[:-2] if c[-2:] in ("_l", "_r") else c, 0.0) for c in cols]
+        row = [v.get(base(c), 0.0) for c in cols]
         f.write("s%04d," % i + ",".join("%g" % x for x in row) + "\n")
 EOF
 "$bin"/faceanim/faceanim "${rig_args[@]}" --params "$OUT_DIR"/settings.csv --out "$OUT_DIR"/frames >/dev/null
