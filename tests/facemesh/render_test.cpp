@@ -413,5 +413,25 @@ TEST(Render, SoftenedMaterialColours) {
   EXPECT_THROW(material_colors(f.rig, testing::tetrahedron(), 1), InvalidInput);
 }
 
+// The iris must read dark in grey, as the expression networks see faces (docs/muscles.md "Session
+// 11": a blue-grey iris, about as light as the skin, made open eyes read half shut). Luma weights
+// of ITU-R BT.601, the ones @vladmandic/human's emotion model uses on its crop.
+TEST(Render, TheIrisIsDarkInGrey) {
+  const Face f = make_default_face();
+  const auto colours = material_colors(f.rig);
+  auto luma_of = [&](Material m) {
+    for (std::size_t v = 0; v < colours.size(); ++v)
+      if (f.rig.materials[v] == m)
+        return 0.299f * colours[v].x() + 0.587f * colours[v].y() + 0.114f * colours[v].z();
+    ADD_FAILURE() << "no vertex of material " << to_string(m);
+    return 0.0f;
+  };
+  const float iris = luma_of(Material::Iris), skin = luma_of(Material::Skin),
+              white = luma_of(Material::EyeWhite);
+  EXPECT_LT(iris, 0.4f * skin);  // the blue-grey iris (0.30, 0.42, 0.55) was 0.55 of the skin
+  EXPECT_LT(iris, 0.3f * white);
+  EXPECT_GT(iris, luma_of(Material::Pupil));  // the pupil still shows inside it
+}
+
 }  // namespace
 }  // namespace emoface::facemesh

@@ -211,7 +211,11 @@ std::vector<Eigen::Vector3f> material_colors(const Rig& rig) {
       case Material::Skin: out[v] = {0.87f, 0.69f, 0.58f}; break;
       case Material::Lip: out[v] = {0.72f, 0.45f, 0.42f}; break;
       case Material::EyeWhite: out[v] = {0.94f, 0.93f, 0.90f}; break;
-      case Material::Iris: out[v] = {0.30f, 0.42f, 0.55f}; break;
+      case Material::Iris:
+        // mid brown: a blue-grey iris is as light as the skin in grey and the eye reads half shut
+        // (docs/muscles.md, "Session 11")
+        out[v] = {0.30f, 0.19f, 0.11f};
+        break;
       case Material::Pupil: out[v] = {0.05f, 0.05f, 0.06f}; break;
       case Material::Brow:
         out[v] = {0.16f, 0.11f, 0.08f};
