@@ -70,11 +70,16 @@ const std::map<Emotion, std::map<int, std::string>>& deviations() {
       // and (session 10) Ekman & Friesen's second anger mouth from High on: "open, tensed in a
       // squarish shape as if shouting" (Unmasking the Face, 1975) — the pressor (m8, AU23/24)
       // lets go, m12 (AU10) rises to VeryBig and the jaw (m19, AU26) opens: 4+7+10+26
+      // and (session 11) m18 (orbicularis oculi orbitalis), Small from Medium on: E&F's "lower
+      // lid is tensed and may or may not be raised" and the "hard stare"; the thesis' m18
+      // "squeezes the eyes ... can depress the eyebrows" (App. B); stronger, it shuts the eyes
+      // below Expressions.EyesNarrowButNeverShut's bound at anger 1.0
       {Emotion::Anger,
        {{4, "- - - - -"},
         {10, "- - - - -"},
         {8, "vs s m - -"},
         {12, "- vs s b vb"},
+        {18, "- vs s s s"},
         {19, "- - - s m"}}},
       // sadness: no m18 (orbicularis oculi orbitalis = AU6, the cheek raiser of happiness; sadness
       // is AU1+4+15, Ekman & Friesen's brow, lid corner and lip corners; session 8: with it the
