@@ -73,6 +73,8 @@ for d in $DISTANCES; do
   mkdir -p "$OUT_DIR/d$d"
   "$bin"/facerender/facerender "${rig_args[@]}" "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
     --distance "$d" --occlusion "$OCCLUSION" --out "$OUT_DIR/d$d/face.png"
+  # one frame: facerender writes face.png itself, several: face_0000.png ...
+  if [ -f "$OUT_DIR/d$d/face.png" ]; then mv "$OUT_DIR/d$d/face.png" "$OUT_DIR/d$d/face_0000.png"; fi
   i=0
   while IFS=, read -r id _; do
     args+=("$id=$OUT_DIR/d$d/$(printf 'face_%04d.png' "$i")")
