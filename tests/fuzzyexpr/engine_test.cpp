@@ -112,7 +112,6 @@ std::vector<std::string> split(const std::string& s) {
   for (std::string w; in >> w;) out.push_back(w);
   return out;
 }
-Muscle m(int thesis) { return muscle_at(static_cast<std::size_t>(thesis - 1)); }
 
 TEST(SingleMode, EveryCellOfTables61To66) {
   Engine engine;

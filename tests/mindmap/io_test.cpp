@@ -290,8 +290,8 @@ TEST(ExampleData, TwoCharactersReactDifferentlyToTheSameStimuli) {
   EXPECT_NE(seq[0], seq[1]);
 }
 
-// Golden output of the example characters, made with
-//   build/apps/mindmap/mindmap simulate --maps data/mindmap/characters --events data/mindmap/events.ndjson \
+// Golden output of the example characters, made with (one shell line)
+//   build/apps/mindmap/mindmap simulate --maps data/mindmap/characters --events data/mindmap/events.ndjson
 //     --out /tmp/golden --seed 0 --no-charts && cp /tmp/golden/actions.ndjson tests/data/mindmap/example_actions_seed0.ndjson
 // A difference means the behaviour changed: check it, then regenerate.
 TEST(ExampleData, MatchesTheGoldenActions) {

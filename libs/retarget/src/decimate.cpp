@@ -68,7 +68,7 @@ facemesh::Mesh decimate(const facemesh::Mesh& mesh, double keep_fraction, bool k
     const Eigen::Matrix4d m = q[static_cast<std::size_t>(a)] + q[static_cast<std::size_t>(b)];
     Eigen::Vector3d best = 0.5 * (Eigen::Vector3d(v.row(a)) + Eigen::Vector3d(v.row(b)));
     cost = keep_positions ? std::numeric_limits<double>::infinity() : quadric_cost(m, best);
-    for (const Eigen::Vector3d x : {Eigen::Vector3d(v.row(a)), Eigen::Vector3d(v.row(b))}) {
+    for (const Eigen::Vector3d& x : {Eigen::Vector3d(v.row(a)), Eigen::Vector3d(v.row(b))}) {
       const double c = quadric_cost(m, x);
       if (c < cost) {
         cost = c;
