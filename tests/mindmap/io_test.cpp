@@ -290,9 +290,10 @@ TEST(ExampleData, TwoCharactersReactDifferentlyToTheSameStimuli) {
   EXPECT_NE(seq[0], seq[1]);
 }
 
-// Golden output of the example characters, made with (one shell line)
-//   build/apps/mindmap/mindmap simulate --maps data/mindmap/characters --events data/mindmap/events.ndjson
-//     --out /tmp/golden --seed 0 --no-charts && cp /tmp/golden/actions.ndjson tests/data/mindmap/example_actions_seed0.ndjson
+// Golden output of the example characters, made with (the first two lines one command)
+//   build/apps/mindmap/mindmap simulate --maps data/mindmap/characters
+//       --events data/mindmap/events.ndjson --out /tmp/golden --seed 0 --no-charts
+//   cp /tmp/golden/actions.ndjson tests/data/mindmap/example_actions_seed0.ndjson
 // A difference means the behaviour changed: check it, then regenerate.
 TEST(ExampleData, MatchesTheGoldenActions) {
   const std::string dir = std::string(EMOFACE_SOURCE_DIR) + "/data/mindmap";
