@@ -72,7 +72,8 @@ EOF
 "$bin"/faceanim/faceanim "${rig_args[@]}" --params "$OUT_DIR"/settings.csv --out "$OUT_DIR"/frames >/dev/null
 "$bin"/facerender/facerender "${rig_args[@]}" "$OUT_DIR"/frames/*.obj --view front --width 480 --height 560 \
   --distance "$DISTANCE" --occlusion "$OCCLUSION" --out "$OUT_DIR"/render/face.png
-if [ "$N" = 1 ]; then mv "$OUT_DIR"/render/face.png "$OUT_DIR"/render/face_0000.png; fi
+# one frame: facerender writes face.png itself, several: face_0000.png ... (as oracle.sh)
+if [ -f "$OUT_DIR"/render/face.png ]; then mv "$OUT_DIR"/render/face.png "$OUT_DIR"/render/face_0000.png; fi
 args=()
 for ((i = 0; i < N; ++i)); do args+=("neutral=$OUT_DIR/render/$(printf 'face_%04d.png' "$i")"); done
 for network in human faceapi; do
