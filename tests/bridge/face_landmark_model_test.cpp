@@ -150,8 +150,9 @@ TEST(FaceLandmarkModel, EveryEmotionMovesTheFaceSurpriseOpensTheJaw) {
     if (l == mg::Label::Neutral) continue;
     const double moved = (m.landmarks(l, 1.0, id) - n).rowwise().norm().maxCoeff();
     EXPECT_GT(moved, 5.0) << mg::to_string(l);
-    // surprise's chin moves most: 65 with round 5's jaw drop (masseter Big at 1, AU26/27)
-    EXPECT_LT(moved, 75.0) << mg::to_string(l);
+    // fear's and surprise's chins move most: 83 and 65 with their jaw drops (masseter VeryBig
+    // and Big at 1, AU27/26; fear's since session 12)
+    EXPECT_LT(moved, 95.0) << mg::to_string(l);
   }
   const Eigen::MatrixXd s = m.landmarks(mg::Label::Surprise, 1.0, id);
   EXPECT_GT(s(8, 1), n(8, 1) + 5.0);    // chin down

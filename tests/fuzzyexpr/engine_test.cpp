@@ -42,18 +42,23 @@ const std::map<Emotion, std::map<int, std::string>>& thesis_tables() {
 const std::map<Emotion, std::map<int, std::string>>& deviations() {
   static const std::map<Emotion, std::map<int, std::string>> t = {
       // fear: AU5 (m16, Table 6.7 gives fear m16 in two blends) and AU7 (m17) only slight
-      // and the jaw (m19) opened slightly, as the text says fear opens it (VerySmall = 0 here)
       // and no m3 (triangularis = AU15, sadness's lip corner depressor) or m12 (levator labii
       // superioris = AU10, disgust's upper-lip raiser): fear's mouth is AU20+25/26 (round 4);
       // AU4 only as the corrugator (m14) drawing the raised brows together, no m13/m15
       // (depressor supercilii, depressor glabellae: they pull the inner brows down, anger's
-      // lowered brow; round 5), a step stronger than printed (session 7: the brows drawn together
-      // are what tells fear from surprise)
+      // lowered brow; round 5). Session 12: the brows "raised and drawn together" but less
+      // curved than surprise's arch (Ekman & Friesen 1975), AU1 over AU2: m9 only up to
+      // Medium, m10 Small, m14 Small (Medium at the extreme); the jaw dropped wide (m19
+      // Big/VeryBig, AU26/27; the printed VerySmall never opens it) and the lips stretched
+      // up to Medium (m4, AU20)
       {Emotion::Fear,
-       {{14, "vs s m b b"},
+       {{4, "vs s m m m"},
+        {9, "vs s m m m"},
+        {10, "vs s s s s"},
+        {14, "vs s s s m"},
         {16, "vs s m b vb"},
         {17, "vs vs s s s"},
-        {19, "- vs s s s"},
+        {19, "- vs s b vb"},
         {3, "- - - - -"},
         {12, "- - - - -"},
         {13, "- - - - -"},

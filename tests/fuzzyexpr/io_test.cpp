@@ -65,7 +65,7 @@ TEST(RuleFile, BadContentNamesTheField) {
              "/single/sadness/0/levels/2", "undefined output set");
   expect_bad([](Json& d) { d["single"]["sadness"][0]["levels"].erase(4); },
              "/single/sadness/0/levels", "one level per input set");
-  expect_bad([](Json& d) { d["single"]["fear"][1]["muscles"][0] = "risorius"; },
+  expect_bad([](Json& d) { d["single"]["fear"][1]["muscles"][0] = "depressor_labii"; },
              "/single/fear/1/muscles/0", "already has rules");
   expect_bad([](Json& d) { d["input_sets"][1]["points"] = {0.3, 0.2, 0.5}; },
              "/input_sets/1/points", "a <= b <= c <= d");

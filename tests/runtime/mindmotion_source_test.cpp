@@ -118,10 +118,11 @@ TEST(MindMotionSource, AStimulusChangesTheFaceWithinTheLatencyPlusAFewFrames) {
     ++frames;
   }
   // the output lags the input clock by the latency (18 frames at 60 fps); the motion moves at
-  // once. Measured: 20 frames (the latency, then the graph's first 1/30 s frame).
+  // once. Measured: 20 frames (the latency, then the graph's first 1/30 s frame) until session 12,
+  // 23 since fear's wider jaw reshaped the synthetic graph (the step reaches 0.049 at frame 22).
   const int latency = static_cast<int>(std::lround(c.latency() * 60));
   std::printf("stimulus to face: %d frames (latency %d)\n", frames, latency);
-  EXPECT_LE(frames, latency + 4) << frames;
+  EXPECT_LE(frames, latency + 6) << frames;
   EXPECT_GE(frames, latency) << frames;
   c.update(1.0);
   EXPECT_GT(c.emotions()[2], anger);  // the insult raised rex's anger
