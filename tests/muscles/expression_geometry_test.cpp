@@ -221,14 +221,25 @@ TEST_P(ExpressionGeometry, Fear) {
   // ... but not lowered: fear's AU4 is the corrugator drawing the raised brows together; the
   // depressors' pull down at the inner ends (anger's frown) is not in fear's rules since round 5.
   // The inner ends rise most (AU1 > AU2: 1.4 / 2.0 mm above the brows' middle, default / generic;
-  // 0.4 mm on the head with round 4's depressors) and above the lateral brows.
+  // 0.4 mm on the head with round 4's depressors; 5.0 / 4.7 mm since session 12) and above the
+  // lateral brows.
   const double outer = outer_brow_rise(X), brow = brow_rise(X);
   std::printf("%s fear 0.9: lateral brows up %.1f mm, brows up %.1f mm\n", face_name(), outer / mm,
               brow / mm);
   EXPECT_GT(inner - brow, 1.0 * mm);
   EXPECT_GT(inner, outer);
   EXPECT_GT(lids, 1.0);        // AU5 wins over AU7: the eyes open, never narrow
-  EXPECT_GT(widen, 2.0 * mm);  // AU20: lips stretched sideways
+  EXPECT_GT(widen, 2.0 * mm);  // AU20: lips stretched sideways (2.2 / 2.1 mm: the open jaw
+                               // draws the corners in as the risorius pulls them out)
+  // Session 12 (docs/fuzzyexpr.md, "Fear's brow is flatter than surprise's"): the lateral brows
+  // stay well below surprise's arch (AU2 Small), and the jaw drops wide (AU26/27), which is what
+  // made the oracle name fear instead of surprise.
+  const auto S = deform(fx::Emotion::Surprise, 0.9);
+  const double opening = mouth_opening(X) - mouth_opening(neutral());
+  std::printf("%s fear 0.9: lateral brows up %.1f mm (surprise %.1f), lips %.1f mm further apart\n",
+              face_name(), outer / mm, outer_brow_rise(S) / mm, opening / mm);
+  EXPECT_LT(outer, 0.4 * outer_brow_rise(S));
+  EXPECT_GT(opening, 24.0 * mm);
 }
 
 TEST_P(ExpressionGeometry, Disgust) {
